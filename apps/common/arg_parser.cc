@@ -1,0 +1,162 @@
+#include "apps/common/arg_parser.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "io/error.h"
+
+namespace comic::apps {
+
+ArgParser::ArgParser(std::string program, std::string usage, std::string description)
+    : program_(std::move(program)), usage_(std::move(usage)), description_(std::move(description)) {
+  AddFlag("help", "show this help and exit", nullptr);
+}
+
+void ArgParser::AddPositional(const std::string& name, const std::string& help, std::string* value,
+                              bool required) {
+  positionals_.push_back({name, help, value, required});
+}
+
+void ArgParser::AddFlag(const std::string& name, const std::string& help, bool* value) {
+  options_.push_back({name, "", help, "", [value](const std::string&) {
+                        if (value) *value = true;
+                      }});
+}
+
+void ArgParser::AddOption(const std::string& name, const std::string& value_name,
+                          const std::string& help, std::string* value) {
+  options_.push_back({name, value_name, help, value->empty() ? "" : *value,
+                      [value](const std::string& text) { *value = text; }});
+}
+
+void ArgParser::AddOption(const std::string& name, const std::string& value_name,
+                          const std::string& help, int* value) {
+  options_.push_back(
+      {name, value_name, help, std::to_string(*value), [name, value](const std::string& text) {
+         errno = 0;
+         char* end = nullptr;
+         const long parsed = std::strtol(text.c_str(), &end, 10);
+         COMIC_CHECK(!text.empty() && *end == '\0' && errno == 0 && parsed >= INT32_MIN &&
+                         parsed <= INT32_MAX,
+                     kInvalidArgument,
+                     "--" << name << ": expected an integer, got '" << text << "'");
+         *value = static_cast<int>(parsed);
+       }});
+}
+
+void ArgParser::AddOption(const std::string& name, const std::string& value_name,
+                          const std::string& help, double* value) {
+  std::ostringstream default_text;
+  default_text << *value;
+  options_.push_back(
+      {name, value_name, help, default_text.str(), [name, value](const std::string& text) {
+         errno = 0;
+         char* end = nullptr;
+         const double parsed = std::strtod(text.c_str(), &end);
+         COMIC_CHECK(!text.empty() && *end == '\0' && errno == 0, kInvalidArgument,
+                     "--" << name << ": expected a number, got '" << text << "'");
+         *value = parsed;
+       }});
+}
+
+void ArgParser::AddEpilog(const std::string& text) { epilog_ += text; }
+
+ArgParser::Option* ArgParser::FindOption(const std::string& name) {
+  for (Option& option : options_) {
+    if (option.name == name) return &option;
+  }
+  return nullptr;
+}
+
+bool ArgParser::WasSet(const std::string& name) const {
+  for (const Option& option : options_) {
+    if (option.name == name) return option.seen;
+  }
+  return false;
+}
+
+ArgParser::Result ArgParser::Parse(int argc, char** argv) {
+  size_t next_positional = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help") {
+      std::cout << Help();
+      return Result::kHelpShown;
+    }
+    if (arg.size() > 2 && arg.compare(0, 2, "--") == 0) {
+      std::string name = arg.substr(2);
+      std::string value;
+      bool has_inline_value = false;
+      const size_t eq = name.find('=');
+      if (eq != std::string::npos) {
+        value = name.substr(eq + 1);
+        name = name.substr(0, eq);
+        has_inline_value = true;
+      }
+      Option* option = FindOption(name);
+      COMIC_CHECK(option != nullptr, kInvalidArgument,
+                  "unknown option --" << name << " (see " << program_ << " --help)");
+      if (option->value_name.empty()) {
+        COMIC_CHECK(!has_inline_value, kInvalidArgument, "--" << name << " takes no value");
+      } else if (!has_inline_value) {
+        COMIC_CHECK(i + 1 < argc, kInvalidArgument,
+                    "--" << name << " needs a value (" << option->value_name << ")");
+        value = argv[++i];
+      }
+      option->assign(value);
+      option->seen = true;
+      continue;
+    }
+    COMIC_CHECK(next_positional < positionals_.size(), kInvalidArgument,
+                "unexpected argument '" << arg << "' (see " << program_ << " --help)");
+    *positionals_[next_positional++].value = arg;
+  }
+  for (size_t p = next_positional; p < positionals_.size(); ++p) {
+    COMIC_CHECK(!positionals_[p].required, kInvalidArgument,
+                "missing argument " << positionals_[p].name << " (see " << program_ << " --help)");
+  }
+  return Result::kRun;
+}
+
+std::string ArgParser::Help() const {
+  std::ostringstream out;
+  out << "Usage: " << program_ << " " << usage_ << "\n\n" << description_ << "\n";
+  if (!positionals_.empty()) {
+    out << "\nArguments:\n";
+    for (const Positional& p : positionals_) {
+      out << "  " << std::left << std::setw(28) << p.name << p.help
+          << (p.required ? "" : " (optional)") << "\n";
+    }
+  }
+  out << "\nOptions:\n";
+  for (const Option& option : options_) {
+    std::string left = "--" + option.name;
+    if (!option.value_name.empty()) left += " " + option.value_name;
+    out << "  " << std::left << std::setw(28) << left << option.help;
+    if (!option.default_text.empty()) out << " [default: " << option.default_text << "]";
+    out << "\n";
+  }
+  if (!epilog_.empty()) out << "\n" << epilog_;
+  return out.str();
+}
+
+int RunMain(const std::string& program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const Error& e) {
+    std::cerr << program << ": error: " << e.what() << "\n";
+    return e.kind() == ErrorKind::kInvalidArgument ? 2 : 1;
+  } catch (const cv::Exception& e) {
+    std::cerr << program << ": error: OpenCV: " << e.err << " (" << e.func << ")\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << program << ": error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace comic::apps

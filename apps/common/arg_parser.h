@@ -1,0 +1,71 @@
+// A small command-line parser shared by the apps: positional arguments, `--name value` /
+// `--name=value` options bound to variables (their initial values are the documented defaults),
+// boolean switches, and a generated --help. Flags are parsed here and nowhere below apps/.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace comic::apps {
+
+class ArgParser {
+ public:
+  // `usage` is the synopsis after the program name, `description` a paragraph for --help.
+  ArgParser(std::string program, std::string usage, std::string description);
+
+  void AddPositional(const std::string& name, const std::string& help, std::string* value,
+                     bool required = true);
+  // A switch: present -> true.
+  void AddFlag(const std::string& name, const std::string& help, bool* value);
+  void AddOption(const std::string& name, const std::string& value_name, const std::string& help,
+                 std::string* value);
+  void AddOption(const std::string& name, const std::string& value_name, const std::string& help,
+                 int* value);
+  void AddOption(const std::string& name, const std::string& value_name, const std::string& help,
+                 double* value);
+  // Free text appended to --help (examples, notes on outputs).
+  void AddEpilog(const std::string& text);
+
+  enum class Result { kRun, kHelpShown };
+  // Parses argv. Prints help to stdout and returns kHelpShown for -h/--help. Throws
+  // comic::Error(kInvalidArgument) with a one-line message for unknown options, missing values,
+  // malformed numbers and missing positionals.
+  Result Parse(int argc, char** argv);
+  // True if the option `name` (without dashes) was given on the command line.
+  bool WasSet(const std::string& name) const;
+
+  std::string Help() const;
+  const std::string& program() const { return program_; }
+
+ private:
+  struct Option {
+    std::string name;
+    std::string value_name;  // empty for switches
+    std::string help;
+    std::string default_text;
+    std::function<void(const std::string&)> assign;
+    bool seen = false;
+  };
+  struct Positional {
+    std::string name;
+    std::string help;
+    std::string* value;
+    bool required;
+  };
+  Option* FindOption(const std::string& name);
+
+  std::string program_;
+  std::string usage_;
+  std::string description_;
+  std::string epilog_;
+  std::vector<Option> options_;
+  std::vector<Positional> positionals_;
+};
+
+// Runs an app body, mapping failures to one line on stderr and an exit code: comic::Error of
+// kind kInvalidArgument -> 2 (usage), other comic::Error and any std::exception -> 1. Never lets
+// an exception escape main().
+int RunMain(const std::string& program, const std::function<int()>& body);
+
+}  // namespace comic::apps

@@ -1,0 +1,147 @@
+#include "io/file_utils.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "io/error.h"
+#include "io/natural_sort.h"
+
+namespace comic::io {
+namespace fs = std::filesystem;
+
+bool PathExists(const std::string& path) {
+  std::error_code ec;
+  return fs::exists(path, ec);
+}
+
+bool IsDirectory(const std::string& path) {
+  std::error_code ec;
+  return fs::is_directory(path, ec);
+}
+
+bool IsRegularFile(const std::string& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
+std::string FileExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::string FileName(const std::string& path) { return fs::path(path).filename().string(); }
+
+std::string ParentPath(const std::string& path) { return fs::path(path).parent_path().string(); }
+
+std::string JoinPaths(const std::string& a, const std::string& b) {
+  if (a.empty()) return b;
+  return (fs::path(a) / b).string();
+}
+
+std::vector<std::string> ListFiles(const std::string& folder) {
+  COMIC_CHECK(PathExists(folder), kNotFound, folder << ": no such file or folder");
+  COMIC_CHECK(IsDirectory(folder), kInvalidArgument, folder << ": not a folder");
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    std::error_code type_ec;
+    if (entry.is_regular_file(type_ec)) names.push_back(entry.path().filename().string());
+  }
+  COMIC_CHECK(!ec, kIo, folder << ": cannot list folder: " << ec.message());
+  NaturalSort(&names);
+  return names;
+}
+
+void EnsureWritableDirectory(const std::string& folder) {
+  COMIC_CHECK(!folder.empty(), kInvalidArgument, "output folder name is empty");
+  std::error_code ec;
+  if (PathExists(folder)) {
+    COMIC_CHECK(IsDirectory(folder), kIo, folder << ": exists and is not a folder");
+  } else {
+    fs::create_directories(folder, ec);
+    COMIC_CHECK(!ec, kIo, folder << ": cannot create folder: " << ec.message());
+  }
+  COMIC_CHECK(::access(folder.c_str(), W_OK | X_OK) == 0, kIo,
+              folder << ": folder is not writable");
+}
+
+void CheckWritableFile(const std::string& path, bool overwrite) {
+  COMIC_CHECK(!path.empty(), kInvalidArgument, "output file name is empty");
+  COMIC_CHECK(!IsDirectory(path), kIo, path << ": is a folder, cannot write a file there");
+  COMIC_CHECK(overwrite || !PathExists(path), kIo,
+              path << ": already exists (refusing to overwrite)");
+  const std::string parent = ParentPath(path).empty() ? "." : ParentPath(path);
+  COMIC_CHECK(IsDirectory(parent), kIo, path << ": folder " << parent << " does not exist");
+  COMIC_CHECK(::access(parent.c_str(), W_OK | X_OK) == 0, kIo,
+              path << ": folder " << parent << " is not writable");
+}
+
+std::string ReadFileToString(const std::string& path) {
+  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
+  COMIC_CHECK(!IsDirectory(path), kInvalidArgument, path << ": is a folder, expected a file");
+  std::ifstream in(path, std::ios::binary);
+  COMIC_CHECK(in.good(), kIo, path << ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  COMIC_CHECK(!in.bad(), kIo, path << ": read failed");
+  return buffer.str();
+}
+
+void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
+                     bool overwrite) {
+  CheckWritableFile(path, overwrite);
+  // The temporary name keeps the extension, so writers that pick the format from it still work.
+  const fs::path target(path);
+  const std::string temp =
+      (target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
+                               target.extension().string()))
+          .string();
+  try {
+    write(temp);
+    COMIC_CHECK(IsRegularFile(temp), kIo, path << ": writing failed");
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    COMIC_CHECK(!ec, kIo, path << ": cannot rename temporary file into place: " << ec.message());
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    throw;
+  }
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& contents, bool overwrite) {
+  WriteAtomically(
+      path,
+      [&](const std::string& temp) {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        COMIC_CHECK(out.good(), kIo, path << ": cannot open for writing");
+        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+        out.close();
+        COMIC_CHECK(out.good(), kIo, path << ": write failed (disk full?)");
+      },
+      overwrite);
+}
+
+void WriteImageAtomically(const std::string& path, const cv::Mat& image) {
+  COMIC_CHECK(!image.empty(), kInvalidArgument, path << ": refusing to write an empty image");
+  WriteAtomically(path, [&](const std::string& temp) {
+    bool ok = false;
+    try {
+      ok = cv::imwrite(temp, image);
+    } catch (const cv::Exception& e) {
+      throw Error(ErrorKind::kIo, path + ": cannot write image: " + e.what());
+    }
+    COMIC_CHECK(ok, kIo, path << ": cannot write image (unknown extension or unwritable)");
+  });
+}
+
+}  // namespace comic::io

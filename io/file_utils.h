@@ -1,0 +1,57 @@
+// Files and folders: existence checks with clear errors, and atomic writes, so that a failed or
+// interrupted run never leaves a half-written output behind (write a temporary file in the same
+// folder, then rename it over the target).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace cv {
+class Mat;
+}
+
+namespace comic::io {
+
+bool PathExists(const std::string& path);
+bool IsDirectory(const std::string& path);
+bool IsRegularFile(const std::string& path);
+
+// Lower-case extension without the dot ("PNG" -> "png"); empty if none.
+std::string FileExtension(const std::string& path);
+std::string FileName(const std::string& path);    // last path component
+std::string ParentPath(const std::string& path);  // "" for a bare file name
+std::string JoinPaths(const std::string& a, const std::string& b);
+
+// Regular files directly inside `folder` (names only, not paths), naturally sorted.
+// Throws comic::Error (kNotFound / kInvalidArgument) if `folder` is missing or not a folder.
+std::vector<std::string> ListFiles(const std::string& folder);
+
+// Creates `folder` and its parents if needed and checks that a file can be created in it.
+// Throws comic::Error(kIo) naming the folder otherwise.
+void EnsureWritableDirectory(const std::string& folder);
+
+// Checks, before any work is done, that a file can later be written at `path`: its folder exists
+// and is writable and `path` is not a folder (nor, unless `overwrite`, an existing file). Apps call
+// this up front so a bad output path fails in a second, not after a long run. Throws
+// comic::Error(kIo) naming the path.
+void CheckWritableFile(const std::string& path, bool overwrite = true);
+
+// Reads a whole text or binary file. Throws comic::Error(kNotFound / kIo).
+std::string ReadFileToString(const std::string& path);
+
+// Calls `write(temp_path)`, which must create the file at temp_path, then renames it to `path`.
+// On any exception the temporary file is removed and the exception is rethrown, so `path` is
+// either the complete new file or untouched. If `overwrite` is false and `path` exists, throws
+// comic::Error(kIo) before writing anything.
+void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
+                     bool overwrite = true);
+
+// Atomic write of bytes to `path` (see WriteAtomically).
+void WriteFileAtomically(const std::string& path, const std::string& contents,
+                         bool overwrite = true);
+
+// Atomic cv::imwrite; the format follows the extension of `path`. Throws comic::Error(kIo).
+void WriteImageAtomically(const std::string& path, const cv::Mat& image);
+
+}  // namespace comic::io

@@ -1,0 +1,117 @@
+#include "io/image_io.h"
+
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "io/error.h"
+#include "io/file_utils.h"
+
+namespace comic::io {
+namespace {
+
+cv::Mat To8Bit(const cv::Mat& image) {
+  switch (image.depth()) {
+    case CV_8U:
+      return image;
+    case CV_16U: {
+      cv::Mat out;
+      image.convertTo(out, CV_8U, 1.0 / 257.0);  // 65535 -> 255, exact for 257 * k
+      return out;
+    }
+    default:
+      throw Error(ErrorKind::kInvalidData,
+                  "unsupported image depth (only 8- and 16-bit integer images are supported)");
+  }
+}
+
+}  // namespace
+
+bool IsImageExtension(const std::string& extension) {
+  static constexpr const char* kExtensions[] = {"png", "jpg", "jpeg", "ppm",  "pgm",
+                                                "pnm", "pbm", "tif",  "tiff", "bmp"};
+  for (const char* e : kExtensions) {
+    if (extension == e) return true;
+  }
+  return false;
+}
+
+cv::Mat ToGray8(const cv::Mat& image) {
+  COMIC_CHECK(!image.empty(), kInvalidData, "empty image");
+  const cv::Mat image8 = To8Bit(image);
+  cv::Mat gray;
+  switch (image8.channels()) {
+    case 1:
+      gray = image8.clone();
+      break;
+    case 3:
+      cv::cvtColor(image8, gray, cv::COLOR_BGR2GRAY);
+      break;
+    case 4:
+      cv::cvtColor(image8, gray, cv::COLOR_BGRA2GRAY);
+      break;
+    default:
+      throw Error(ErrorKind::kInvalidData,
+                  "unsupported number of channels: " + std::to_string(image8.channels()));
+  }
+  return gray;
+}
+
+cv::Mat ToBgr8(const cv::Mat& image) {
+  COMIC_CHECK(!image.empty(), kInvalidData, "empty image");
+  const cv::Mat image8 = To8Bit(image);
+  cv::Mat color;
+  switch (image8.channels()) {
+    case 1:
+      cv::cvtColor(image8, color, cv::COLOR_GRAY2BGR);
+      break;
+    case 3:
+      color = image8.clone();
+      break;
+    case 4:
+      cv::cvtColor(image8, color, cv::COLOR_BGRA2BGR);
+      break;
+    default:
+      throw Error(ErrorKind::kInvalidData,
+                  "unsupported number of channels: " + std::to_string(image8.channels()));
+  }
+  return color;
+}
+
+cv::Mat ResizeToHeight(const cv::Mat& image, int height) {
+  if (height <= 0 || height == image.rows) return image.clone();
+  const int width = std::max(
+      1, static_cast<int>(std::lround(image.cols * static_cast<double>(height) / image.rows)));
+  cv::Mat out;
+  cv::resize(image, out, cv::Size(width, height), 0, 0,
+             height < image.rows ? cv::INTER_AREA : cv::INTER_LINEAR);
+  return out;
+}
+
+cv::Mat ReadImageUnchanged(const std::string& path) {
+  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
+  COMIC_CHECK(IsRegularFile(path), kInvalidData, path << ": not a regular file");
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw Error(ErrorKind::kInvalidData, path + ": cannot decode image: " + e.what());
+  }
+  COMIC_CHECK(!image.empty(), kInvalidData,
+              path << ": cannot decode image (corrupt, truncated or not an image)");
+  return image;
+}
+
+LoadedImage LoadImage(const std::string& path, int resize_height) {
+  const cv::Mat raw = ReadImageUnchanged(path);
+  LoadedImage loaded;
+  try {
+    loaded.gray = ResizeToHeight(ToGray8(raw), resize_height);
+    loaded.color = ResizeToHeight(ToBgr8(raw), resize_height);
+  } catch (const Error& e) {
+    throw Error(e.kind(), path + ": " + e.what());
+  }
+  return loaded;
+}
+
+}  // namespace comic::io

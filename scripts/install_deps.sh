@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Installs, with apt-get, only the Debian packages comic-sfm needs that are missing.
+# Idempotent and quiet when everything is present. Run as root (or with sudo available).
+#
+#   scripts/install_deps.sh            # install what is missing
+#   scripts/install_deps.sh --check    # list what is missing, install nothing (exit 1 if any)
+set -euo pipefail
+
+PACKAGES=(
+  g++            # C++17 compiler
+  make
+  cmake
+  pkg-config
+  libopencv-dev  # core, imgproc, imgcodecs, videoio, features2d, calib3d
+  libceres-dev   # bundle adjustment
+  libeigen3-dev
+  libsqlite3-dev # COLMAP database
+  nlohmann-json3-dev  # JSON reports
+  libgtest-dev   # GoogleTest (CMake finds GTest::gtest_main)
+  colmap         # the real COLMAP 3.8 binary, used by tests and --compare-colmap
+)
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
+  [ "$status" = "installed" ] || missing+=("$pkg")
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  exit 0
+fi
+
+if [ "${1:-}" = "--check" ]; then
+  echo "missing: ${missing[*]}"
+  exit 1
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then
+    SUDO="sudo"
+  else
+    echo "install_deps.sh: must run as root to install: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+echo "install_deps.sh: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install_deps.sh: done"
