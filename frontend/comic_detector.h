@@ -1,0 +1,57 @@
+// CoMIC: Corners on Maximally-stable Iso-intensity Curves (Ravindran & Mittal; the paper in
+// ../shared/paper/comic_paper.tex is the specification, ../shared/DESIGN.md the decisions on its
+// open points).
+//
+//   comic::frontend::ComicDetectorOptions options;   // paper defaults: s = 8.4, B = 100, δ = 5
+//   options.min_stability = 0.0;                     // ρ threshold, the main knob
+//   comic::frontend::ComicDetector detector(options);
+//   comic::frontend::FeatureSet features = detector.Detect(gray);  // strongest ρ first
+#pragma once
+
+#include <string>
+
+#include "frontend/detector.h"
+
+namespace comic::frontend {
+
+struct ComicDetectorOptions {
+  // Final detection scale s in pixels (paper §3: s = 8.4). Initialisation runs at 2s.
+  double scale = 8.4;
+  // Block size B in pixels (paper §3: B = 100). Initialisation blocks are B x B with stride B/2;
+  // convergence blocks are B/2 x B/2 centred on the corner.
+  int block_size = 100;
+  // Intensity offset δ of the Up/Down iso-curves in grey levels (paper Fig. 3: δ = 5).
+  // Initialisation uses δ/2 (Algorithm 1).
+  int delta = 5;
+  // Points on either side of the centre of an iso-curve segment, k (≈25 points per ICS, §3).
+  int half_length = 12;
+  // Feature-convergence iterations before a corner that keeps moving is dropped (Algorithm 1).
+  int max_iterations = 5;
+  // A corner has settled when its last move was at most this far, in pixels.
+  double convergence_tolerance = 1.0;
+  // Features closer than this (pixels) are duplicates; the one with the higher ρ is kept.
+  double merge_radius = 2.0;
+  // Stability threshold on ρ = len / ΔA (Eq. 1): features below it are not returned. 0 returns
+  // every candidate, so threshold equalisation can pick its own cut-off.
+  double min_stability = 0.0;
+  // Worker threads over blocks (0 = all hardware threads). Output is identical for any value.
+  int num_threads = 1;
+
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+class ComicDetector : public Detector {
+ public:
+  explicit ComicDetector(const ComicDetectorOptions& options = {});
+
+  std::string Name() const override { return "comic"; }
+  FeatureSet Detect(const cv::Mat& gray) const override;
+
+  const ComicDetectorOptions& options() const { return options_; }
+
+ private:
+  ComicDetectorOptions options_;
+};
+
+}  // namespace comic::frontend
