@@ -1,0 +1,173 @@
+#include "io/region_annotations.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "io/error.h"
+#include "io/file_utils.h"
+
+namespace comic::io {
+namespace {
+
+// Splits a line on commas, tabs and spaces and parses every field as a number. Returns false
+// (with the offending field in *bad_field) if a field is not a number.
+bool ParseNumbers(const std::string& line, std::vector<double>* numbers, std::string* bad_field) {
+  numbers->clear();
+  std::string field;
+  auto flush = [&]() -> bool {
+    if (field.empty()) return true;
+    errno = 0;
+    char* end = nullptr;
+    const double value = std::strtod(field.c_str(), &end);
+    if (*end != '\0' || errno == ERANGE) {
+      *bad_field = field;
+      return false;
+    }
+    numbers->push_back(value);
+    field.clear();
+    return true;
+  };
+  for (char c : line) {
+    if (c == ',' || c == '\t' || c == ' ' || c == '\r') {
+      if (!flush()) return false;
+    } else {
+      field.push_back(c);
+    }
+  }
+  return flush();
+}
+
+RegionPolygon BoxPolygon(double x, double y, double w, double h) {
+  // 1-based top-left corner -> 0-based (see the header).
+  const double x0 = x - 1.0;
+  const double y0 = y - 1.0;
+  return {{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h}};
+}
+
+bool AnyNan(const std::vector<double>& numbers) {
+  for (double v : numbers) {
+    if (std::isnan(v)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+RegionFileFormat ParseRegionFileFormat(const std::string& name) {
+  if (name == "auto") return RegionFileFormat::kAuto;
+  if (name == "vot") return RegionFileFormat::kVotPolygon;
+  if (name == "otb") return RegionFileFormat::kOtbBox;
+  throw Error(ErrorKind::kInvalidArgument,
+              "unknown region format '" + name + "' (valid: auto, vot, otb)");
+}
+
+const char* RegionFileFormatName(RegionFileFormat format) {
+  switch (format) {
+    case RegionFileFormat::kAuto:
+      return "auto";
+    case RegionFileFormat::kVotPolygon:
+      return "vot";
+    case RegionFileFormat::kOtbBox:
+      return "otb";
+  }
+  return "?";
+}
+
+RegionAnnotations ReadRegionFile(const std::string& path, RegionFileFormat format) {
+  const std::string text = ReadFileToString(path);
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) lines.push_back(line);
+  }
+  // Blank trailing lines are not frames.
+  auto is_blank = [](const std::string& line) {
+    return line.find_first_not_of(" \t\r,") == std::string::npos;
+  };
+  while (!lines.empty() && is_blank(lines.back())) lines.pop_back();
+  COMIC_CHECK(!lines.empty(), kInvalidData, path << ": holds no region");
+
+  RegionAnnotations annotations;
+  annotations.format = format;
+  std::vector<double> numbers;
+  for (size_t k = 0; k < lines.size(); ++k) {
+    std::string bad_field;
+    COMIC_CHECK(ParseNumbers(lines[k], &numbers, &bad_field), kInvalidData,
+                path << ":" << k + 1 << ": '" << bad_field << "' is not a number");
+    if (annotations.format == RegionFileFormat::kAuto && !numbers.empty() && !AnyNan(numbers) &&
+        !(numbers.size() == 1 && numbers[0] == 0.0)) {
+      COMIC_CHECK(numbers.size() == 4 || numbers.size() >= 6, kInvalidData,
+                  path << ":" << k + 1 << ": " << numbers.size()
+                       << " numbers is neither an OTB box (4) nor a VOT polygon (8)");
+      annotations.format =
+          numbers.size() == 4 ? RegionFileFormat::kOtbBox : RegionFileFormat::kVotPolygon;
+    }
+    const RegionFileFormat line_format = annotations.format == RegionFileFormat::kAuto
+                                             ? RegionFileFormat::kVotPolygon
+                                             : annotations.format;
+    // VOT marks frames without annotation by "0" or NaN coordinates.
+    if (line_format == RegionFileFormat::kVotPolygon &&
+        (AnyNan(numbers) || (numbers.size() == 1 && numbers[0] == 0.0))) {
+      annotations.polygons.emplace_back();
+      continue;
+    }
+    COMIC_CHECK(!numbers.empty(), kInvalidData, path << ":" << k + 1 << ": empty line");
+    COMIC_CHECK(!AnyNan(numbers), kInvalidData, path << ":" << k + 1 << ": NaN in an OTB box");
+    if (line_format == RegionFileFormat::kOtbBox) {
+      COMIC_CHECK(numbers.size() == 4, kInvalidData,
+                  path << ":" << k + 1 << ": expected an OTB box 'x y w h' (4 numbers), got "
+                       << numbers.size());
+    } else {
+      COMIC_CHECK(numbers.size() == 4 || (numbers.size() >= 6 && numbers.size() % 2 == 0),
+                  kInvalidData,
+                  path << ":" << k + 1
+                       << ": expected a VOT polygon 'x1,y1,...,x4,y4' or rectangle 'x,y,w,h', got "
+                       << numbers.size() << " numbers");
+    }
+    if (numbers.size() == 4) {
+      COMIC_CHECK(numbers[2] >= 0 && numbers[3] >= 0, kInvalidData,
+                  path << ":" << k + 1 << ": box with negative width or height");
+      annotations.polygons.push_back(BoxPolygon(numbers[0], numbers[1], numbers[2], numbers[3]));
+    } else {
+      RegionPolygon polygon;
+      for (size_t i = 0; i + 1 < numbers.size(); i += 2) {
+        polygon.emplace_back(numbers[i] - 1.0, numbers[i + 1] - 1.0);
+      }
+      annotations.polygons.push_back(std::move(polygon));
+    }
+  }
+  if (annotations.format == RegionFileFormat::kAuto) {
+    annotations.format = RegionFileFormat::kVotPolygon;  // every line unannotated
+  }
+  return annotations;
+}
+
+cv::Mat RasterizeRegion(const RegionPolygon& polygon, const cv::Size& source_size,
+                        const cv::Size& target_size) {
+  COMIC_CHECK(source_size.width > 0 && source_size.height > 0 && target_size.width > 0 &&
+                  target_size.height > 0,
+              kInvalidArgument, "RasterizeRegion: sizes must be positive");
+  cv::Mat mask(target_size, CV_8UC1, cv::Scalar(0));
+  if (polygon.size() < 3) return mask;
+  const double sx = static_cast<double>(target_size.width) / source_size.width;
+  const double sy = static_cast<double>(target_size.height) / source_size.height;
+  // fillPoly takes fixed-point vertices: 8 fractional bits keep sub-pixel corners.
+  constexpr int kShift = 8;
+  constexpr double kOne = 1 << kShift;
+  std::vector<cv::Point> vertices;
+  for (const cv::Point2d& p : polygon) {
+    const double x = (p.x + 0.5) * sx - 0.5;
+    const double y = (p.y + 0.5) * sy - 0.5;
+    vertices.emplace_back(static_cast<int>(std::lround(x * kOne)),
+                          static_cast<int>(std::lround(y * kOne)));
+  }
+  const std::vector<std::vector<cv::Point>> polygons = {vertices};
+  cv::fillPoly(mask, polygons, cv::Scalar(255), cv::LINE_8, kShift);
+  return mask;
+}
+
+}  // namespace comic::io
