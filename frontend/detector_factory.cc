@@ -1,0 +1,74 @@
+#include "frontend/detector_factory.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "io/error.h"
+
+namespace comic::frontend {
+namespace {
+
+std::string ValidNames() {
+  std::string names;
+  for (const std::string& name : DetectorNames()) names += (names.empty() ? "" : ", ") + name;
+  return names;
+}
+
+void CheckName(const std::string& name) {
+  COMIC_CHECK(IsDetectorName(name), kInvalidArgument,
+              "unknown detector '" << name << "' (valid: " << ValidNames() << ")");
+}
+
+}  // namespace
+
+const std::vector<std::string>& DetectorNames() {
+  static const std::vector<std::string> kNames = {"comic", "harris", "hessian", "mser", "fast"};
+  return kNames;
+}
+
+bool IsDetectorName(const std::string& name) {
+  const auto& names = DetectorNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+void DetectorOptions::Check() const {
+  CheckName(name);
+  if (name == "comic") comic.Check();
+  if (name == "harris") harris.Check();
+  if (name == "hessian") hessian.Check();
+  if (name == "mser") mser.Check();
+  if (name == "fast") fast.Check();
+}
+
+std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options) {
+  options.Check();
+  if (options.name == "comic") return std::make_unique<ComicDetector>(options.comic);
+  if (options.name == "harris") return std::make_unique<HarrisDetector>(options.harris);
+  if (options.name == "hessian") return std::make_unique<HessianDetector>(options.hessian);
+  if (options.name == "mser") return std::make_unique<MserDetector>(options.mser);
+  return std::make_unique<FastDetector>(options.fast);
+}
+
+std::unique_ptr<Detector> MakeDetector(const std::string& name) {
+  DetectorOptions options;
+  options.name = name;
+  return MakeDetector(options);
+}
+
+std::vector<std::string> ParseDetectorList(const std::string& list) {
+  std::vector<std::string> names;
+  std::istringstream in(list);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    COMIC_CHECK(!name.empty(), kInvalidArgument, "empty name in detector list '" << list << "'");
+    CheckName(name);
+    COMIC_CHECK(std::find(names.begin(), names.end(), name) == names.end(), kInvalidArgument,
+                "detector '" << name << "' listed twice");
+    names.push_back(name);
+  }
+  COMIC_CHECK(!names.empty(), kInvalidArgument,
+              "empty detector list (valid: " << ValidNames() << ")");
+  return names;
+}
+
+}  // namespace comic::frontend

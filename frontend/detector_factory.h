@@ -1,0 +1,60 @@
+// One place that builds any detector by name, so apps, the tracker and the evaluation treat CoMIC
+// and the baselines alike (paper §5.1 compares CoMIC with Harris, Hessian, MSER and FAST-9).
+//
+//   comic::frontend::DetectorOptions options;
+//   options.name = "harris";
+//   options.harris.integration_sigma = 2.5;
+//   std::unique_ptr<comic::frontend::Detector> detector = comic::frontend::MakeDetector(options);
+//   comic::frontend::FeatureSet features = detector->Detect(gray);  // every candidate
+//
+// Every detector returns every candidate with its response, strongest first; a detection
+// threshold is a cut-off on the response (see threshold_equalisation.h). Parameters are in pixels
+// of the image given to Detect; the evaluation apps resize frames to height 700 first, as the
+// paper's experiments do (§5.1), so the defaults are meant for that scale.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "frontend/comic_detector.h"
+#include "frontend/detector.h"
+#include "frontend/fast_detector.h"
+#include "frontend/harris_detector.h"
+#include "frontend/hessian_detector.h"
+#include "frontend/mser_detector.h"
+
+namespace comic::frontend {
+
+struct DetectorOptions {
+  // Which detector: one of DetectorNames().
+  std::string name = "comic";
+  // The options of each detector; only the one named is used.
+  ComicDetectorOptions comic;
+  HarrisDetectorOptions harris;
+  HessianDetectorOptions hessian;
+  MserDetectorOptions mser;
+  FastDetectorOptions fast;
+
+  // Throws comic::Error(kInvalidArgument) for an unknown name (listing the valid ones) or bad
+  // options of the named detector.
+  void Check() const;
+};
+
+// {"comic", "harris", "hessian", "mser", "fast"}, in the paper's table order.
+const std::vector<std::string>& DetectorNames();
+
+// True if `name` is one of DetectorNames().
+bool IsDetectorName(const std::string& name);
+
+// Builds the named detector with its options. Throws comic::Error(kInvalidArgument) as Check().
+std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options);
+
+// Builds the named detector with default options.
+std::unique_ptr<Detector> MakeDetector(const std::string& name);
+
+// Splits a comma-separated list ("comic,harris") into names, checking each one; throws
+// comic::Error(kInvalidArgument) for an unknown or repeated name or an empty list.
+std::vector<std::string> ParseDetectorList(const std::string& list);
+
+}  // namespace comic::frontend
