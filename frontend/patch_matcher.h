@@ -1,0 +1,118 @@
+// Patch matching (paper §4, Algorithm 2): 23x23 patches compared by their squared grey-level
+// differences, candidates restricted by a gate, one-to-one (mutual best) matching, one threshold.
+//
+//   PatchMatcherOptions options;                         // radius gate r = 20 px, full patch
+//   options.cost = MatchCost::kSplitMinOfFourPairings;   // CoMIC: the patch split by its curve
+//   std::vector<PatchMatch> matches = MatchFeatures(gray1, features1, gray2, features2, options);
+//
+// The three stages are exposed so a caller can sweep the threshold without re-matching:
+//
+//   auto candidates = ComputeCandidateCosts(gray1, features1, gray2, features2, options);
+//   auto mutual = SelectMutualBest(candidates);          // every one-to-one match, any cost
+//   auto accepted = ApplyCostThreshold(mutual, 400.0);   // the same as MatchFeatures at T = 400
+//
+// Thresholding after the mutual-best selection gives the same matches as thresholding first: a
+// match's cost is the lowest of its row and column, so removing costs above T never changes a
+// surviving pair's best partner.
+//
+// Costs. Every cost is a MEAN squared difference of 0–255 grey values over the pixels compared,
+// so one threshold T (e.g. 400 = an RMS difference of 20 grey levels) means the same for every
+// mode:
+//   kFullPatch              all 529 pixels (the baselines; paper Fig. 7a).
+//   kSplitMinOfFourPairings Algorithm 2: each patch is split by its feature's side mask into ic+
+//                           and ic− (Feature::side_mask); for each of the four pairings (a, b) of
+//                           a side a of patch 1 with a side b of patch 2, the mean over the pixels
+//                           lying in a in patch 1 AND in b in patch 2 (same window position); the
+//                           cost is the minimum over pairings whose overlap has at least
+//                           min_side_overlap pixels (d_min of Algorithm 2).
+//   kSplitLikeSides         the same, over the pairings (ic+, ic+) and (ic−, ic−) only.
+// A split mode falls back to kFullPatch for a pair in which either feature has no side mask, so
+// one options struct serves CoMIC and the baselines. Caution when comparing modes: a split cost
+// averages over fewer pixels and takes a minimum over pairings, so it is lower than the
+// full-patch cost of the same pair by construction, and at one fixed T it accepts more matches
+// without matching better. Compare at equal precision where ground truth allows
+// (match_precision.h).
+//
+// Gates. kRadius (video, paper §4): candidates within `radius` of the feature's position, or of
+// its predicted position when the caller supplies predictions (the tracker's motion prediction).
+// kRectifiedStereo (Middlebury): |y2 − y1| ≤ row_tolerance and disparity d = x1 − x2 in
+// [min_disparity, max_disparity], i.e. x2 = x1 − d (image 1 = left, image 2 = right).
+//
+// Patches are taken at the rounded feature positions; a feature whose patch does not fit in its
+// image (PatchFits) is never matched.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "frontend/feature.h"
+
+namespace comic::frontend {
+
+enum class MatchCost { kFullPatch, kSplitMinOfFourPairings, kSplitLikeSides };
+
+// "full", "split", "like-sides" (the command-line names).
+const char* MatchCostName(MatchCost cost);
+// Throws comic::Error(kInvalidArgument) listing the valid names.
+MatchCost ParseMatchCost(const std::string& name);
+
+enum class CandidateGate { kRadius, kRectifiedStereo };
+
+struct PatchMatcherOptions {
+  CandidateGate gate = CandidateGate::kRadius;
+  // kRadius: largest distance in pixels between a candidate and the feature's (predicted)
+  // position (paper §4: r = 20 px at image height 700).
+  double radius = 20.0;
+  // kRectifiedStereo: largest row difference, in pixels.
+  double row_tolerance = 1.0;
+  // kRectifiedStereo: disparity range d = x1 − x2, in pixels.
+  double min_disparity = 0.0;
+  double max_disparity = 64.0;
+  // How two patches are compared (see above).
+  MatchCost cost = MatchCost::kFullPatch;
+  // Split costs: fewest pixels two sides must share for their pairing to count (of 529).
+  int min_side_overlap = 40;
+  // SSD threshold T: a mutual-best match is accepted if its cost <= max_cost (mean squared
+  // difference, grey levels²). +infinity accepts every mutual-best match.
+  double max_cost = 400.0;
+
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+// A pair of features, index1 into the first set, index2 into the second, with its cost.
+struct PatchMatch {
+  int index1 = -1;
+  int index2 = -1;
+  float cost = 0.0f;  // mean squared grey-level difference; +inf if no side pairing overlaps
+};
+
+// Every gated pair (index1, index2) with its cost, ordered by index1 then index2. Pairs with no
+// valid side pairing (cost +inf) are left out. `predicted1` is empty (gate around each feature's
+// own position) or holds one predicted position in image 2 per feature of `features1`. Throws
+// comic::Error(kInvalidArgument) for images that are not CV_8UC1 or a wrong prediction count.
+std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const FeatureSet& features1,
+                                              const cv::Mat& gray2, const FeatureSet& features2,
+                                              const PatchMatcherOptions& options,
+                                              const std::vector<cv::Point2f>& predicted1 = {});
+
+// One-to-one matching: the pairs that are each other's lowest-cost candidate (ties broken by the
+// lower index), ordered by index1.
+std::vector<PatchMatch> SelectMutualBest(const std::vector<PatchMatch>& candidates);
+
+// The matches with cost <= max_cost, order kept.
+std::vector<PatchMatch> ApplyCostThreshold(const std::vector<PatchMatch>& matches, double max_cost);
+
+// ComputeCandidateCosts, SelectMutualBest and ApplyCostThreshold(options.max_cost) in one call.
+std::vector<PatchMatch> MatchFeatures(const cv::Mat& gray1, const FeatureSet& features1,
+                                      const cv::Mat& gray2, const FeatureSet& features2,
+                                      const PatchMatcherOptions& options,
+                                      const std::vector<cv::Point2f>& predicted1 = {});
+
+// The cost of one pair under `options.cost` (no gate), +inf if a patch does not fit or no side
+// pairing overlaps enough.
+float PatchCost(const cv::Mat& gray1, const Feature& feature1, const cv::Mat& gray2,
+                const Feature& feature2, const PatchMatcherOptions& options);
+
+}  // namespace comic::frontend
