@@ -1,0 +1,257 @@
+#include "sfm/bundle_adjuster.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "io/error.h"
+
+namespace comic::sfm {
+
+void BundleAdjustmentOptions::Check() const {
+  COMIC_CHECK(huber_loss_scale_px > 0, kInvalidArgument,
+              "bundle adjustment huber_loss_scale_px must be > 0, got " << huber_loss_scale_px);
+  COMIC_CHECK(max_num_iterations >= 1, kInvalidArgument,
+              "bundle adjustment max_num_iterations must be >= 1");
+  COMIC_CHECK(function_tolerance >= 0 && gradient_tolerance >= 0 && parameter_tolerance >= 0,
+              kInvalidArgument, "bundle adjustment tolerances must be >= 0");
+  COMIC_CHECK(num_threads >= 1, kInvalidArgument, "bundle adjustment num_threads must be >= 1");
+}
+
+namespace {
+
+// Reprojection residual of one observation, in pixels. Parameter blocks: the image's
+// cam_from_world rotation (Eigen quaternion storage x, y, z, w), its translation (3), the point
+// in world coordinates (3) and the camera intrinsics (fx, fy, cx, cy).
+class ReprojectionCost {
+ public:
+  explicit ReprojectionCost(const Eigen::Vector2d& observed) : observed_(observed) {}
+
+  template <typename T>
+  bool operator()(const T* rotation_coeffs, const T* translation_data, const T* point_data,
+                  const T* intrinsics, T* residuals) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> rotation(rotation_coeffs);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(translation_data);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> point(point_data);
+    const Eigen::Matrix<T, 3, 1> point_in_cam = rotation * point + translation;
+    residuals[0] =
+        intrinsics[0] * point_in_cam.x() / point_in_cam.z() + intrinsics[2] - T(observed_.x());
+    residuals[1] =
+        intrinsics[1] * point_in_cam.y() / point_in_cam.z() + intrinsics[3] - T(observed_.y());
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const Eigen::Vector2d& observed) {
+    return new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 3, 3, 4>(
+        new ReprojectionCost(observed));
+  }
+
+ private:
+  Eigen::Vector2d observed_;
+};
+
+double RmsReprojectionError(const Reconstruction& reconstruction,
+                            const std::set<image_t>& image_ids) {
+  double sum = 0.0;
+  size_t count = 0;
+  for (image_t image_id : image_ids) {
+    const Image& image = reconstruction.image(image_id);
+    for (point2D_t idx = 0; idx < image.points2D.size(); ++idx) {
+      if (!image.points2D[idx].HasPoint3D()) continue;
+      const double error = reconstruction.ReprojectionError(image_id, idx);
+      sum += error * error;
+      ++count;
+    }
+  }
+  return count == 0 ? 0.0 : std::sqrt(sum / static_cast<double>(count));
+}
+
+}  // namespace
+
+BundleAdjuster::BundleAdjuster(const BundleAdjustmentOptions& options,
+                               const BundleAdjustmentConfig& config)
+    : options_(options), config_(config) {
+  options_.Check();
+}
+
+BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) const {
+  COMIC_CHECK(reconstruction != nullptr, kInvalidArgument, "bundle adjustment: no reconstruction");
+  const auto start = std::chrono::steady_clock::now();
+  BundleAdjustmentSummary summary;
+  for (image_t image_id : config_.image_ids) {
+    COMIC_CHECK(reconstruction->ExistsImage(image_id) && reconstruction->image(image_id).registered,
+                kInvalidArgument,
+                "bundle adjustment: image " << image_id << " is unknown or not registered");
+  }
+
+  // Gather what enters the problem, in id order.
+  std::vector<image_t> image_ids;  // images with at least one observation
+  std::set<point3D_t> point_id_set;
+  std::set<camera_t> camera_id_set;
+  for (image_t image_id : config_.image_ids) {
+    const Image& image = reconstruction->image(image_id);
+    bool observed = false;
+    for (const Point2D& point2D : image.points2D) {
+      if (!point2D.HasPoint3D()) continue;
+      point_id_set.insert(point2D.point3D_id);
+      observed = true;
+      ++summary.num_residuals;
+    }
+    if (!observed) continue;
+    image_ids.push_back(image_id);
+    camera_id_set.insert(image.camera_id);
+  }
+  if (summary.num_residuals == 0) {
+    summary.termination = "no observations";
+    return summary;
+  }
+  summary.num_images = static_cast<int>(image_ids.size());
+  summary.num_points = static_cast<int>(point_id_set.size());
+
+  // All parameters live in one buffer during the solve (points, then poses as x y z w quaternion
+  // and translation, then intrinsics fx fy cx cy) and are written back afterwards. Ceres orders
+  // the blocks of an ordering group by address, so one buffer filled in id order makes the
+  // elimination order, and hence the result, independent of where the heap put things.
+  const std::vector<point3D_t> point_ids(point_id_set.begin(), point_id_set.end());
+  const std::vector<camera_t> camera_ids(camera_id_set.begin(), camera_id_set.end());
+  const size_t pose_offset = 3 * point_ids.size();
+  const size_t camera_offset = pose_offset + 7 * image_ids.size();
+  std::vector<double> params(camera_offset + 4 * camera_ids.size());
+  std::map<point3D_t, double*> point_params;
+  std::map<image_t, double*> pose_params;
+  std::map<camera_t, double*> camera_params;
+  for (size_t i = 0; i < point_ids.size(); ++i) {
+    double* block = params.data() + 3 * i;
+    Eigen::Map<Eigen::Vector3d> xyz(block);
+    xyz = reconstruction->point3D(point_ids[i]).xyz;
+    point_params[point_ids[i]] = block;
+  }
+  for (size_t i = 0; i < image_ids.size(); ++i) {
+    double* block = params.data() + pose_offset + 7 * i;
+    const Rigid3d& pose = reconstruction->image(image_ids[i]).cam_from_world;
+    Eigen::Map<Eigen::Vector4d> rotation_coeffs(block);
+    Eigen::Map<Eigen::Vector3d> translation(block + 4);
+    rotation_coeffs = pose.rotation.normalized().coeffs();
+    translation = pose.translation;
+    pose_params[image_ids[i]] = block;
+  }
+  for (size_t i = 0; i < camera_ids.size(); ++i) {
+    double* block = params.data() + camera_offset + 4 * i;
+    const Camera& camera = reconstruction->camera(camera_ids[i]);
+    block[0] = camera.fx;
+    block[1] = camera.fy;
+    block[2] = camera.cx;
+    block[3] = camera.cy;
+    camera_params[camera_ids[i]] = block;
+  }
+
+  ceres::Problem problem;
+  ceres::LossFunction* loss = new ceres::HuberLoss(options_.huber_loss_scale_px);
+  for (image_t image_id : image_ids) {
+    const Image& image = reconstruction->image(image_id);
+    double* rotation = pose_params.at(image_id);
+    double* translation = rotation + 4;
+    for (const Point2D& point2D : image.points2D) {
+      if (!point2D.HasPoint3D()) continue;
+      problem.AddResidualBlock(ReprojectionCost::Create(point2D.xy), loss, rotation, translation,
+                               point_params.at(point2D.point3D_id),
+                               camera_params.at(image.camera_id));
+    }
+    problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
+    if (config_.constant_pose_ids.count(image_id)) {
+      problem.SetParameterBlockConstant(rotation);
+      problem.SetParameterBlockConstant(translation);
+    } else {
+      ++summary.num_variable_images;
+      if (config_.fixed_scale_image_ids.count(image_id)) {
+        int largest = 0;
+        image.cam_from_world.translation.cwiseAbs().maxCoeff(&largest);
+        problem.SetManifold(translation, new ceres::SubsetManifold(3, {largest}));
+      }
+    }
+  }
+  for (point3D_t point3D_id : config_.constant_point_ids) {
+    if (point_params.count(point3D_id))
+      problem.SetParameterBlockConstant(point_params.at(point3D_id));
+  }
+  for (camera_t camera_id : camera_ids) {
+    if (options_.refine_focal_length) {
+      problem.SetManifold(camera_params.at(camera_id), new ceres::SubsetManifold(4, {2, 3}));
+    } else {
+      problem.SetParameterBlockConstant(camera_params.at(camera_id));
+    }
+  }
+
+  // Schur complement: eliminate the points (group 0) first, then solve for the cameras.
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (point3D_t point3D_id : point_ids)
+    ordering->AddElementToGroup(point_params.at(point3D_id), 0);
+  for (image_t image_id : image_ids) {
+    ordering->AddElementToGroup(pose_params.at(image_id), 1);
+    ordering->AddElementToGroup(pose_params.at(image_id) + 4, 1);
+  }
+  for (camera_t camera_id : camera_ids) ordering->AddElementToGroup(camera_params.at(camera_id), 1);
+
+  ceres::Solver::Options solver_options;
+  // Dense Schur is fastest for the few dozen cameras of a video window; larger problems need the
+  // sparse one.
+  constexpr int kMaxDenseImages = 60;
+  solver_options.linear_solver_type =
+      summary.num_variable_images <= kMaxDenseImages ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  if (solver_options.linear_solver_type == ceres::SPARSE_SCHUR &&
+      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) &&
+      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+    solver_options.linear_solver_type = ceres::ITERATIVE_SCHUR;
+  }
+  solver_options.linear_solver_ordering = ordering;
+  solver_options.max_num_iterations = options_.max_num_iterations;
+  solver_options.function_tolerance = options_.function_tolerance;
+  solver_options.gradient_tolerance = options_.gradient_tolerance;
+  solver_options.parameter_tolerance = options_.parameter_tolerance;
+  solver_options.num_threads = options_.num_threads;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+
+  summary.initial_rmse_px = RmsReprojectionError(*reconstruction, config_.image_ids);
+  ceres::Solver::Summary ceres_summary;
+  ceres::Solve(solver_options, &problem, &ceres_summary);
+
+  summary.usable = ceres_summary.IsSolutionUsable();
+  summary.num_iterations = static_cast<int>(ceres_summary.iterations.size());
+  summary.initial_cost = ceres_summary.initial_cost;
+  summary.final_cost = ceres_summary.final_cost;
+  summary.termination =
+      std::string(ceres::TerminationTypeToString(ceres_summary.termination_type)) + ": " +
+      ceres_summary.message;
+  if (summary.usable) {
+    for (point3D_t point3D_id : point_ids) {
+      reconstruction->point3D(point3D_id).xyz =
+          Eigen::Map<const Eigen::Vector3d>(point_params.at(point3D_id));
+    }
+    for (image_t image_id : image_ids) {
+      const double* block = pose_params.at(image_id);
+      Rigid3d& pose = reconstruction->image(image_id).cam_from_world;
+      pose.rotation = Eigen::Quaterniond(block[3], block[0], block[1], block[2]).normalized();
+      pose.translation = Eigen::Map<const Eigen::Vector3d>(block + 4);
+    }
+    if (options_.refine_focal_length) {
+      for (camera_t camera_id : camera_ids) {
+        Camera& camera = reconstruction->camera(camera_id);
+        camera.fx = camera_params.at(camera_id)[0];
+        camera.fy = camera_params.at(camera_id)[1];
+      }
+    }
+  }
+  summary.final_rmse_px = RmsReprojectionError(*reconstruction, config_.image_ids);
+  summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace comic::sfm

@@ -1,0 +1,82 @@
+// Bundle adjustment of a Reconstruction on Ceres (the only place the project uses Ceres; its types
+// stay in bundle_adjuster.cc). One auto-differentiated reprojection cost per observation with a
+// Huber loss, Schur elimination with points eliminated first, intrinsics held fixed or with the
+// focal length refined, and the gauge fixed by constant poses chosen in the config.
+//
+//   BundleAdjustmentConfig config;
+//   for (image_t id : reconstruction.RegisteredImageIds()) config.image_ids.insert(id);
+//   config.constant_pose_ids.insert(first_id);        // fixes position and orientation
+//   config.fixed_scale_image_ids.insert(second_id);   // fixes the scale
+//   BundleAdjuster adjuster(options, config);
+//   const BundleAdjustmentSummary summary = adjuster.Solve(&reconstruction);
+#pragma once
+
+#include <set>
+#include <string>
+
+#include "sfm/reconstruction.h"
+
+namespace comic::sfm {
+
+struct BundleAdjustmentOptions {
+  // Huber loss: residuals longer than this (pixels) count linearly, not quadratically.
+  double huber_loss_scale_px = 1.0;
+  // Levenberg–Marquardt iterations at most.
+  int max_num_iterations = 100;
+  // Ceres stopping tolerances (relative cost change, gradient, relative step).
+  double function_tolerance = 1e-6;
+  double gradient_tolerance = 1e-10;
+  double parameter_tolerance = 1e-8;
+  // Refine fx and fy (the principal point stays fixed); otherwise intrinsics are constant.
+  bool refine_focal_length = false;
+  // Threads for Ceres. More than one can change the last bits of the result between runs (Ceres
+  // sums partial results in thread order), so the default is 1, which is bit-for-bit
+  // deterministic.
+  int num_threads = 1;
+
+  void Check() const;
+};
+
+struct BundleAdjustmentConfig {
+  // Images whose observations enter the problem (must be registered).
+  std::set<image_t> image_ids;
+  // Images among image_ids whose pose stays fixed.
+  std::set<image_t> constant_pose_ids;
+  // Images among image_ids whose translation keeps its largest coordinate fixed: with one
+  // constant pose this removes the remaining scale freedom.
+  std::set<image_t> fixed_scale_image_ids;
+  // 3-D points held fixed (others seen by image_ids are refined).
+  std::set<point3D_t> constant_point_ids;
+};
+
+struct BundleAdjustmentSummary {
+  bool usable = false;  // Ceres returned a usable solution (the reconstruction was updated)
+  int num_images = 0;   // images in the problem (variable and constant)
+  int num_variable_images = 0;
+  int num_points = 0;
+  int num_residuals = 0;  // observations
+  int num_iterations = 0;
+  double initial_cost = 0.0;     // Ceres cost ½ Σ ρ(‖r‖²) before, pixels²
+  double final_cost = 0.0;       // and after
+  double initial_rmse_px = 0.0;  // RMS reprojection error (no loss) before
+  double final_rmse_px = 0.0;    // and after
+  double wall_time_s = 0.0;
+  std::string termination;  // Ceres's termination type and message
+};
+
+class BundleAdjuster {
+ public:
+  // Throws comic::Error(kInvalidArgument) for invalid options.
+  BundleAdjuster(const BundleAdjustmentOptions& options, const BundleAdjustmentConfig& config);
+
+  // Refines the poses, points (and focal lengths if asked) in place. Throws comic::Error for a
+  // config naming unknown or unregistered images. A problem without observations returns a
+  // summary with usable == false and leaves the reconstruction untouched.
+  BundleAdjustmentSummary Solve(Reconstruction* reconstruction) const;
+
+ private:
+  BundleAdjustmentOptions options_;
+  BundleAdjustmentConfig config_;
+};
+
+}  // namespace comic::sfm

@@ -1,0 +1,413 @@
+#include "sfm/incremental_mapper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numeric>
+
+#include "io/error.h"
+
+namespace comic::sfm {
+
+void IncrementalMapper::Options::Check() const {
+  COMIC_CHECK(init_min_num_matches >= 5, kInvalidArgument,
+              "mapper init_min_num_matches must be >= 5, got " << init_min_num_matches);
+  COMIC_CHECK(init_min_num_inliers >= 5, kInvalidArgument,
+              "mapper init_min_num_inliers must be >= 5, got " << init_min_num_inliers);
+  COMIC_CHECK(init_min_median_tri_angle_deg >= 0 && init_min_median_tri_angle_deg < 90,
+              kInvalidArgument, "mapper init_min_median_tri_angle_deg must be in [0, 90)");
+  COMIC_CHECK(init_max_frame_gap >= 1, kInvalidArgument, "mapper init_max_frame_gap must be >= 1");
+  COMIC_CHECK(init_max_num_trials >= 1, kInvalidArgument,
+              "mapper init_max_num_trials must be >= 1");
+  two_view.Check();
+  absolute_pose.Check();
+  triangulation.Check();
+  COMIC_CHECK(complete_max_reprojection_error_px > 0, kInvalidArgument,
+              "mapper complete_max_reprojection_error_px must be > 0");
+  COMIC_CHECK(filter_max_reprojection_error_px > 0, kInvalidArgument,
+              "mapper filter_max_reprojection_error_px must be > 0");
+  COMIC_CHECK(filter_min_tri_angle_deg >= 0, kInvalidArgument,
+              "mapper filter_min_tri_angle_deg must be >= 0");
+}
+
+IncrementalMapper::IncrementalMapper(const frontend::FeatureTracks& tracks, const Camera& camera,
+                                     const Options& options)
+    : tracks_(&tracks), options_(options) {
+  options_.Check();
+  tracks.Check();
+  camera.Check();
+  camera_id_ = reconstruction_.AddCamera(camera);
+  track_of_feature_.resize(tracks.NumFrames());
+  for (size_t frame = 0; frame < tracks.NumFrames(); ++frame) {
+    Image image;
+    image.image_id = ImageIdOfFrame(static_cast<int>(frame));
+    image.camera_id = camera_id_;
+    if (!tracks.frame_names.empty()) {
+      image.name = tracks.frame_names[frame];
+    } else {
+      char name[32];
+      std::snprintf(name, sizeof(name), "frame_%06zu", frame);
+      image.name = name;
+    }
+    image.points2D.reserve(tracks.features[frame].size());
+    for (const frontend::Feature& feature : tracks.features[frame]) {
+      Point2D point2D;
+      point2D.xy = Eigen::Vector2d(feature.x, feature.y);
+      image.points2D.push_back(point2D);
+    }
+    reconstruction_.AddImage(std::move(image));
+    track_of_feature_[frame].assign(tracks.features[frame].size(), -1);
+  }
+  for (size_t t = 0; t < tracks.tracks.size(); ++t) {
+    for (const frontend::TrackObservation& obs : tracks.tracks[t].observations) {
+      track_of_feature_[obs.frame][obs.feature] = static_cast<int>(t);
+    }
+  }
+}
+
+namespace {
+
+// The feature of `track` in `frame`, or −1 (observations are sorted by frame).
+int FeatureInFrame(const frontend::Track& track, int frame) {
+  const auto it =
+      std::lower_bound(track.observations.begin(), track.observations.end(), frame,
+                       [](const frontend::TrackObservation& obs, int f) { return obs.frame < f; });
+  return it != track.observations.end() && it->frame == frame ? it->feature : -1;
+}
+
+}  // namespace
+
+std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair() const {
+  const int num_frames = static_cast<int>(tracks_->NumFrames());
+  if (num_frames < 2) return std::nullopt;
+  // Anchors: frames with the most tracked features first (for a video, the middle frames, whose
+  // tracks run both ways), ties by frame index.
+  std::vector<int> num_tracked(num_frames, 0);
+  for (const frontend::Track& track : tracks_->tracks) {
+    if (track.Length() < 2) continue;
+    for (const frontend::TrackObservation& obs : track.observations) ++num_tracked[obs.frame];
+  }
+  std::vector<int> anchors(num_frames);
+  std::iota(anchors.begin(), anchors.end(), 0);
+  std::stable_sort(anchors.begin(), anchors.end(),
+                   [&](int a, int b) { return num_tracked[a] > num_tracked[b]; });
+
+  const Camera& camera = reconstruction_.camera(camera_id_);
+  int num_trials = 0;
+  for (int frame1 : anchors) {
+    if (num_tracked[frame1] < options_.init_min_num_matches) break;
+    // Tracks through the anchor.
+    std::vector<int> anchor_tracks;
+    for (size_t f = 0; f < track_of_feature_[frame1].size(); ++f) {
+      const int t = track_of_feature_[frame1][f];
+      if (t >= 0 && tracks_->tracks[t].Length() >= 2) anchor_tracks.push_back(t);
+    }
+    // Growing gaps: the smallest gap with enough parallax keeps the most matches.
+    for (int gap = 1; gap <= options_.init_max_frame_gap && frame1 + gap < num_frames; ++gap) {
+      const int frame2 = frame1 + gap;
+      InitialPair pair;
+      pair.image_id1 = ImageIdOfFrame(frame1);
+      pair.image_id2 = ImageIdOfFrame(frame2);
+      std::vector<Eigen::Vector2d> points1, points2;
+      for (int t : anchor_tracks) {
+        const int feature2 = FeatureInFrame(tracks_->tracks[t], frame2);
+        if (feature2 < 0) continue;
+        const int feature1 = FeatureInFrame(tracks_->tracks[t], frame1);
+        pair.track_ids.push_back(t);
+        pair.point2D_idxs1.push_back(static_cast<point2D_t>(feature1));
+        pair.point2D_idxs2.push_back(static_cast<point2D_t>(feature2));
+        const frontend::Feature& a = tracks_->features[frame1][feature1];
+        const frontend::Feature& b = tracks_->features[frame2][feature2];
+        points1.emplace_back(a.x, a.y);
+        points2.emplace_back(b.x, b.y);
+      }
+      // Tracks only end as the gap grows, so larger gaps will not do better.
+      if (static_cast<int>(pair.track_ids.size()) < options_.init_min_num_matches) break;
+      if (num_trials++ >= options_.init_max_num_trials) return std::nullopt;
+      pair.geometry =
+          EstimateCalibratedTwoViewGeometry(camera, camera, points1, points2, options_.two_view);
+      if (pair.geometry.configuration == TwoViewConfiguration::kCalibrated &&
+          pair.geometry.num_inliers >= options_.init_min_num_inliers &&
+          pair.geometry.median_triangulation_angle_deg >= options_.init_min_median_tri_angle_deg) {
+        return pair;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+size_t IncrementalMapper::RegisterInitialPair(const InitialPair& pair) {
+  COMIC_CHECK(reconstruction_.NumRegisteredImages() == 0, kInvalidArgument,
+              "mapper: the initial pair must be registered first");
+  COMIC_CHECK(pair.track_ids.size() == pair.geometry.inlier_mask.size() &&
+                  pair.point2D_idxs1.size() == pair.track_ids.size() &&
+                  pair.point2D_idxs2.size() == pair.track_ids.size(),
+              kInvalidArgument, "mapper: inconsistent initial pair");
+  Image& image1 = reconstruction_.image(pair.image_id1);
+  Image& image2 = reconstruction_.image(pair.image_id2);
+  image1.cam_from_world = Rigid3d();
+  image2.cam_from_world = pair.geometry.cam2_from_cam1;
+  reconstruction_.RegisterImage(pair.image_id1);
+  reconstruction_.RegisterImage(pair.image_id2);
+  registration_order_ = {pair.image_id1, pair.image_id2};
+  init_image_id1_ = pair.image_id1;
+  init_image_id2_ = pair.image_id2;
+
+  const Camera& camera = reconstruction_.camera(camera_id_);
+  size_t num_points = 0;
+  for (size_t i = 0; i < pair.track_ids.size(); ++i) {
+    if (!pair.geometry.inlier_mask[i]) continue;
+    TriangulationView view1{&camera, image1.cam_from_world,
+                            image1.points2D[pair.point2D_idxs1[i]].xy};
+    TriangulationView view2{&camera, image2.cam_from_world,
+                            image2.points2D[pair.point2D_idxs2[i]].xy};
+    const auto point = TriangulateMultiView({view1, view2}, options_.triangulation);
+    if (!point) continue;
+    reconstruction_.AddPoint3D(point->xyz, {{pair.image_id1, pair.point2D_idxs1[i]},
+                                            {pair.image_id2, pair.point2D_idxs2[i]}});
+    ++num_points;
+  }
+  return num_points;
+}
+
+point3D_t IncrementalMapper::TrackPoint(int track_id) const {
+  for (const frontend::TrackObservation& obs : tracks_->tracks[track_id].observations) {
+    const Point2D& point2D = reconstruction_.image(ImageIdOfFrame(obs.frame)).points2D[obs.feature];
+    if (point2D.HasPoint3D()) return point2D.point3D_id;
+  }
+  return kInvalidPoint3DId;
+}
+
+std::vector<image_t> IncrementalMapper::NextImageCandidates() const {
+  std::vector<std::pair<int, image_t>> candidates;
+  for (const auto& [image_id, image] : reconstruction_.images()) {
+    if (image.registered) continue;
+    const int frame = FrameOfImageId(image_id);
+    int num_visible = 0;
+    for (int t : track_of_feature_[frame]) {
+      if (t >= 0 && TrackPoint(t) != kInvalidPoint3DId) ++num_visible;
+    }
+    if (num_visible >= options_.absolute_pose.min_num_inliers) {
+      candidates.emplace_back(num_visible, image_id);
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<image_t> ids;
+  for (const auto& candidate : candidates) ids.push_back(candidate.second);
+  return ids;
+}
+
+bool IncrementalMapper::RegisterNextImage(image_t image_id) {
+  Image& image = reconstruction_.image(image_id);
+  COMIC_CHECK(!image.registered, kInvalidArgument,
+              "mapper: image " << image_id << " is already registered");
+  const int frame = FrameOfImageId(image_id);
+  std::vector<point2D_t> point2D_idxs;
+  std::vector<point3D_t> point3D_ids;
+  std::vector<Eigen::Vector2d> points2D;
+  std::vector<Eigen::Vector3d> points3D;
+  for (point2D_t idx = 0; idx < image.points2D.size(); ++idx) {
+    const int t = track_of_feature_[frame][idx];
+    if (t < 0) continue;
+    const point3D_t point3D_id = TrackPoint(t);
+    if (point3D_id == kInvalidPoint3DId) continue;
+    point2D_idxs.push_back(idx);
+    point3D_ids.push_back(point3D_id);
+    points2D.push_back(image.points2D[idx].xy);
+    points3D.push_back(reconstruction_.point3D(point3D_id).xyz);
+  }
+  const auto pose = EstimateAbsolutePose(reconstruction_.camera(image.camera_id), points2D,
+                                         points3D, options_.absolute_pose);
+  if (!pose) return false;
+  image.cam_from_world = pose->cam_from_world;
+  reconstruction_.RegisterImage(image_id);
+  registration_order_.push_back(image_id);
+  last_num_pose_inliers_ = pose->num_inliers;
+  for (size_t i = 0; i < point2D_idxs.size(); ++i) {
+    if (pose->inlier_mask[i])
+      reconstruction_.AddObservation(point3D_ids[i], {image_id, point2D_idxs[i]});
+  }
+  return true;
+}
+
+bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id) {
+  const frontend::Track& track = tracks_->tracks[track_id];
+  const point3D_t point3D_id = TrackPoint(track_id);
+  if (point3D_id != kInvalidPoint3DId) {
+    // Complete: add registered views the point misses if they agree with it.
+    const Eigen::Vector3d xyz = reconstruction_.point3D(point3D_id).xyz;
+    for (const frontend::TrackObservation& obs : track.observations) {
+      const image_t image_id = ImageIdOfFrame(obs.frame);
+      const Image& image = reconstruction_.image(image_id);
+      if (!image.registered || image.points2D[obs.feature].HasPoint3D()) continue;
+      const auto projection =
+          ProjectPoint(reconstruction_.camera(image.camera_id), image.cam_from_world, xyz);
+      if (projection && (*projection - image.points2D[obs.feature].xy).norm() <=
+                            options_.complete_max_reprojection_error_px) {
+        reconstruction_.AddObservation(point3D_id, {image_id, static_cast<point2D_t>(obs.feature)});
+      }
+    }
+    return false;
+  }
+  std::vector<TriangulationView> views;
+  std::vector<TrackElement> elements;
+  for (const frontend::TrackObservation& obs : track.observations) {
+    const image_t image_id = ImageIdOfFrame(obs.frame);
+    const Image& image = reconstruction_.image(image_id);
+    if (!image.registered) continue;
+    views.push_back({&reconstruction_.camera(image.camera_id), image.cam_from_world,
+                     image.points2D[obs.feature].xy});
+    elements.push_back({image_id, static_cast<point2D_t>(obs.feature)});
+  }
+  if (views.size() < 2) return false;
+  const auto point = TriangulateMultiView(views, options_.triangulation);
+  if (!point) return false;
+  std::vector<TrackElement> inlier_elements;
+  for (int i : point->inlier_views) inlier_elements.push_back(elements[i]);
+  reconstruction_.AddPoint3D(point->xyz, inlier_elements);
+  return true;
+}
+
+size_t IncrementalMapper::TriangulateImage(image_t image_id) {
+  const Image& image = reconstruction_.image(image_id);
+  COMIC_CHECK(image.registered, kInvalidArgument,
+              "mapper: image " << image_id << " is not registered");
+  size_t num_new = 0;
+  for (int t : track_of_feature_[FrameOfImageId(image_id)]) {
+    if (t >= 0) num_new += TriangulateOrCompleteTrack(t);
+  }
+  return num_new;
+}
+
+size_t IncrementalMapper::TriangulateAllTracks() {
+  size_t num_new = 0;
+  for (size_t t = 0; t < tracks_->tracks.size(); ++t) {
+    num_new += TriangulateOrCompleteTrack(static_cast<int>(t));
+  }
+  return num_new;
+}
+
+void IncrementalMapper::FixGauge(BundleAdjustmentConfig* config) const {
+  if (config->image_ids.count(init_image_id1_)) config->constant_pose_ids.insert(init_image_id1_);
+  if (config->image_ids.count(init_image_id2_) &&
+      !config->constant_pose_ids.count(init_image_id2_)) {
+    config->fixed_scale_image_ids.insert(init_image_id2_);
+  }
+}
+
+BundleAdjustmentSummary IncrementalMapper::AdjustLocalBundle(
+    image_t image_id, const BundleAdjustmentOptions& ba_options, int num_images) {
+  COMIC_CHECK(num_images >= 2, kInvalidArgument,
+              "mapper: local bundle adjustment needs num_images >= 2");
+  const Image& image = reconstruction_.image(image_id);
+  COMIC_CHECK(image.registered, kInvalidArgument,
+              "mapper: image " << image_id << " is not registered");
+  // Registered images sharing the most points with the new one (ties: nearest frame).
+  std::map<image_t, int> num_shared;
+  for (const Point2D& point2D : image.points2D) {
+    if (!point2D.HasPoint3D()) continue;
+    for (const TrackElement& element : reconstruction_.point3D(point2D.point3D_id).track) {
+      if (element.image_id != image_id) ++num_shared[element.image_id];
+    }
+  }
+  std::vector<std::pair<int, image_t>> neighbours;
+  for (const auto& [other_id, count] : num_shared) neighbours.emplace_back(count, other_id);
+  std::stable_sort(neighbours.begin(), neighbours.end(), [&](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first > b.first;
+    const auto distance = [&](image_t id) {
+      return std::abs(static_cast<long>(id) - static_cast<long>(image_id));
+    };
+    return distance(a.second) < distance(b.second);
+  });
+  std::set<image_t> variable = {image_id};
+  for (const auto& [count, other_id] : neighbours) {
+    if (static_cast<int>(variable.size()) >= num_images) break;
+    variable.insert(other_id);
+  }
+
+  std::set<point3D_t> point_ids;
+  for (image_t id : variable) {
+    for (const Point2D& point2D : reconstruction_.image(id).points2D) {
+      if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
+    }
+  }
+  BundleAdjustmentConfig config;
+  config.image_ids = variable;
+  for (point3D_t point3D_id : point_ids) {
+    for (const TrackElement& element : reconstruction_.point3D(point3D_id).track) {
+      if (!variable.count(element.image_id)) {
+        config.image_ids.insert(element.image_id);
+        config.constant_pose_ids.insert(element.image_id);
+      }
+    }
+  }
+  FixGauge(&config);
+  // Without the initial pair and with fewer than two constant neighbours the window would float
+  // freely: hold its earliest-registered images fixed until two poses anchor it.
+  for (image_t id : registration_order_) {
+    if (config.constant_pose_ids.size() + config.fixed_scale_image_ids.size() >= 2) break;
+    if (id != image_id && variable.count(id) && !config.constant_pose_ids.count(id)) {
+      config.fixed_scale_image_ids.erase(id);
+      config.constant_pose_ids.insert(id);
+    }
+  }
+  const BundleAdjustmentSummary summary =
+      BundleAdjuster(ba_options, config).Solve(&reconstruction_);
+  FilterPoints(point_ids);
+  return summary;
+}
+
+BundleAdjustmentSummary IncrementalMapper::AdjustGlobalBundle(
+    const BundleAdjustmentOptions& ba_options) {
+  BundleAdjustmentConfig config;
+  for (image_t image_id : reconstruction_.RegisteredImageIds()) config.image_ids.insert(image_id);
+  FixGauge(&config);
+  const BundleAdjustmentSummary summary =
+      BundleAdjuster(ba_options, config).Solve(&reconstruction_);
+  FilterPoints();
+  return summary;
+}
+
+size_t IncrementalMapper::FilterPoints(const std::set<point3D_t>& point3D_ids) {
+  std::vector<point3D_t> ids;
+  if (point3D_ids.empty()) {
+    for (const auto& [id, point] : reconstruction_.points3D()) ids.push_back(id);
+  } else {
+    ids.assign(point3D_ids.begin(), point3D_ids.end());
+  }
+  size_t num_removed = 0;
+  for (point3D_t point3D_id : ids) {
+    if (!reconstruction_.ExistsPoint3D(point3D_id)) continue;
+    // Copy: deleting observations edits the track.
+    const std::vector<TrackElement> track = reconstruction_.point3D(point3D_id).track;
+    for (const TrackElement& element : track) {
+      if (!reconstruction_.ExistsPoint3D(point3D_id)) break;
+      if (reconstruction_.ReprojectionError(element.image_id, element.point2D_idx) >
+          options_.filter_max_reprojection_error_px) {
+        reconstruction_.DeleteObservation(element.image_id, element.point2D_idx);
+        ++num_removed;
+      }
+    }
+    if (!reconstruction_.ExistsPoint3D(point3D_id)) continue;
+    const Point3D& point = reconstruction_.point3D(point3D_id);
+    std::vector<Eigen::Vector3d> centers;
+    for (const TrackElement& element : point.track) {
+      centers.push_back(ProjectionCenter(reconstruction_.image(element.image_id).cam_from_world));
+    }
+    double max_angle = 0.0;
+    for (size_t a = 0; a < centers.size() && max_angle < options_.filter_min_tri_angle_deg; ++a) {
+      for (size_t b = a + 1; b < centers.size(); ++b) {
+        max_angle = std::max(max_angle, TriangulationAngleDeg(centers[a], centers[b], point.xyz));
+      }
+    }
+    if (max_angle < options_.filter_min_tri_angle_deg) {
+      num_removed += point.track.size();
+      reconstruction_.DeletePoint3D(point3D_id);
+    }
+  }
+  return num_removed;
+}
+
+}  // namespace comic::sfm

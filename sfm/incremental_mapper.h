@@ -1,0 +1,156 @@
+// The incremental mapping engine: holds a growing Reconstruction built from feature tracks and
+// offers the steps a pipeline strings together (COLMAP's IncrementalMapper structure). Every
+// geometric step is a stateless function elsewhere in sfm/ (two-view geometry, absolute pose,
+// triangulation, bundle adjustment); this class only keeps the state between them.
+//
+//   IncrementalMapper mapper(tracks, camera, options);
+//   const auto pair = mapper.FindInitialPair();           // std::nullopt: no usable pair
+//   mapper.RegisterInitialPair(*pair);
+//   mapper.AdjustGlobalBundle(ba_options);
+//   for (image_t image_id : mapper.NextImageCandidates()) {
+//     if (!mapper.RegisterNextImage(image_id)) continue;  // not fatal: try another frame
+//     mapper.TriangulateImage(image_id);
+//     mapper.AdjustLocalBundle(image_id, ba_options, /*num_images=*/8);
+//     break;
+//   }
+//   mapper.AdjustGlobalBundle(ba_options);
+//   Reconstruction reconstruction = mapper.TakeReconstruction();
+//
+// Images are the frames of the tracks: image_id = frame index + 1.
+#pragma once
+
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "frontend/track.h"
+#include "sfm/absolute_pose.h"
+#include "sfm/bundle_adjuster.h"
+#include "sfm/camera.h"
+#include "sfm/reconstruction.h"
+#include "sfm/triangulation.h"
+#include "sfm/two_view_geometry.h"
+
+namespace comic::sfm {
+
+class IncrementalMapper {
+ public:
+  struct Options {
+    // Initial pair: at least this many tracks shared by the two frames.
+    int init_min_num_matches = 100;
+    // Initial pair: at least this many essential-matrix inliers in front of both cameras.
+    int init_min_num_inliers = 60;
+    // Initial pair: median triangulation angle of the inliers at least this (degrees). Pairs
+    // are searched over frame gaps, so forward motion finds the gap that gives this parallax.
+    double init_min_median_tri_angle_deg = 3.0;
+    // Initial pair: frames at most this far apart (in frame index).
+    int init_max_frame_gap = 20;
+    // Initial pair: at most this many pairs are verified geometrically.
+    int init_max_num_trials = 200;
+    // Initial pair: essential matrix RANSAC and homography check.
+    TwoViewGeometryOptions two_view;
+    // Registration of a new frame: PnP RANSAC on its tracks that have 3-D points.
+    AbsolutePoseOptions absolute_pose;
+    // Triangulation of new tracks (angle, depth and reprojection checks).
+    TriangulationOptions triangulation;
+    // Extend an existing point to a newly registered view whose observation reprojects within
+    // this distance (pixels).
+    double complete_max_reprojection_error_px = 4.0;
+    // Filtering: observations reprojecting farther than this are removed (pixels).
+    double filter_max_reprojection_error_px = 4.0;
+    // Filtering: points whose largest triangulation angle is below this are removed (degrees).
+    double filter_min_tri_angle_deg = 1.5;
+
+    // Throws comic::Error(kInvalidArgument) naming the bad field.
+    void Check() const;
+  };
+
+  struct InitialPair {
+    image_t image_id1 = 0;
+    image_t image_id2 = 0;
+    TwoViewGeometry geometry;  // relative pose and inliers
+    // The shared tracks and their features in the two frames, in the order of
+    // geometry.inlier_mask.
+    std::vector<int> track_ids;
+    std::vector<point2D_t> point2D_idxs1;
+    std::vector<point2D_t> point2D_idxs2;
+  };
+
+  // Builds an empty reconstruction with one camera and one unregistered image per frame of
+  // `tracks` (which must outlive the mapper). Throws comic::Error for invalid tracks, camera or
+  // options.
+  IncrementalMapper(const frontend::FeatureTracks& tracks, const Camera& camera,
+                    const Options& options);
+
+  // Searches frame pairs (anchors with the most tracks first, growing frame gaps) for one with
+  // enough matches, inliers and parallax that is not explained by a homography. std::nullopt if
+  // no pair qualifies (pure rotation, too few tracks, too little parallax).
+  std::optional<InitialPair> FindInitialPair() const;
+
+  // Sets the pair's poses (first at the origin, unit baseline), registers both and triangulates
+  // their inlier tracks. Returns the number of 3-D points created (0: the pair is unusable).
+  size_t RegisterInitialPair(const InitialPair& pair);
+
+  // Unregistered images ordered by how many of their tracks already have 3-D points (most
+  // first, ties by frame), keeping those with at least absolute_pose.min_num_inliers of them.
+  std::vector<image_t> NextImageCandidates() const;
+
+  // PnP RANSAC on the image's tracks that have 3-D points; on success sets its pose, registers
+  // it and adds its inlier observations. Returns false (not an error) if no pose was found.
+  bool RegisterNextImage(image_t image_id);
+
+  // For every track seen in the (registered) image: triangulates it from all registered views if
+  // it has no point yet, or extends its point to registered views it misses. Returns the number
+  // of new points.
+  size_t TriangulateImage(image_t image_id);
+
+  // Triangulates and completes every track (e.g. after a global bundle adjustment). Returns the
+  // number of new points.
+  size_t TriangulateAllTracks();
+
+  // Bundle adjustment of the image and the num_images − 1 registered images sharing most points
+  // with it; other images seeing those points are held constant. Filters the adjusted points.
+  BundleAdjustmentSummary AdjustLocalBundle(image_t image_id,
+                                            const BundleAdjustmentOptions& ba_options,
+                                            int num_images);
+
+  // Bundle adjustment of every registered image and point; the gauge is fixed by the initial
+  // pair (first pose constant, scale of the second). Filters all points afterwards.
+  BundleAdjustmentSummary AdjustGlobalBundle(const BundleAdjustmentOptions& ba_options);
+
+  // Removes observations with large reprojection error or negative depth and points with too
+  // small a triangulation angle among `point3D_ids` (all points if empty). Returns the number of
+  // observations removed.
+  size_t FilterPoints(const std::set<point3D_t>& point3D_ids = {});
+
+  const Reconstruction& reconstruction() const { return reconstruction_; }
+  Reconstruction TakeReconstruction() { return std::move(reconstruction_); }
+  // Image id of frame index `frame` and back.
+  static image_t ImageIdOfFrame(int frame) { return static_cast<image_t>(frame + 1); }
+  static int FrameOfImageId(image_t image_id) { return static_cast<int>(image_id) - 1; }
+  // Images in the order they were registered.
+  const std::vector<image_t>& registration_order() const { return registration_order_; }
+  // Inliers of the last successful RegisterNextImage.
+  int last_num_pose_inliers() const { return last_num_pose_inliers_; }
+
+ private:
+  // The 3-D point of a track, or kInvalidPoint3DId.
+  point3D_t TrackPoint(int track_id) const;
+  // Triangulates a track without point, or completes the point of a track with one.
+  bool TriangulateOrCompleteTrack(int track_id);
+  // Sets the gauge of a problem: the first initial image constant, the second's scale fixed.
+  void FixGauge(BundleAdjustmentConfig* config) const;
+
+  const frontend::FeatureTracks* tracks_;
+  Options options_;
+  Reconstruction reconstruction_;
+  camera_t camera_id_ = 0;
+  // Per frame, per feature: the track it belongs to (−1: none).
+  std::vector<std::vector<int>> track_of_feature_;
+  image_t init_image_id1_ = 0;
+  image_t init_image_id2_ = 0;
+  std::vector<image_t> registration_order_;
+  int last_num_pose_inliers_ = 0;
+};
+
+}  // namespace comic::sfm

@@ -1,0 +1,91 @@
+// The incremental reconstruction of one sequence from its feature tracks: drives the
+// IncrementalMapper (initial pair, then register / triangulate / local bundle adjustment per
+// frame, global bundle adjustment as the model grows and at the end). Frames that cannot be
+// registered are reported, not fatal; failures to start return a status.
+//
+//   IncrementalPipelineOptions options;
+//   const IncrementalReconstruction result =
+//       ReconstructIncrementally(tracks, camera, options, [](const MapperProgress& p) { ... });
+//   if (result.status != ReconstructionStatus::kSuccess) { ... }
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "frontend/track.h"
+#include "sfm/bundle_adjuster.h"
+#include "sfm/camera.h"
+#include "sfm/incremental_mapper.h"
+#include "sfm/reconstruction.h"
+
+namespace comic::sfm {
+
+enum class ReconstructionStatus {
+  kSuccess,        // a model with at least the initial pair (see unregistered_frames)
+  kTooFewFrames,   // fewer than two frames
+  kNoInitialPair,  // no frame pair with enough matches and parallax (e.g. pure rotation)
+  kTooFewPoints,   // the initial pair triangulated too few points
+};
+
+// "success", "too_few_frames", "no_initial_pair", "too_few_points".
+const char* ReconstructionStatusName(ReconstructionStatus status);
+// A sentence for users, e.g. for a status other than kSuccess in an app's error line.
+std::string ReconstructionStatusMessage(ReconstructionStatus status);
+
+struct IncrementalPipelineOptions {
+  IncrementalMapper::Options mapper;
+  // Bundle adjustment after each new frame, over a window of images.
+  BundleAdjustmentOptions local_ba;
+  // Bundle adjustment of everything, as the model grows and at the end.
+  BundleAdjustmentOptions global_ba;
+  // Images in the local bundle adjustment window (the new one and those sharing most points).
+  int local_ba_num_images = 8;
+  // A global bundle adjustment runs whenever the number of registered images has grown by this
+  // factor since the last one.
+  double global_ba_growth_ratio = 1.25;
+  // Attempts to register a frame before it is given up.
+  int max_registration_trials = 3;
+  // The initial pair must triangulate at least this many points.
+  int min_num_initial_points = 30;
+
+  IncrementalPipelineOptions();
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+// Reported after the initial pair and after each newly registered frame.
+struct MapperProgress {
+  int frame = -1;  // frame index just registered
+  std::string frame_name;
+  bool initial_pair = false;  // registered as part of the initial pair
+  size_t num_registered = 0;  // registered frames so far
+  size_t num_frames = 0;
+  size_t num_points3D = 0;
+  int num_pose_inliers = 0;  // PnP inliers (0 for the initial pair)
+};
+using MapperProgressCallback = std::function<void(const MapperProgress&)>;
+
+struct IncrementalReconstruction {
+  ReconstructionStatus status = ReconstructionStatus::kTooFewFrames;
+  Reconstruction reconstruction;
+  std::vector<int> registered_frames;    // ascending
+  std::vector<int> unregistered_frames;  // ascending
+  int initial_frame1 = -1;
+  int initial_frame2 = -1;
+  int num_local_ba = 0;
+  int num_global_ba = 0;
+  double local_ba_time_s = 0.0;
+  double global_ba_time_s = 0.0;
+  BundleAdjustmentSummary final_ba;  // the last global bundle adjustment
+  double wall_time_s = 0.0;          // the whole reconstruction
+};
+
+// Reconstructs the frames of `tracks` seen by `camera`. Throws comic::Error only for invalid
+// input (tracks, camera, options); expected failures come back as the status.
+IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks& tracks,
+                                                   const Camera& camera,
+                                                   const IncrementalPipelineOptions& options,
+                                                   const MapperProgressCallback& progress = {});
+
+}  // namespace comic::sfm

@@ -1,0 +1,61 @@
+// Synthetic scenes with known cameras for tests and benchmarks (as COLMAP's scene/synthetic.h):
+// random 3-D points, a camera path like a video, and the feature tracks a tracker would produce
+// from them, with pixel noise, wrong observations and tracks that break. Seeded and
+// deterministic.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "frontend/track.h"
+#include "sfm/camera.h"
+#include "sfm/rigid3d.h"
+
+namespace comic::sfm {
+
+enum class SyntheticMotion {
+  kHandHeld,      // sideways walk around an object with bobbing and a wandering gaze
+  kForward,       // driving straight ahead down a street (~1.2 m per frame, like KITTI)
+  kPureRotation,  // panning on the spot: no parallax at all
+};
+
+struct SyntheticSceneOptions {
+  SyntheticMotion motion = SyntheticMotion::kHandHeld;
+  int num_frames = 30;
+  int num_points = 1500;
+  int width = 640;       // pixels
+  int height = 480;      // pixels
+  double focal = 600.0;  // pixels (fx = fy), principal point at the image centre
+  // Gaussian pixel noise on every observation, standard deviation in pixels.
+  double noise_px = 0.5;
+  // Fraction of observations replaced by a uniformly random pixel (wrong matches in a track).
+  double outlier_ratio = 0.1;
+  // Per frame, the chance that the tracker loses a feature and starts a new track for it.
+  double track_break_probability = 0.03;
+  uint32_t seed = 1;
+
+  void Check() const;
+};
+
+struct SyntheticScene {
+  Camera camera;
+  std::vector<Rigid3d> cams_from_world;   // ground truth, one per frame
+  std::vector<Eigen::Vector3d> points3D;  // ground truth, world coordinates
+  frontend::FeatureTracks tracks;
+  std::vector<int> track_point_index;  // per track: its point in points3D
+  // Per frame, per feature: true if the observation was replaced by an outlier.
+  std::vector<std::vector<bool>> is_outlier;
+
+  // Sum of distances between consecutive camera centres.
+  double PathLength() const;
+};
+
+// Throws comic::Error(kInvalidArgument) for invalid options.
+SyntheticScene MakeSyntheticScene(const SyntheticSceneOptions& options);
+
+// The pose of a camera at `center` looking at `target`, image y axis as close to world +y as
+// possible (y down, as in KITTI and OpenCV).
+Rigid3d LookAt(const Eigen::Vector3d& center, const Eigen::Vector3d& target);
+
+}  // namespace comic::sfm

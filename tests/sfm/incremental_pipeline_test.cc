@@ -1,0 +1,133 @@
+// End-to-end incremental reconstruction on synthetic scenes with known cameras: hand-held and
+// forward video with pixel noise and wrong observations, and the degenerate inputs that must
+// come back as a status.
+#include "sfm/incremental_pipeline.h"
+
+#include <gtest/gtest.h>
+
+#include "io/error.h"
+#include "sfm/synthetic_scene.h"
+#include "sfm/trajectory_evaluation.h"
+
+namespace comic::sfm {
+namespace {
+
+std::optional<TrajectoryEvaluation> Evaluate(const IncrementalReconstruction& result,
+                                             const SyntheticScene& scene) {
+  std::vector<std::optional<Rigid3d>> estimated(scene.cams_from_world.size());
+  std::vector<std::optional<Rigid3d>> truth(scene.cams_from_world.begin(),
+                                            scene.cams_from_world.end());
+  for (const auto& [image_id, image] : result.reconstruction.images()) {
+    if (image.registered)
+      estimated[IncrementalMapper::FrameOfImageId(image_id)] = image.cam_from_world;
+  }
+  return EvaluateTrajectory(estimated, truth);
+}
+
+void ExpectAccurate(const SyntheticSceneOptions& scene_options) {
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  IncrementalPipelineOptions options;
+  std::vector<int> reported;
+  const IncrementalReconstruction result = ReconstructIncrementally(
+      scene.tracks, scene.camera, options,
+      [&](const MapperProgress& progress) { reported.push_back(progress.frame); });
+  ASSERT_EQ(result.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(result.reconstruction.NumRegisteredImages(), scene.cams_from_world.size());
+  EXPECT_TRUE(result.unregistered_frames.empty());
+  EXPECT_EQ(reported.size(), scene.cams_from_world.size());
+  EXPECT_GT(result.reconstruction.NumPoints3D(), 200u);
+  EXPECT_LT(result.reconstruction.ComputeMeanReprojectionError(), 1.0);
+  const auto evaluation = Evaluate(result, scene);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_LT(evaluation->ate_fraction_of_path, 0.01)
+      << "ATE " << evaluation->ate_rmse << " over a path of " << evaluation->path_length;
+  EXPECT_LT(evaluation->mean_rotation_error_deg, 0.5);
+}
+
+TEST(IncrementalPipeline, HandHeldVideoRegistersEveryFrameAccurately) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kHandHeld;
+  ExpectAccurate(scene_options);
+}
+
+TEST(IncrementalPipeline, ForwardMotionRegistersEveryFrameAccurately) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kForward;
+  scene_options.num_frames = 40;
+  scene_options.num_points = 3000;
+  ExpectAccurate(scene_options);
+}
+
+TEST(IncrementalPipeline, PureRotationReportsNoInitialPair) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kPureRotation;
+  scene_options.num_frames = 15;
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  const IncrementalReconstruction result =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  EXPECT_EQ(result.status, ReconstructionStatus::kNoInitialPair);
+  EXPECT_EQ(result.reconstruction.NumRegisteredImages(), 0u);
+  EXPECT_EQ(result.unregistered_frames.size(), 15u);
+}
+
+TEST(IncrementalPipeline, TwoFramesGiveAClearStatus) {
+  SyntheticSceneOptions scene_options;
+  scene_options.num_frames = 2;
+  // Two frames 6 m apart: enough parallax for a two-view model.
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  const IncrementalReconstruction result =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  EXPECT_EQ(result.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(result.registered_frames, (std::vector<int>{0, 1}));
+
+  // Two frames from a rotating camera: nothing to triangulate.
+  scene_options.motion = SyntheticMotion::kPureRotation;
+  const SyntheticScene rotation = MakeSyntheticScene(scene_options);
+  EXPECT_EQ(ReconstructIncrementally(rotation.tracks, rotation.camera, IncrementalPipelineOptions())
+                .status,
+            ReconstructionStatus::kNoInitialPair);
+
+  // One frame, and no frame at all.
+  scene_options.num_frames = 1;
+  const SyntheticScene single = MakeSyntheticScene(scene_options);
+  EXPECT_EQ(
+      ReconstructIncrementally(single.tracks, single.camera, IncrementalPipelineOptions()).status,
+      ReconstructionStatus::kTooFewFrames);
+  frontend::FeatureTracks empty;
+  EXPECT_EQ(ReconstructIncrementally(empty, single.camera, IncrementalPipelineOptions()).status,
+            ReconstructionStatus::kTooFewFrames);
+}
+
+TEST(IncrementalPipeline, SameInputGivesIdenticalOutput) {
+  SyntheticSceneOptions scene_options;
+  scene_options.num_frames = 12;
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  const IncrementalReconstruction a =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  const IncrementalReconstruction b =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  ASSERT_EQ(a.status, ReconstructionStatus::kSuccess);
+  ASSERT_EQ(a.reconstruction.NumPoints3D(), b.reconstruction.NumPoints3D());
+  for (const auto& [image_id, image] : a.reconstruction.images()) {
+    const Image& other = b.reconstruction.image(image_id);
+    EXPECT_EQ(image.registered, other.registered);
+    EXPECT_EQ(image.cam_from_world.translation, other.cam_from_world.translation);
+    EXPECT_EQ(image.cam_from_world.rotation.coeffs(), other.cam_from_world.rotation.coeffs());
+  }
+  auto it = b.reconstruction.points3D().begin();
+  for (const auto& [point3D_id, point] : a.reconstruction.points3D()) {
+    EXPECT_EQ(point3D_id, it->first);
+    EXPECT_EQ(point.xyz, it->second.xyz);
+    ++it;
+  }
+}
+
+TEST(IncrementalPipeline, RejectsInvalidOptions) {
+  IncrementalPipelineOptions options;
+  options.local_ba_num_images = 1;
+  const SyntheticScene scene = MakeSyntheticScene(SyntheticSceneOptions());
+  EXPECT_THROW(ReconstructIncrementally(scene.tracks, scene.camera, options), Error);
+}
+
+}  // namespace
+}  // namespace comic::sfm
