@@ -159,13 +159,16 @@ void PatchMatcherOptions::Check() const {
 std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const FeatureSet& features1,
                                               const cv::Mat& gray2, const FeatureSet& features2,
                                               const PatchMatcherOptions& options,
-                                              const std::vector<cv::Point2f>& predicted1) {
+                                              const SearchRegions& search) {
   options.Check();
   CheckImage(gray1, "image 1");
   CheckImage(gray2, "image 2");
-  COMIC_CHECK(predicted1.empty() || predicted1.size() == features1.size(), kInvalidArgument,
-              "patch matcher: " << predicted1.size() << " predicted positions for "
+  COMIC_CHECK(search.centres.empty() || search.centres.size() == features1.size(), kInvalidArgument,
+              "patch matcher: " << search.centres.size() << " search centres for "
                                 << features1.size() << " features");
+  COMIC_CHECK(search.radii.empty() || search.radii.size() == features1.size(), kInvalidArgument,
+              "patch matcher: " << search.radii.size() << " search radii for " << features1.size()
+                                << " features");
   std::vector<Patch> patches2(features2.size());
   for (size_t j = 0; j < features2.size(); ++j) patches2[j] = ExtractPatch(gray2, features2[j]);
   const double cell = options.gate == CandidateGate::kRadius
@@ -177,11 +180,12 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
   for (int i = 0; i < static_cast<int>(features1.size()); ++i) {
     const Patch patch1 = ExtractPatch(gray1, features1[i]);
     if (!patch1.valid) continue;
-    const cv::Point2f centre = predicted1.empty() ? features1[i].Position() : predicted1[i];
+    const cv::Point2f centre = search.centres.empty() ? features1[i].Position() : search.centres[i];
+    const double radius = search.radii.empty() ? options.radius : search.radii[i];
     std::vector<int> nearby;
     if (options.gate == CandidateGate::kRadius) {
-      nearby = grid.Query(centre.x - options.radius, centre.x + options.radius,
-                          centre.y - options.radius, centre.y + options.radius);
+      nearby =
+          grid.Query(centre.x - radius, centre.x + radius, centre.y - radius, centre.y + radius);
     } else {
       nearby = grid.Query(centre.x - options.max_disparity, centre.x - options.min_disparity,
                           centre.y - options.row_tolerance, centre.y + options.row_tolerance);
@@ -191,7 +195,7 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
       if (options.gate == CandidateGate::kRadius) {
         const double dx = f2.x - centre.x;
         const double dy = f2.y - centre.y;
-        if (dx * dx + dy * dy > options.radius * options.radius) continue;
+        if (dx * dx + dy * dy > radius * radius) continue;
       } else {
         const double disparity = centre.x - f2.x;
         if (std::abs(f2.y - centre.y) > options.row_tolerance ||
@@ -242,10 +246,10 @@ std::vector<PatchMatch> ApplyCostThreshold(const std::vector<PatchMatch>& matche
 std::vector<PatchMatch> MatchFeatures(const cv::Mat& gray1, const FeatureSet& features1,
                                       const cv::Mat& gray2, const FeatureSet& features2,
                                       const PatchMatcherOptions& options,
-                                      const std::vector<cv::Point2f>& predicted1) {
-  return ApplyCostThreshold(SelectMutualBest(ComputeCandidateCosts(gray1, features1, gray2,
-                                                                   features2, options, predicted1)),
-                            options.max_cost);
+                                      const SearchRegions& search) {
+  return ApplyCostThreshold(
+      SelectMutualBest(ComputeCandidateCosts(gray1, features1, gray2, features2, options, search)),
+      options.max_cost);
 }
 
 float PatchCost(const cv::Mat& gray1, const Feature& feature1, const cv::Mat& gray2,

@@ -33,8 +33,9 @@
 // without matching better. Compare at equal precision where ground truth allows
 // (match_precision.h).
 //
-// Gates. kRadius (video, paper §4): candidates within `radius` of the feature's position, or of
-// its predicted position when the caller supplies predictions (the tracker's motion prediction).
+// Gates. kRadius (video, paper §4): candidates within `radius` of the feature's position, or
+// within a per-feature radius of a per-feature centre when the caller supplies SearchRegions
+// (the tracker's motion prediction).
 // kRectifiedStereo (Middlebury): |y2 − y1| ≤ row_tolerance and disparity d = x1 − x2 in
 // [min_disparity, max_disparity], i.e. x2 = x1 − d (image 1 = left, image 2 = right).
 //
@@ -81,6 +82,14 @@ struct PatchMatcherOptions {
   void Check() const;
 };
 
+// Where to look in image 2 for each feature of image 1 (kRadius gate; the stereo gate uses only
+// the centres). Each vector is empty (every feature's own position / options.radius) or holds one
+// entry per feature of image 1.
+struct SearchRegions {
+  std::vector<cv::Point2f> centres;  // predicted positions in image 2, pixels
+  std::vector<float> radii;          // search radii, pixels
+};
+
 // A pair of features, index1 into the first set, index2 into the second, with its cost.
 struct PatchMatch {
   int index1 = -1;
@@ -89,13 +98,12 @@ struct PatchMatch {
 };
 
 // Every gated pair (index1, index2) with its cost, ordered by index1 then index2. Pairs with no
-// valid side pairing (cost +inf) are left out. `predicted1` is empty (gate around each feature's
-// own position) or holds one predicted position in image 2 per feature of `features1`. Throws
-// comic::Error(kInvalidArgument) for images that are not CV_8UC1 or a wrong prediction count.
+// valid side pairing (cost +inf) are left out. Throws comic::Error(kInvalidArgument) for images
+// that are not CV_8UC1 or search regions of the wrong size.
 std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const FeatureSet& features1,
                                               const cv::Mat& gray2, const FeatureSet& features2,
                                               const PatchMatcherOptions& options,
-                                              const std::vector<cv::Point2f>& predicted1 = {});
+                                              const SearchRegions& search = {});
 
 // One-to-one matching: the pairs that are each other's lowest-cost candidate (ties broken by the
 // lower index), ordered by index1.
@@ -108,7 +116,7 @@ std::vector<PatchMatch> ApplyCostThreshold(const std::vector<PatchMatch>& matche
 std::vector<PatchMatch> MatchFeatures(const cv::Mat& gray1, const FeatureSet& features1,
                                       const cv::Mat& gray2, const FeatureSet& features2,
                                       const PatchMatcherOptions& options,
-                                      const std::vector<cv::Point2f>& predicted1 = {});
+                                      const SearchRegions& search = {});
 
 // The cost of one pair under `options.cost` (no gate), +inf if a patch does not fit or no side
 // pairing overlaps enough.

@@ -160,10 +160,18 @@ TEST(PatchMatcher, RadiusGateAroundThePredictedPosition) {
   auto candidates = ComputeCandidateCosts(image, f1, image, f2, options);
   ASSERT_EQ(candidates.size(), 1u);
   EXPECT_EQ(candidates[0].index2, 0);
-  candidates = ComputeCandidateCosts(image, f1, image, f2, options, {cv::Point2f(85, 62)});
+  candidates = ComputeCandidateCosts(image, f1, image, f2, options,
+                                     SearchRegions{{cv::Point2f(85, 62)}, {}});
   ASSERT_EQ(candidates.size(), 1u);
   EXPECT_EQ(candidates[0].index2, 1);
-  EXPECT_THROW(ComputeCandidateCosts(image, f1, image, f2, options, {{0, 0}, {1, 1}}), Error);
+  // A per-feature radius wide enough for both.
+  candidates = ComputeCandidateCosts(image, f1, image, f2, options, SearchRegions{{}, {60.0f}});
+  EXPECT_EQ(candidates.size(), 2u);
+  EXPECT_THROW(
+      ComputeCandidateCosts(image, f1, image, f2, options, SearchRegions{{{0, 0}, {1, 1}}, {}}),
+      Error);
+  EXPECT_THROW(ComputeCandidateCosts(image, f1, image, f2, options, SearchRegions{{}, {1, 2}}),
+               Error);
 }
 
 TEST(PatchMatcher, RectifiedStereoGateFollowsTheRowAndDisparityRange) {

@@ -1,0 +1,318 @@
+#include "frontend/tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "io/error.h"
+#include "io/image_sequence.h"
+
+namespace comic::frontend {
+
+const char* MotionPredictionName(MotionPrediction prediction) {
+  switch (prediction) {
+    case MotionPrediction::kNone:
+      return "none";
+    case MotionPrediction::kConstantVelocity:
+      return "velocity";
+    case MotionPrediction::kCoarseToFine:
+      return "coarse-to-fine";
+  }
+  return "?";
+}
+
+MotionPrediction ParseMotionPrediction(const std::string& name) {
+  for (MotionPrediction p : {MotionPrediction::kNone, MotionPrediction::kConstantVelocity,
+                             MotionPrediction::kCoarseToFine}) {
+    if (name == MotionPredictionName(p)) return p;
+  }
+  throw Error(ErrorKind::kInvalidArgument,
+              "unknown motion prediction '" + name + "' (valid: none, velocity, coarse-to-fine)");
+}
+
+void TrackerOptions::Check() const {
+  matcher.Check();
+  COMIC_CHECK(matcher.gate == CandidateGate::kRadius, kInvalidArgument,
+              "tracker: the matcher must use the radius gate");
+  COMIC_CHECK(max_features >= 0, kInvalidArgument,
+              "tracker: max_features must be >= 0 (0 = all), got " << max_features);
+  COMIC_CHECK(unpredicted_radius >= 0, kInvalidArgument,
+              "tracker: unpredicted_radius must be >= 0 px, got " << unpredicted_radius);
+  COMIC_CHECK(velocity_neighbours >= 1, kInvalidArgument,
+              "tracker: velocity_neighbours must be >= 1, got " << velocity_neighbours);
+  COMIC_CHECK(velocity_neighbour_radius > 0, kInvalidArgument,
+              "tracker: velocity_neighbour_radius must be > 0 px");
+  COMIC_CHECK(coarse_factor >= 2, kInvalidArgument,
+              "tracker: coarse_factor must be >= 2, got " << coarse_factor);
+  COMIC_CHECK(coarse_radius > 0, kInvalidArgument, "tracker: coarse_radius must be > 0 px");
+  COMIC_CHECK(coarse_features >= 1, kInvalidArgument, "tracker: coarse_features must be >= 1");
+}
+
+FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Size& image_size,
+                                   const TrackerOptions& options) {
+  // Keep the max_features strongest (by response, then the deterministic SortByResponse order)
+  // without reordering the input.
+  std::vector<size_t> usable;
+  for (size_t i = 0; i < detected.size(); ++i) {
+    if (detected[i].response >= options.min_response && PatchFits(detected[i], image_size)) {
+      usable.push_back(i);
+    }
+  }
+  if (options.max_features > 0 && static_cast<int>(usable.size()) > options.max_features) {
+    std::vector<size_t> by_strength = usable;
+    std::stable_sort(by_strength.begin(), by_strength.end(), [&](size_t a, size_t b) {
+      const Feature& fa = detected[a];
+      const Feature& fb = detected[b];
+      if (fa.response != fb.response) return fa.response > fb.response;
+      if (fa.y != fb.y) return fa.y < fb.y;
+      return fa.x < fb.x;
+    });
+    by_strength.resize(options.max_features);
+    std::sort(by_strength.begin(), by_strength.end());
+    usable = by_strength;
+  }
+  FeatureSet kept;
+  kept.reserve(usable.size());
+  for (size_t i : usable) kept.push_back(detected[i]);
+  return kept;
+}
+
+namespace {
+
+// A known displacement at a position.
+struct MotionSample {
+  cv::Point2f position;
+  cv::Point2f displacement;
+};
+
+// Median displacement of the `k` samples nearest to `p` within `max_distance`, if any. Ties in
+// distance are broken by sample order, so the result is deterministic.
+bool MedianNeighbourDisplacement(const std::vector<MotionSample>& samples, cv::Point2f p, int k,
+                                 double max_distance, cv::Point2f* displacement) {
+  std::vector<std::pair<float, int>> near;
+  const float max_d2 = static_cast<float>(max_distance * max_distance);
+  for (int s = 0; s < static_cast<int>(samples.size()); ++s) {
+    const cv::Point2f d = samples[s].position - p;
+    const float d2 = d.dot(d);
+    if (d2 <= max_d2) near.emplace_back(d2, s);
+  }
+  if (near.empty()) return false;
+  const size_t n = std::min<size_t>(k, near.size());
+  std::partial_sort(near.begin(), near.begin() + n, near.end());
+  std::vector<float> xs, ys;
+  for (size_t i = 0; i < n; ++i) {
+    xs.push_back(samples[near[i].second].displacement.x);
+    ys.push_back(samples[near[i].second].displacement.y);
+  }
+  auto median = [](std::vector<float> v) {
+    std::sort(v.begin(), v.end());
+    const size_t m = v.size() / 2;
+    return v.size() % 2 == 1 ? v[m] : 0.5f * (v[m - 1] + v[m]);
+  };
+  *displacement = {median(xs), median(ys)};
+  return true;
+}
+
+// The strongest `count` features of a detection whose patch fits.
+FeatureSet StrongestFitting(const FeatureSet& detected, const cv::Size& size, int count) {
+  FeatureSet sorted = detected;
+  SortByResponse(&sorted);
+  FeatureSet kept;
+  for (const Feature& f : sorted) {
+    if (static_cast<int>(kept.size()) >= count) break;
+    if (PatchFits(f, size)) kept.push_back(f);
+  }
+  return kept;
+}
+
+}  // namespace
+
+Tracker::Tracker(const TrackerOptions& options, std::string detector_name, const Detector* detector)
+    : options_(options), detector_name_(std::move(detector_name)), detector_(detector) {
+  options_.Check();
+  COMIC_CHECK(options_.prediction != MotionPrediction::kCoarseToFine || detector_ != nullptr,
+              kInvalidArgument, "tracker: coarse-to-fine prediction needs a detector");
+}
+
+SearchRegions Tracker::PredictSearchRegions(const cv::Mat& gray) const {
+  const FeatureSet& current = features_.back();
+  SearchRegions search;
+  if (options_.prediction == MotionPrediction::kNone) return search;
+  const float fine_radius = static_cast<float>(options_.matcher.radius);
+  const float unpredicted_radius = static_cast<float>(
+      options_.unpredicted_radius > 0 ? options_.unpredicted_radius : options_.matcher.radius);
+  search.centres.resize(current.size());
+  search.radii.assign(current.size(), fine_radius);
+
+  std::vector<MotionSample> samples;
+  std::vector<bool> own(current.size(), false);
+  if (options_.prediction == MotionPrediction::kConstantVelocity) {
+    if (!accepted_.empty()) {
+      const FeatureSet& before = features_[features_.size() - 2];
+      for (const PatchMatch& m : accepted_.back()) {
+        const cv::Point2f velocity = current[m.index2].Position() - before[m.index1].Position();
+        samples.push_back({current[m.index2].Position(), velocity});
+        own[m.index2] = true;
+        search.centres[m.index2] = current[m.index2].Position() + velocity;
+      }
+    }
+  } else {
+    // Coarse pass: match the strongest features of the downscaled frames.
+    const double f = options_.coarse_factor;
+    const cv::Size coarse_size(std::max(1, static_cast<int>(std::lround(gray.cols / f))),
+                               std::max(1, static_cast<int>(std::lround(gray.rows / f))));
+    cv::Mat coarse_previous, coarse_current;
+    cv::resize(previous_gray_, coarse_previous, coarse_size, 0, 0, cv::INTER_AREA);
+    cv::resize(gray, coarse_current, coarse_size, 0, 0, cv::INTER_AREA);
+    const FeatureSet coarse1 =
+        StrongestFitting(detector_->Detect(coarse_previous), coarse_size, options_.coarse_features);
+    const FeatureSet coarse2 =
+        StrongestFitting(detector_->Detect(coarse_current), coarse_size, options_.coarse_features);
+    PatchMatcherOptions coarse_options = options_.matcher;
+    coarse_options.radius = options_.coarse_radius / f;
+    const double sx = static_cast<double>(gray.cols) / coarse_size.width;
+    const double sy = static_cast<double>(gray.rows) / coarse_size.height;
+    for (const PatchMatch& m :
+         MatchFeatures(coarse_previous, coarse1, coarse_current, coarse2, coarse_options)) {
+      const Feature& a = coarse1[m.index1];
+      const Feature& b = coarse2[m.index2];
+      // Coarse pixel centres map back as areas do: x = (x_c + 0.5)·s − 0.5.
+      const cv::Point2f position(static_cast<float>((a.x + 0.5) * sx - 0.5),
+                                 static_cast<float>((a.y + 0.5) * sy - 0.5));
+      const cv::Point2f displacement(static_cast<float>((b.x - a.x) * sx),
+                                     static_cast<float>((b.y - a.y) * sy));
+      samples.push_back({position, displacement});
+    }
+  }
+  for (size_t i = 0; i < current.size(); ++i) {
+    if (own[i]) continue;
+    cv::Point2f displacement;
+    if (MedianNeighbourDisplacement(samples, current[i].Position(), options_.velocity_neighbours,
+                                    options_.velocity_neighbour_radius, &displacement)) {
+      search.centres[i] = current[i].Position() + displacement;
+    } else {
+      search.centres[i] = current[i].Position();
+      search.radii[i] = unpredicted_radius;
+    }
+  }
+  return search;
+}
+
+void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::string& name) {
+  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
+              "tracker: frames must be non-empty 8-bit single-channel images");
+  COMIC_CHECK(previous_gray_.empty() || gray.size() == previous_gray_.size(), kInvalidArgument,
+              "tracker: frame " << features_.size() << " is " << gray.cols << "x" << gray.rows
+                                << ", the first was " << previous_gray_.cols << "x"
+                                << previous_gray_.rows);
+  if (!features_.empty()) {
+    const SearchRegions search = PredictSearchRegions(gray);
+    std::vector<PatchMatch> mutual = SelectMutualBest(ComputeCandidateCosts(
+        previous_gray_, features_.back(), gray, features, options_.matcher, search));
+    accepted_.push_back(ApplyCostThreshold(mutual, options_.matcher.max_cost));
+    mutual_.push_back(std::move(mutual));
+  }
+  features_.push_back(std::move(features));
+  names_.push_back(name);
+  previous_gray_ = gray.clone();
+}
+
+TrackingResult Tracker::Result() const {
+  TrackingResult result;
+  result.tracks.detector_name = detector_name_;
+  result.tracks.image_size = previous_gray_.size();
+  const bool any_name =
+      std::any_of(names_.begin(), names_.end(), [](const std::string& n) { return !n.empty(); });
+  if (any_name) result.tracks.frame_names = names_;
+  result.tracks.features = features_;
+  result.tracks.tracks = ChainMatches(features_, accepted_);
+  result.mutual_matches = mutual_;
+  result.accepted_matches = accepted_;
+  return result;
+}
+
+TrackingResult TrackSequence(const io::ImageSequence& sequence, const Detector& detector,
+                             const TrackerOptions& options, const TrackingProgress& progress) {
+  Tracker tracker(options, detector.Name(), &detector);
+  for (size_t i = 0; i < sequence.NumFrames(); ++i) {
+    const io::Frame frame = sequence.ReadFrame(i);
+    tracker.AddFrame(
+        frame.gray,
+        SelectTrackableFeatures(detector.Detect(frame.gray), frame.gray.size(), options),
+        frame.name);
+    if (progress) progress(i + 1, sequence.NumFrames());
+  }
+  return tracker.Result();
+}
+
+TrackingResult TrackFrames(const std::vector<cv::Mat>& grays, const Detector& detector,
+                           const TrackerOptions& options,
+                           const std::vector<std::string>& frame_names,
+                           const TrackingProgress& progress) {
+  COMIC_CHECK(frame_names.empty() || frame_names.size() == grays.size(), kInvalidArgument,
+              "tracker: " << frame_names.size() << " names for " << grays.size() << " frames");
+  Tracker tracker(options, detector.Name(), &detector);
+  for (size_t i = 0; i < grays.size(); ++i) {
+    COMIC_CHECK(!grays[i].empty() && grays[i].type() == CV_8UC1, kInvalidArgument,
+                "tracker: frame " << i << " is not a non-empty 8-bit single-channel image");
+    tracker.AddFrame(grays[i],
+                     SelectTrackableFeatures(detector.Detect(grays[i]), grays[i].size(), options),
+                     frame_names.empty() ? "" : frame_names[i]);
+    if (progress) progress(i + 1, grays.size());
+  }
+  return tracker.Result();
+}
+
+std::vector<Track> ChainMatches(const std::vector<FeatureSet>& features,
+                                const std::vector<std::vector<PatchMatch>>& pair_matches) {
+  COMIC_CHECK(
+      pair_matches.size() + 1 == features.size() || (features.empty() && pair_matches.empty()),
+      kInvalidArgument,
+      "chaining: " << pair_matches.size() << " frame pairs for " << features.size() << " frames");
+  // next[f][i]: the feature of frame f+1 matched to feature i of frame f, or -1.
+  std::vector<std::vector<int>> next(features.size());
+  std::vector<std::vector<bool>> has_previous(features.size());
+  for (size_t f = 0; f < features.size(); ++f) {
+    next[f].assign(features[f].size(), -1);
+    has_previous[f].assign(features[f].size(), false);
+  }
+  for (size_t f = 0; f < pair_matches.size(); ++f) {
+    for (const PatchMatch& m : pair_matches[f]) {
+      COMIC_CHECK(m.index1 >= 0 && m.index1 < static_cast<int>(features[f].size()) &&
+                      m.index2 >= 0 && m.index2 < static_cast<int>(features[f + 1].size()),
+                  kInvalidArgument, "chaining: match index out of range in frame pair " << f);
+      COMIC_CHECK(next[f][m.index1] < 0 && !has_previous[f + 1][m.index2], kInvalidArgument,
+                  "chaining: a feature is matched twice in frame pair " << f);
+      next[f][m.index1] = m.index2;
+      has_previous[f + 1][m.index2] = true;
+    }
+  }
+  std::vector<Track> tracks;
+  for (size_t f = 0; f < features.size(); ++f) {
+    for (int i = 0; i < static_cast<int>(features[f].size()); ++i) {
+      if (has_previous[f][i] || next[f][i] < 0) continue;
+      Track track;
+      int frame = static_cast<int>(f);
+      int feature = i;
+      while (feature >= 0) {
+        track.observations.push_back({frame, feature});
+        feature = frame + 1 < static_cast<int>(features.size()) ? next[frame][feature] : -1;
+        ++frame;
+      }
+      tracks.push_back(std::move(track));
+    }
+  }
+  return tracks;
+}
+
+FeatureTracks TracksAtThreshold(const TrackingResult& result, double max_cost) {
+  FeatureTracks tracks = result.tracks;
+  std::vector<std::vector<PatchMatch>> accepted;
+  for (const auto& mutual : result.mutual_matches) {
+    accepted.push_back(ApplyCostThreshold(mutual, max_cost));
+  }
+  tracks.tracks = ChainMatches(tracks.features, accepted);
+  return tracks;
+}
+
+}  // namespace comic::frontend
