@@ -1,11 +1,16 @@
 #include "sfm/colmap_export.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -135,11 +140,39 @@ VerifiedPair VerifyUncalibrated(const std::vector<Eigen::Vector2d>& points1,
   return verified;
 }
 
+// Calls body(i) for i in [0, n) on `num_threads` threads (0: one per core). The first exception
+// thrown by a body is rethrown once every thread has stopped.
+void ParallelFor(size_t n, int num_threads, const std::function<void(size_t)>& body) {
+  const size_t hardware = std::max(1u, std::thread::hardware_concurrency());
+  const size_t threads = std::min(n, num_threads > 0 ? static_cast<size_t>(num_threads) : hardware);
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const auto work = [&] {
+    for (size_t i = next++; i < n; i = next++) {
+      try {
+        body(i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next = n;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+  if (error) std::rethrow_exception(error);
+}
+
 }  // namespace
 
 void ColmapExportOptions::Check() const {
   COMIC_CHECK(pair_window >= 1, kInvalidArgument,
               "COLMAP export pair_window must be >= 1, got " << pair_window);
+  COMIC_CHECK(num_threads >= 0, kInvalidArgument,
+              "COLMAP export num_threads must be >= 0, got " << num_threads);
   two_view.Check();
 }
 
@@ -212,32 +245,45 @@ ColmapExportSummary WriteTracksToColmapDatabase(const frontend::FeatureTracks& t
   }
   summary.num_images = static_cast<int>(tracks.NumFrames());
 
-  for (const auto& [pair, matches] : CollectPairMatches(tracks, options.pair_window)) {
+  // Verify every pair (in parallel: each result goes to its own slot, so the output does not
+  // depend on the thread count), then write them in pair order.
+  const std::map<FramePair, io::ColmapFeatureMatches> pair_matches =
+      CollectPairMatches(tracks, options.pair_window);
+  std::vector<const std::pair<const FramePair, io::ColmapFeatureMatches>*> pairs;
+  for (const auto& entry : pair_matches) pairs.push_back(&entry);
+  std::vector<VerifiedPair> verified(pairs.size());
+  ParallelFor(pairs.size(), options.num_threads, [&](size_t p) {
+    const FramePair& frames = pairs[p]->first;
+    const io::ColmapFeatureMatches& matches = pairs[p]->second;
     std::vector<Eigen::Vector2d> points1, points2;
     points1.reserve(matches.size());
     points2.reserve(matches.size());
     for (const io::ColmapFeatureMatch& match : matches) {
-      const frontend::Feature& f1 = tracks.features[pair.first][match.point2D_idx1];
-      const frontend::Feature& f2 = tracks.features[pair.second][match.point2D_idx2];
+      const frontend::Feature& f1 = tracks.features[frames.first][match.point2D_idx1];
+      const frontend::Feature& f2 = tracks.features[frames.second][match.point2D_idx2];
       points1.emplace_back(f1.x, f1.y);
       points2.emplace_back(f2.x, f2.y);
     }
-    const VerifiedPair verified =
-        camera ? VerifyCalibrated(*camera, points1, points2, matches, options)
-               : VerifyUncalibrated(points1, points2, matches, options);
-    const int64_t image_id1 = pair.first + 1;
-    const int64_t image_id2 = pair.second + 1;
+    verified[p] = camera ? VerifyCalibrated(*camera, points1, points2, matches, options)
+                         : VerifyUncalibrated(points1, points2, matches, options);
+  });
+
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const auto& [frames, matches] = *pairs[p];
+    const int64_t image_id1 = frames.first + 1;
+    const int64_t image_id2 = frames.second + 1;
     database->WriteMatches(image_id1, image_id2, matches);
-    database->WriteTwoViewGeometry(image_id1, image_id2, verified.geometry);
+    database->WriteTwoViewGeometry(image_id1, image_id2, verified[p].geometry);
     ++summary.num_matched_pairs;
     summary.num_matches += static_cast<int64_t>(matches.size());
-    if (verified.geometry.config != io::kColmapDegenerate) {
+    if (verified[p].geometry.config != io::kColmapDegenerate) {
       ++summary.num_verified_pairs;
-      summary.num_inlier_matches += static_cast<int64_t>(verified.geometry.inlier_matches.size());
+      summary.num_inlier_matches +=
+          static_cast<int64_t>(verified[p].geometry.inlier_matches.size());
     }
-    summary.num_pairs_allowing_default_init += verified.allows_default_init ? 1 : 0;
-    summary.max_init_triangulation_angle_deg =
-        std::max(summary.max_init_triangulation_angle_deg, verified.init_triangulation_angle_deg);
+    summary.num_pairs_allowing_default_init += verified[p].allows_default_init ? 1 : 0;
+    summary.max_init_triangulation_angle_deg = std::max(summary.max_init_triangulation_angle_deg,
+                                                        verified[p].init_triangulation_angle_deg);
   }
   transaction.Commit();
   return summary;

@@ -37,6 +37,8 @@ struct ColmapExportOptions {
   // Prepended to every frame name to form COLMAP's image names, which are paths relative to
   // `colmap mapper --image_path` (e.g. "image_l/" when the image path is the folder above).
   std::string image_name_prefix;
+  // Threads verifying pairs (0: one per core). The database does not depend on it.
+  int num_threads = 0;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;

@@ -297,11 +297,15 @@ std::string DatabaseContent(const std::string& path) {
   return out.str();
 }
 
-TEST(ColmapExport, SameTracksGiveTheSameDatabase) {
+TEST(ColmapExport, SameTracksGiveTheSameDatabaseWhateverTheThreadCount) {
   const Scene scene = MakeScene(7, 5);
   ScopedTempDir dir;
-  ExportTracksToColmapDatabase(scene.tracks, scene.camera, {}, dir.File("a.db"), false);
-  ExportTracksToColmapDatabase(scene.tracks, scene.camera, {}, dir.File("b.db"), false);
+  ColmapExportOptions one_thread;
+  one_thread.num_threads = 1;
+  ColmapExportOptions four_threads;
+  four_threads.num_threads = 4;
+  ExportTracksToColmapDatabase(scene.tracks, scene.camera, one_thread, dir.File("a.db"), false);
+  ExportTracksToColmapDatabase(scene.tracks, scene.camera, four_threads, dir.File("b.db"), false);
   const std::string a = DatabaseContent(dir.File("a.db"));
   EXPECT_GT(a.size(), 10000u);
   EXPECT_EQ(a, DatabaseContent(dir.File("b.db")));
@@ -353,6 +357,9 @@ TEST(ColmapExport, RejectsBadOptionsAndNonEmptyDatabases) {
   const Scene scene = MakeScene(4, 8);
   ColmapExportOptions options;
   options.pair_window = 0;
+  EXPECT_THROW(options.Check(), Error);
+  options = ColmapExportOptions();
+  options.num_threads = -1;
   EXPECT_THROW(options.Check(), Error);
   io::ColmapDatabase database = io::ColmapDatabase::Open(":memory:");
   WriteTracksToColmapDatabase(scene.tracks, scene.camera, {}, &database);
