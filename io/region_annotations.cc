@@ -1,9 +1,9 @@
 #include "io/region_annotations.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "io/error.h"
@@ -41,9 +41,9 @@ bool ParseNumbers(const std::string& line, std::vector<double>* numbers, std::st
 }
 
 RegionPolygon BoxPolygon(double x, double y, double w, double h) {
-  // 1-based top-left corner -> 0-based (see the header).
-  const double x0 = x - 1.0;
-  const double y0 = y - 1.0;
+  // The outer edges of the box's pixels, 1-based top-left pixel (see the header).
+  const double x0 = x - 1.5;
+  const double y0 = y - 1.5;
   return {{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h}};
 }
 
@@ -155,18 +155,31 @@ cv::Mat RasterizeRegion(const RegionPolygon& polygon, const cv::Size& source_siz
   if (polygon.size() < 3) return mask;
   const double sx = static_cast<double>(target_size.width) / source_size.width;
   const double sy = static_cast<double>(target_size.height) / source_size.height;
-  // fillPoly takes fixed-point vertices: 8 fractional bits keep sub-pixel corners.
-  constexpr int kShift = 8;
-  constexpr double kOne = 1 << kShift;
-  std::vector<cv::Point> vertices;
+  std::vector<cv::Point2d> vertices;
   for (const cv::Point2d& p : polygon) {
-    const double x = (p.x + 0.5) * sx - 0.5;
-    const double y = (p.y + 0.5) * sy - 0.5;
-    vertices.emplace_back(static_cast<int>(std::lround(x * kOne)),
-                          static_cast<int>(std::lround(y * kOne)));
+    vertices.emplace_back((p.x + 0.5) * sx - 0.5, (p.y + 0.5) * sy - 0.5);
   }
-  const std::vector<std::vector<cv::Point>> polygons = {vertices};
-  cv::fillPoly(mask, polygons, cv::Scalar(255), cv::LINE_8, kShift);
+  // Scanline fill at pixel centres: on row y, the polygon's edges crossing y (half-open in y, so
+  // a vertex is counted once) cut the row into inside spans [x_a, x_b); pixel x is inside when
+  // x_a <= x < x_b.
+  std::vector<double> crossings;
+  for (int y = 0; y < mask.rows; ++y) {
+    crossings.clear();
+    for (size_t i = 0; i < vertices.size(); ++i) {
+      const cv::Point2d& p = vertices[i];
+      const cv::Point2d& q = vertices[(i + 1) % vertices.size()];
+      if ((p.y <= y && y < q.y) || (q.y <= y && y < p.y)) {
+        crossings.push_back(p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y));
+      }
+    }
+    std::sort(crossings.begin(), crossings.end());
+    uint8_t* row = mask.ptr<uint8_t>(y);
+    for (size_t k = 0; k + 1 < crossings.size(); k += 2) {
+      const int x0 = std::max(0, static_cast<int>(std::ceil(crossings[k])));
+      const int x1 = std::min(mask.cols, static_cast<int>(std::ceil(crossings[k + 1])));
+      for (int x = x0; x < x1; ++x) row[x] = 255;
+    }
+  }
   return mask;
 }
 

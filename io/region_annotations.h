@@ -6,12 +6,16 @@
 //       comic::io::ReadRegionFile("vot_bag/groundtruth.txt");  // format detected per file
 //   cv::Mat mask = comic::io::RasterizeRegion(regions.polygons[0], source_size, frame_size);
 //
-// Coordinate convention. Both formats index pixels from 1 (the top-left pixel's centre is (1, 1)):
-// OTB states it (x y w h, 1-based), and VOT's annotations come from its MATLAB toolkit, which uses
-// the same convention. Readers subtract 1, so every polygon returned here is in the project's
-// convention (pixel centres at integer coordinates, top-left pixel centre (0, 0); see
-// frontend/feature.h). An OTB box (x, y, w, h) becomes the polygon (x−1, y−1), (x−1+w, y−1),
-// (x−1+w, y−1+h), (x−1, y−1+h).
+// Coordinate convention. Both formats index pixels from 1: OTB states it (x y w h, 1-based), and
+// VOT's annotations come from its MATLAB toolkit, which uses the same convention. Returned
+// polygons are in the project's convention (pixel centres at integer coordinates, top-left pixel
+// centre (0, 0); see frontend/feature.h):
+//   - a box (OTB, or a 4-number VOT rectangle) "x y w h" covers the w x h pixels whose top-left
+//     one is (x, y), 1-based, so its polygon runs along their outer edges: (x − 1.5, y − 1.5) to
+//     (x − 1.5 + w, y − 1.5 + h);
+//   - a VOT polygon's vertices are points in 1-based pixel coordinates: 1 is subtracted.
+// An annotation convention moves a region by at most a pixel either way — far less than the
+// boundary band the evaluation uses (frontend/region_labels.h).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -47,9 +51,12 @@ RegionAnnotations ReadRegionFile(const std::string& path,
                                  RegionFileFormat format = RegionFileFormat::kAuto);
 
 // Rasterises `polygon` (coordinates of frames of `source_size`) into a CV_8UC1 mask of
-// `target_size` (the frames as a run uses them, e.g. resized to height 700): 255 inside, 0
-// outside. Coordinates map by the same per-axis factors as the image resize, pixel areas (not
-// centres) scaling: x' = (x + 0.5)·sx − 0.5. An empty polygon gives an all-zero mask.
+// `target_size` (the frames as a run uses them, e.g. resized to height 700): 255 for the pixels
+// whose centre lies inside the polygon (even-odd rule; a centre exactly on a left or top edge is
+// inside, on a right or bottom edge outside), 0 elsewhere. Coordinates map by the same per-axis
+// factors as the image resize, pixel areas (not centres) scaling: x' = (x + 0.5)·sx − 0.5. So a
+// box's mask has exactly its w x h pixels at the source size. An empty polygon gives an all-zero
+// mask.
 cv::Mat RasterizeRegion(const RegionPolygon& polygon, const cv::Size& source_size,
                         const cv::Size& target_size);
 

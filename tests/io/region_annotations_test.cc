@@ -24,11 +24,12 @@ TEST(RegionAnnotations, ReadsOtbBoxesAsOneBasedPolygons) {
   EXPECT_EQ(regions.format, RegionFileFormat::kOtbBox);
   ASSERT_EQ(regions.polygons.size(), 2u);
   ASSERT_EQ(regions.polygons[0].size(), 4u);
-  EXPECT_DOUBLE_EQ(regions.polygons[0][0].x, 204.0);
-  EXPECT_DOUBLE_EQ(regions.polygons[0][0].y, 150.0);
-  EXPECT_DOUBLE_EQ(regions.polygons[0][2].x, 221.0);
-  EXPECT_DOUBLE_EQ(regions.polygons[0][2].y, 200.0);
-  EXPECT_DOUBLE_EQ(regions.polygons[1][0].x, 0.0);
+  // Pixels 205..221 (1-based) = 204..220 (0-based): outer edges at 203.5 and 220.5.
+  EXPECT_DOUBLE_EQ(regions.polygons[0][0].x, 203.5);
+  EXPECT_DOUBLE_EQ(regions.polygons[0][0].y, 149.5);
+  EXPECT_DOUBLE_EQ(regions.polygons[0][2].x, 220.5);
+  EXPECT_DOUBLE_EQ(regions.polygons[0][2].y, 199.5);
+  EXPECT_DOUBLE_EQ(regions.polygons[1][0].x, -0.5);
 }
 
 TEST(RegionAnnotations, ReadsVotPolygonsAndUnannotatedFrames) {
@@ -74,21 +75,30 @@ TEST(RegionAnnotations, FormatNamesRoundTrip) {
   EXPECT_THROW(ParseRegionFileFormat("coco"), Error);
 }
 
-TEST(RegionAnnotations, RasterizesBoxesAtTheTargetSize) {
-  // Box covering 0-based pixels x 10..29, y 20..39 of a 100x80 frame.
-  const RegionPolygon box = {{10, 20}, {29, 20}, {29, 39}, {10, 39}};
-  const cv::Mat mask = RasterizeRegion(box, {100, 80}, {100, 80});
+TEST(RegionAnnotations, RasterizesBoxesToExactlyTheirPixels) {
+  test::ScopedTempDir dir;
+  // OTB box: 1-based top-left pixel (11, 21), 20 x 20 pixels -> 0-based pixels x 10..29, y 20..39.
+  const auto regions = ReadRegionFile(WriteText(dir, "gt.txt", "11 21 20 20\n"));
+  const cv::Mat mask = RasterizeRegion(regions.polygons[0], {100, 80}, {100, 80});
   ASSERT_EQ(mask.type(), CV_8UC1);
-  EXPECT_EQ(mask.at<uint8_t>(20, 10), 255);
-  EXPECT_EQ(mask.at<uint8_t>(39, 29), 255);
-  EXPECT_EQ(mask.at<uint8_t>(19, 10), 0);
-  EXPECT_EQ(mask.at<uint8_t>(20, 31), 0);
-  EXPECT_NEAR(cv::countNonZero(mask), 20 * 20, 2 * 20 + 2 * 20);
-  // Twice the size: area scales by four, the centre stays on the object.
-  const cv::Mat big = RasterizeRegion(box, {100, 80}, {200, 160});
-  EXPECT_NEAR(cv::countNonZero(big), 4 * 20 * 20, 4 * 40 + 4);
-  EXPECT_EQ(big.at<uint8_t>(60, 40), 255);
+  EXPECT_EQ(cv::countNonZero(mask), 400);
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(10, 20, 20, 20))), 400);
+  // Twice the size: exactly the 40 x 40 pixels covering the same area.
+  const cv::Mat big = RasterizeRegion(regions.polygons[0], {100, 80}, {200, 160});
+  EXPECT_EQ(cv::countNonZero(big), 1600);
+  EXPECT_EQ(cv::countNonZero(big(cv::Rect(20, 40, 40, 40))), 1600);
   EXPECT_EQ(cv::countNonZero(RasterizeRegion({}, {100, 80}, {100, 80})), 0);
+}
+
+TEST(RegionAnnotations, RasterizesRotatedPolygonsByPixelCentres) {
+  // A diamond with vertices on pixel centres: |x − 20| + |y − 20| < 10 (edges half-open).
+  const RegionPolygon diamond = {{20, 10}, {30, 20}, {20, 30}, {10, 20}};
+  const cv::Mat mask = RasterizeRegion(diamond, {40, 40}, {40, 40});
+  EXPECT_EQ(mask.at<uint8_t>(20, 20), 255);
+  EXPECT_EQ(mask.at<uint8_t>(12, 20), 255);
+  EXPECT_EQ(mask.at<uint8_t>(14, 14), 0);  // |−6| + |−6| = 12
+  // The continuous area is 200 px²; the centre count is within a perimeter's worth of it.
+  EXPECT_NEAR(cv::countNonZero(mask), 200, 20);
 }
 
 TEST(RegionAnnotations, ReadsTheSharedTrackingSequences) {
@@ -102,7 +112,7 @@ TEST(RegionAnnotations, ReadsTheSharedTrackingSequences) {
   const auto crossing = ReadRegionFile(data + "/otb_Crossing/groundtruth_rect.txt");
   EXPECT_EQ(crossing.format, RegionFileFormat::kOtbBox);
   ASSERT_EQ(crossing.polygons.size(), 120u);
-  EXPECT_DOUBLE_EQ(crossing.polygons[0][0].x, 204.0);  // "205 151 17 50"
+  EXPECT_DOUBLE_EQ(crossing.polygons[0][0].x, 203.5);  // "205 151 17 50"
 }
 
 }  // namespace

@@ -1,0 +1,365 @@
+// comic_track_eval: the paper's tracking comparison (§5.1, Tables 1–3) on one sequence. Runs
+// CoMIC and the baseline detectors under one protocol — threshold equalisation on the object in
+// the first frame, frame-to-frame SSD patch matching within r = 20 px, tracks, ResM_n and
+// M_score(n) for boundary / non-boundary / overall features — and writes the tables (Markdown,
+// CSV, JSON), bar charts and track overlays. With KITTI poses it also reports the epipolar
+// precision of the matches and the scores at equal precision.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <sstream>
+
+#include "apps/common/arg_parser.h"
+#include "frontend/epipolar_check.h"
+#include "frontend/track_drawing.h"
+#include "frontend/track_evaluation.h"
+#include "io/bar_chart.h"
+#include "io/error.h"
+#include "io/file_utils.h"
+#include "io/image_sequence.h"
+#include "io/kitti_odometry.h"
+#include "io/mask_folder.h"
+#include "io/region_annotations.h"
+
+namespace {
+
+using comic::io::ReportTable;
+namespace fe = comic::frontend;
+
+std::vector<std::string> SplitList(const std::string& list) {
+  std::vector<std::string> items;
+  std::istringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) items.push_back(item);
+  return items;
+}
+
+std::string JoinArgs(int argc, char** argv) {
+  std::string command = "comic_track_eval";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  return command;
+}
+
+// Writes a table as name.md, name.csv and name.json in `out`.
+void WriteTable(const std::string& out, const std::string& name, const ReportTable& table) {
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(out, name + ".md"), table.ToMarkdown());
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(out, name + ".csv"), table.ToCsv());
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(out, name + ".json"),
+                                 table.ToJson().dump(2) + "\n");
+}
+
+// M_score and ResM panels of one n, stacked.
+cv::Mat ScoreChart(const fe::TrackEvaluation& evaluation, size_t k, const std::string& title) {
+  const int n = evaluation.options.ns[k];
+  const std::vector<std::string> groups =
+      evaluation.has_regions ? std::vector<std::string>{"boundary", "non-boundary", "overall"}
+                             : std::vector<std::string>{"overall"};
+  comic::io::BarChart score_chart, res_chart;
+  score_chart.title = title + ": M_score(" + std::to_string(n) + ") %";
+  res_chart.title = title + ": ResM_" + std::to_string(n);
+  score_chart.groups = res_chart.groups = groups;
+  for (const fe::EvaluationRow& row : evaluation.rows) {
+    const fe::MatchingScores& s = row.scores[k];
+    comic::io::BarChartSeries score{row.label, {}}, res{row.label, {}};
+    if (evaluation.has_regions) {
+      score.values = {100 * s.boundary.mean_m_score, 100 * s.non_boundary.mean_m_score,
+                      100 * s.overall.mean_m_score};
+      res.values = {s.boundary.mean_res_m, s.non_boundary.mean_res_m, s.overall.mean_res_m};
+    } else {
+      score.values = {100 * s.overall.mean_m_score};
+      res.values = {s.overall.mean_res_m};
+    }
+    score_chart.series.push_back(score);
+    res_chart.series.push_back(res);
+  }
+  cv::Mat chart;
+  cv::vconcat(comic::io::DrawBarChart(score_chart), comic::io::DrawBarChart(res_chart), chart);
+  return chart;
+}
+
+// One tile per detector (its first row) with the tracks through `frame`.
+cv::Mat OverlayMosaic(const fe::TrackEvaluation& evaluation, const comic::io::Frame& frame,
+                      size_t index, const cv::Mat& region_labels) {
+  std::vector<cv::Mat> tiles;
+  std::vector<std::string> seen;
+  for (const fe::EvaluationRow& row : evaluation.rows) {
+    if (std::find(seen.begin(), seen.end(), row.detector) != seen.end()) continue;
+    seen.push_back(row.detector);
+    const std::vector<fe::RegionLabel> labels =
+        row.labels.empty() ? std::vector<fe::RegionLabel>() : row.labels[index];
+    cv::Mat tile = fe::DrawTracks(frame.color, row.tracking.tracks, static_cast<int>(index), labels,
+                                  region_labels);
+    const std::string caption = row.label + "  " + frame.name;
+    cv::putText(tile, caption, {8, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.7, {0, 0, 0}, 3, cv::LINE_AA);
+    cv::putText(tile, caption, {8, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.7, {255, 255, 255}, 1,
+                cv::LINE_AA);
+    tiles.push_back(tile);
+  }
+  const size_t columns = tiles.size() <= 2 ? tiles.size() : (tiles.size() <= 4 ? 2 : 3);
+  std::vector<cv::Mat> rows;
+  for (size_t start = 0; start < tiles.size(); start += columns) {
+    std::vector<cv::Mat> row_tiles(tiles.begin() + start,
+                                   tiles.begin() + std::min(tiles.size(), start + columns));
+    while (row_tiles.size() < columns) {
+      row_tiles.push_back(cv::Mat(tiles[0].size(), CV_8UC3, cv::Scalar(255, 255, 255)));
+    }
+    cv::Mat row;
+    cv::hconcat(row_tiles, row);
+    rows.push_back(row);
+  }
+  cv::Mat mosaic;
+  cv::vconcat(rows, mosaic);
+  // Keep the file a sensible size.
+  if (mosaic.cols > 2400) {
+    cv::resize(mosaic, mosaic, cv::Size(), 2400.0 / mosaic.cols, 2400.0 / mosaic.cols,
+               cv::INTER_AREA);
+  }
+  return mosaic;
+}
+
+int Run(int argc, char** argv) {
+  std::string frames_path, masks_dir, boxes_file, region_format = "auto";
+  std::string detector_list = "comic,harris,hessian,mser,fast";
+  std::string comic_matchers = "split,like-sides,full";
+  std::string poses_file, calib_file, out_dir = "track_eval";
+  int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 1;
+  comic::io::ImageSequenceOptions sequence_options;
+  sequence_options.resize_height = 700;
+  fe::TrackEvaluationOptions options;
+  double radius = options.matcher.radius, max_cost = options.matcher.max_cost;
+  int min_side_overlap = options.matcher.min_side_overlap;
+  double band = options.boundary_band, epipolar_tolerance = options.epipolar_tolerance;
+  double target_precision = options.target_precision;
+
+  comic::apps::ArgParser parser(
+      "comic_track_eval", "FRAMES [--masks DIR | --boxes FILE] [options]",
+      "Compares CoMIC with Harris, Hessian, MSER and FAST-9 on one sequence under the paper's\n"
+      "protocol (§5.1): every detector's threshold is set to give the same number N of features\n"
+      "on the object in the first frame; features are detected on every frame and matched frame\n"
+      "to frame by 23x23 SSD within r pixels, one-to-one, at one SSD threshold; ResM_n and\n"
+      "M_score(n) = ResM_n / N_{i-n} (Eq. 2) are computed every frame-step frames and averaged,\n"
+      "for boundary, non-boundary and all features of the object region (features off the\n"
+      "object are left out). CoMIC is matched with its split patch (Algorithm 2), with like\n"
+      "sides only, and with the full patch, one row each.");
+  parser.AddPositional("FRAMES", "folder of images (or a video file) of the sequence",
+                       &frames_path);
+  parser.AddOption("masks", "DIR",
+                   "object region: a folder of per-frame masks (non-zero = object), one per frame",
+                   &masks_dir);
+  parser.AddOption("boxes", "FILE",
+                   "object region: a region file, line k = frame k (VOT polygons or OTB boxes)",
+                   &boxes_file);
+  parser.AddOption("region-format", "F",
+                   "format of --boxes: auto (8 numbers = VOT, 4 = OTB), vot or otb; both 1-based",
+                   &region_format);
+  parser.AddOption("detectors", "LIST", "comma-separated detectors: comic,harris,hessian,mser,fast",
+                   &detector_list);
+  parser.AddOption("comic-matchers", "LIST",
+                   "matchers for CoMIC's features, one row each: split (Algorithm 2), "
+                   "like-sides, full",
+                   &comic_matchers);
+  parser.AddOption("n", "N",
+                   "frames a feature must be matched through (M_score(n)); n = 1 is "
+                   "always reported too",
+                   &n);
+  parser.AddOption("frame-step", "K", "score every K-th start frame (paper: 5)", &frame_step);
+  parser.AddOption("num-features", "N",
+                   "features on the object in frame 0 for every detector (0 = CoMIC's count)",
+                   &num_features);
+  parser.AddOption("resize-height", "H",
+                   "resize frames to height H before everything (paper: 700; 0 = keep)",
+                   &sequence_options.resize_height);
+  parser.AddOption("first", "I", "first frame index of FRAMES to use",
+                   &sequence_options.first_frame);
+  parser.AddOption("last", "I", "last frame index to use, inclusive (-1 = end)",
+                   &sequence_options.last_frame);
+  parser.AddOption("radius", "PX", "matching search radius r in pixels (paper: 20)", &radius);
+  parser.AddOption("max-cost", "T",
+                   "SSD threshold: mean squared grey-level difference a match may have", &max_cost);
+  parser.AddOption("min-side-overlap", "PX",
+                   "split matching: fewest shared pixels for a side pairing to count",
+                   &min_side_overlap);
+  parser.AddOption("band", "PX",
+                   "boundary band: features within PX pixels of the region edge (either side)",
+                   &band);
+  parser.AddOption("poses", "FILE", "KITTI poses.txt (camera-to-world per frame) for precision",
+                   &poses_file);
+  parser.AddOption("calib", "FILE", "KITTI calib.txt (P0 gives the intrinsics) for precision",
+                   &calib_file);
+  parser.AddOption("epipolar-tolerance", "PX",
+                   "a match is consistent within PX pixels of its epipolar line",
+                   &epipolar_tolerance);
+  parser.AddOption("target-precision", "P",
+                   "also compare matchers at this epipolar precision (0-1)", &target_precision);
+  parser.AddOption("overlay-frames", "K", "write track overlays of K frames (0 = none)",
+                   &overlay_frames);
+  parser.AddOption("threads", "N", "CoMIC worker threads (results do not depend on it)", &threads);
+  parser.AddOption("out", "DIR", "output folder (created if needed)", &out_dir);
+  parser.AddEpilog(
+      "Outputs in DIR: scores_n<n>.{md,csv,json} (Table 1/2 layout), scores_n<n>.png (bar\n"
+      "charts), precision_n<n>.{md,csv,json} with --poses, evaluation.json (everything, with\n"
+      "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n\n"
+      "Example:\n"
+      "  comic_track_eval ../shared/data/otb_Crossing/img --boxes "
+      "../shared/data/otb_Crossing/groundtruth_rect.txt --out crossing\n");
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+
+  // Everything is checked before any detection runs.
+  COMIC_CHECK(masks_dir.empty() || boxes_file.empty(), kInvalidArgument,
+              "give either --masks or --boxes, not both");
+  COMIC_CHECK(poses_file.empty() == calib_file.empty(), kInvalidArgument,
+              "--poses and --calib go together");
+  COMIC_CHECK(n >= 1, kInvalidArgument, "--n must be >= 1, got " << n);
+  COMIC_CHECK(overlay_frames >= 0, kInvalidArgument, "--overlay-frames must be >= 0");
+  COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0");
+  options.detectors = comic::frontend::ParseDetectorList(detector_list);
+  options.comic_costs.clear();
+  for (const std::string& name : SplitList(comic_matchers)) {
+    options.comic_costs.push_back(fe::ParseMatchCost(name));
+  }
+  options.detector_options.comic.num_threads = threads;
+  options.num_features = num_features;
+  options.matcher.radius = radius;
+  options.matcher.max_cost = max_cost;
+  options.matcher.min_side_overlap = min_side_overlap;
+  options.ns = n == 1 ? std::vector<int>{1} : std::vector<int>{1, n};
+  options.frame_step = frame_step;
+  options.boundary_band = band;
+  options.epipolar_tolerance = epipolar_tolerance;  // in stored pixels until the size is known
+  options.target_precision = target_precision;
+  options.Check();
+  const comic::io::RegionFileFormat format = comic::io::ParseRegionFileFormat(region_format);
+  comic::io::EnsureWritableDirectory(out_dir);
+
+  const auto sequence = comic::io::ImageSequence::Open(frames_path, sequence_options);
+  const size_t num_frames = sequence.NumFrames();
+  COMIC_CHECK(static_cast<size_t>(n) < num_frames, kInvalidArgument,
+              "--n " << n << " needs at least " << n + 1 << " frames, " << frames_path << " gives "
+                     << num_frames);
+  const cv::Size source_size = sequence.SourceFrameSize();
+  const cv::Size frame_size = sequence.FrameSize();
+  // The ground truth's accuracy is a property of the stored images: scale the tolerance with them.
+  options.epipolar_tolerance =
+      epipolar_tolerance * static_cast<double>(frame_size.height) / source_size.height;
+  const size_t first_source = static_cast<size_t>(sequence_options.first_frame);
+  const size_t last_source = first_source + num_frames - 1;
+
+  fe::RegionMaskSource regions;
+  if (!masks_dir.empty()) {
+    const auto masks =
+        std::make_shared<comic::io::MaskFolder>(comic::io::MaskFolder::Open(masks_dir));
+    // One mask per frame of the whole sequence, each the size of the frames.
+    masks->CheckCount(comic::io::ImageSequence::Open(frames_path).NumFrames());
+    for (size_t i = 0; i < num_frames; ++i) masks->Read(first_source + i, source_size);
+    regions = [masks, first_source, source_size, frame_size](size_t frame) {
+      cv::Mat mask = masks->Read(first_source + frame, source_size);
+      if (mask.size() != frame_size) {
+        cv::resize(mask, mask, frame_size, 0, 0, cv::INTER_NEAREST);
+      }
+      return mask;
+    };
+  } else if (!boxes_file.empty()) {
+    const auto annotations = std::make_shared<comic::io::RegionAnnotations>(
+        comic::io::ReadRegionFile(boxes_file, format));
+    COMIC_CHECK(annotations->polygons.size() > last_source, kInvalidData,
+                boxes_file << ": " << annotations->polygons.size() << " regions, but frame "
+                           << last_source << " needs line " << last_source + 1);
+    regions = [annotations, first_source, source_size, frame_size](size_t frame) {
+      return comic::io::RasterizeRegion(annotations->polygons[first_source + frame], source_size,
+                                        frame_size);
+    };
+  }
+  std::optional<fe::EpipolarGroundTruth> ground_truth;
+  if (!poses_file.empty()) {
+    const auto poses = comic::io::ReadKittiPoses(poses_file);
+    COMIC_CHECK(poses.size() > last_source, kInvalidData,
+                poses_file << ": " << poses.size() << " poses, but frame " << last_source
+                           << " needs line " << last_source + 1);
+    fe::EpipolarGroundTruth truth;
+    truth.K =
+        fe::ScaleIntrinsics(comic::io::ReadKittiIntrinsics(calib_file, 0), source_size, frame_size);
+    truth.world_from_camera.assign(poses.begin() + first_source,
+                                   poses.begin() + first_source + num_frames);
+    ground_truth = truth;
+  }
+
+  std::cout << "comic_track_eval: " << num_frames << " frames of " << frames_path << " at "
+            << frame_size.width << "x" << frame_size.height << ", detectors " << detector_list
+            << std::endl;
+  const bool tty = ::isatty(STDOUT_FILENO);
+  size_t last_reported = 0;
+  const fe::TrackEvaluation evaluation = fe::EvaluateTracking(
+      sequence, regions, ground_truth, options, [&](size_t done, size_t total) {
+        if (tty) {
+          std::cout << "\rframe " << done << "/" << total << std::flush;
+          if (done == total) std::cout << "\n";
+        } else if (done == total || done * 10 / total != last_reported * 10 / total) {
+          std::cout << "frame " << done << "/" << total << std::endl;
+        }
+        last_reported = done;
+      });
+
+  // Tables, charts, report.
+  const std::string command = JoinArgs(argc, argv);
+  std::ostringstream report;
+  report << "# comic_track_eval report\n\n```\n"
+         << command << "\n```\n\n"
+         << "- frames: " << num_frames << " (" << evaluation.frame_names.front() << " .. "
+         << evaluation.frame_names.back() << "), evaluated at " << frame_size.width << "x"
+         << frame_size.height << "\n"
+         << "- object region: "
+         << (!masks_dir.empty() ? "masks " + masks_dir
+                                : (!boxes_file.empty() ? "regions " + boxes_file : "none"))
+         << "; boundary band " << band << " px\n"
+         << "- N = " << evaluation.reference_count << " features in frame 0's object region ("
+         << (evaluation.reference_source == "comic" ? "CoMIC's count" : "requested") << ")\n"
+         << "- matching: r = " << radius << " px, T = " << max_cost
+         << " (mean squared difference), min side overlap " << min_side_overlap << " px\n\n";
+  for (size_t k = 0; k < options.ns.size(); ++k) {
+    const int nk = options.ns[k];
+    const ReportTable table = fe::ScoreTable(evaluation, nk);
+    const std::string name = "scores_n" + std::to_string(nk);
+    WriteTable(out_dir, name, table);
+    comic::io::WriteImageAtomically(comic::io::JoinPaths(out_dir, name + ".png"),
+                                    ScoreChart(evaluation, k, comic::io::FileName(frames_path)));
+    report << "## M_score(" << nk << ") and ResM_" << nk << "\n\n" << table.ToMarkdown() << "\n";
+    if (ground_truth) {
+      const ReportTable precision = fe::PrecisionTable(evaluation, nk);
+      WriteTable(out_dir, "precision_n" + std::to_string(nk), precision);
+      report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
+             << "\n\n"
+             << precision.ToMarkdown() << "\n";
+    }
+  }
+  nlohmann::json json = fe::EvaluationToJson(evaluation);
+  json["command"] = command;
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(out_dir, "evaluation.json"),
+                                 json.dump(2) + "\n");
+
+  // Overlays on frames spread over the sequence, late enough to show some history.
+  const size_t overlays = std::min<size_t>(overlay_frames, num_frames);
+  for (size_t o = 0; o < overlays; ++o) {
+    const size_t first_shown = std::min<size_t>(5, num_frames - 1);
+    const size_t index = overlays == 1
+                             ? first_shown
+                             : first_shown + o * (num_frames - 1 - first_shown) / (overlays - 1);
+    const comic::io::Frame frame = sequence.ReadFrame(index);
+    const cv::Mat labels = regions ? fe::LabelRegion(regions(index), band) : cv::Mat();
+    const std::string stem = frame.name.substr(0, frame.name.find_last_of('.'));
+    comic::io::WriteImageAtomically(comic::io::JoinPaths(out_dir, "tracks_" + stem + ".png"),
+                                    OverlayMosaic(evaluation, frame, index, labels));
+  }
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(out_dir, "report.md"), report.str());
+  std::cout << fe::ScoreTable(evaluation, n).ToMarkdown() << "wrote " << out_dir << "/\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return comic::apps::RunMain("comic_track_eval", [&] { return Run(argc, argv); });
+}
