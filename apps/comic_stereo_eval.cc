@@ -1,0 +1,265 @@
+// comic_stereo_eval: the paper's Middlebury stereo experiment (§5.2.2, Tables 1 and 2, stereo
+// rows) for CoMIC and the baselines, boundary vs non-boundary, with precision, matched-precision
+// and repeatability tables. Flags -> StereoEvaluationOptions -> EvaluateStereoPair -> files.
+#include <cctype>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apps/common/arg_parser.h"
+#include "frontend/stereo_evaluation.h"
+#include "frontend/stereo_evaluation_report.h"
+#include "frontend/stereo_match_figure.h"
+#include "io/error.h"
+#include "io/file_utils.h"
+#include "io/middlebury.h"
+
+namespace {
+
+namespace fe = comic::frontend;
+namespace io = comic::io;
+
+std::vector<std::string> SplitList(const std::string& text, const std::string& what) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    COMIC_CHECK(!item.empty(), kInvalidArgument,
+                "--" << what << ": empty entry in '" << text << "'");
+    items.push_back(item);
+  }
+  COMIC_CHECK(!items.empty(), kInvalidArgument, "--" << what << ": the list is empty");
+  return items;
+}
+
+double ParseNumber(const std::string& text, const std::string& what) {
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  COMIC_CHECK(used == text.size() && used > 0, kInvalidArgument,
+              "--" << what << ": expected a number, got '" << text << "'");
+  return value;
+}
+
+std::vector<double> ParseNumberList(const std::string& text, const std::string& what) {
+  std::vector<double> values;
+  for (const std::string& item : SplitList(text, what)) values.push_back(ParseNumber(item, what));
+  return values;
+}
+
+std::vector<int> ParseCountList(const std::string& text) {
+  std::vector<int> counts;
+  for (double v : ParseNumberList(text, "counts")) {
+    COMIC_CHECK(v >= 0 && v == static_cast<int>(v), kInvalidArgument,
+                "--counts: expected whole numbers >= 0, got " << v);
+    counts.push_back(static_cast<int>(v));
+  }
+  return counts;
+}
+
+// The scale implied by a Middlebury file name, as LoadMiddleburyFolder does: im3.png (Tsukuba,
+// ×16) or im2.png (2003 pairs, ×4); 0 when the name says nothing.
+double ScaleFromLeftName(const std::string& left) {
+  const std::string name = io::FileName(left);
+  if (name == "im3.png") return 16.0;
+  if (name == "im2.png") return 4.0;
+  return 0.0;
+}
+
+std::string Safe(const std::string& name) {
+  std::string safe = name.empty() ? "pair" : name;
+  for (char& c : safe) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  }
+  return safe;
+}
+
+int Run(int argc, char** argv) {
+  std::string left, right, disparity, disc, nonocc, middlebury;
+  std::string out_dir = "stereo_eval";
+  double scale = 0.0;
+  fe::StereoEvaluationOptions options;
+  std::string methods =
+      "comic/split,comic/like-sides,comic/full,harris/full,hessian/full,"
+      "mser/full,fast/full";
+  std::string counts = "0,1000";
+  std::string sensitivity = "200,400,800";
+  std::string repeatability = "1,1.5,2.5";
+  std::string precision_reference = options.precision_reference.Label();
+  std::string figure_methods = "comic/split,harris/full";
+  bool quiet = false;
+
+  comic::apps::ArgParser parser(
+      "comic_stereo_eval",
+      "LEFT RIGHT --disparity GT [--scale S] [--disc MASK] [--nonocc MASK] [--out DIR] | "
+      "--middlebury DIR[,DIR...] [--out DIR]",
+      "Evaluates CoMIC and the baseline detectors on rectified stereo pairs with ground-truth\n"
+      "disparity (paper §5.2.2, Tables 1 and 2): thresholds equalised on the left image, SSD\n"
+      "matching along the row, one-to-one; M_score(1), ResM_1 and precision for the boundary\n"
+      "(disc = 255), non-boundary and overall regions, at a fixed T, over a T sweep, at matched\n"
+      "precision and at T = inf, plus repeatability. Writes Markdown, CSV, JSON and a PNG of\n"
+      "correct and wrong matches per pair.");
+  parser.AddPositional("LEFT", "left (reference) image", &left, false);
+  parser.AddPositional("RIGHT", "right image", &right, false);
+  parser.AddOption("disparity", "GT", "ground-truth disparity of the left image (stored x S)",
+                   &disparity);
+  parser.AddOption("scale", "S",
+                   "disparity = stored value / S (Tsukuba 16, 2003 quarter-size pairs 4); "
+                   "0 = from the left file name (im3.png: 16, im2.png: 4)",
+                   &scale);
+  parser.AddOption("disc", "MASK",
+                   "depth-discontinuity mask (255 = boundary, 128 = other visible pixels); "
+                   "without it no boundary split",
+                   &disc);
+  parser.AddOption("nonocc", "MASK",
+                   "non-occluded mask (255 = evaluated); without it nothing counts as occluded",
+                   &nonocc);
+  parser.AddOption("middlebury", "DIRS",
+                   "comma-separated folders laid out like ../shared/data/middlebury2003_cones "
+                   "(im2/im6 or im3/im4, groundtruth, nonocc, disc)",
+                   &middlebury);
+  parser.AddOption("out", "DIR", "output folder (created if missing)", &out_dir);
+  parser.AddOption("height", "H", "working height in px (paper: 700; 0 = original size)",
+                   &options.working_height);
+  parser.AddOption("methods", "LIST", "detector/matcher pairs (matchers: full, split, like-sides)",
+                   &methods);
+  parser.AddOption("counts", "LIST",
+                   "target counts N of valid left features, one run each; 0 = the count "
+                   "reference's own count at its default threshold",
+                   &counts);
+  parser.AddOption("count-reference", "DET", "detector defining N = 0", &options.count_reference);
+  parser.AddOption("max-cost", "T", "SSD threshold: mean squared grey difference",
+                   &options.max_cost);
+  parser.AddOption("sensitivity", "LIST", "further thresholds T reported (inf always is)",
+                   &sensitivity);
+  parser.AddOption("tolerance", "PX", "a match is correct within this distance of the truth",
+                   &options.correct_tolerance);
+  parser.AddOption("row-tolerance", "PX", "stereo gate: largest row difference",
+                   &options.row_tolerance);
+  parser.AddOption("min-disparity", "PX", "stereo gate: smallest disparity",
+                   &options.min_disparity);
+  parser.AddOption("max-disparity", "PX",
+                   "stereo gate: largest disparity; 0 = max GT disparity + --disparity-margin",
+                   &options.max_disparity);
+  parser.AddOption("disparity-margin", "PX", "added to the max GT disparity for the gate",
+                   &options.disparity_margin);
+  parser.AddOption("min-side-overlap", "PX",
+                   "split costs: fewest pixels a side pairing must share (of 529)",
+                   &options.min_side_overlap);
+  parser.AddOption("repeatability", "LIST", "repeatability tolerances in px", &repeatability);
+  parser.AddOption("precision-reference", "METHOD",
+                   "matched precision target = this method's overall precision at T",
+                   &precision_reference);
+  parser.AddOption("target-precision", "P",
+                   "fixed matched-precision target in (0, 1]; 0 = from --precision-reference",
+                   &options.target_precision);
+  parser.AddOption("mser-merge-radius", "PX", "MSER centroids closer than this are merged",
+                   &options.detectors.mser.merge_radius);
+  parser.AddOption("threads", "N", "CoMIC worker threads (0 = all; output identical)",
+                   &options.detectors.comic.num_threads);
+  parser.AddOption("figure-methods", "LIST", "methods drawn side by side in matches_<pair>.png",
+                   &figure_methods);
+  parser.AddFlag("quiet", "no progress messages", &quiet);
+  parser.AddEpilog(
+      "Outputs in DIR: stereo_eval.md (every table, readable), stereo_eval.json, protocol.csv,\n"
+      "pairs.csv, detections.csv, scores.csv, matched_precision.csv, repeatability.csv,\n"
+      "paper_comparison.csv and matches_<pair>.png (first count of --counts).\n\n"
+      "Example:\n"
+      "  comic_stereo_eval --middlebury ../shared/data/middlebury2001_tsukuba,"
+      "../shared/data/middlebury2003_cones --out stereo\n");
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+
+  // Options first: a bad flag fails before any file is read.
+  options.methods = fe::ParseStereoMethods(methods);
+  options.target_counts = ParseCountList(counts);
+  options.sensitivity_costs = ParseNumberList(sensitivity, "sensitivity");
+  options.repeatability_tolerances = ParseNumberList(repeatability, "repeatability");
+  const std::vector<fe::StereoMethod> precision_methods =
+      fe::ParseStereoMethods(precision_reference);
+  COMIC_CHECK(precision_methods.size() == 1, kInvalidArgument,
+              "--precision-reference: expected one method, got '" << precision_reference << "'");
+  options.precision_reference = precision_methods.front();
+  const std::vector<fe::StereoMethod> drawn = fe::ParseStereoMethods(figure_methods);
+  options.Check();
+
+  // Inputs next: every pair is loaded (and so checked) before any output is touched.
+  const bool pair_mode = !left.empty() || !right.empty();
+  COMIC_CHECK(pair_mode != !middlebury.empty(), kInvalidArgument,
+              (pair_mode ? "give either LEFT RIGHT or --middlebury, not both"
+                         : "missing input: LEFT RIGHT --disparity GT, or --middlebury DIR"));
+  std::vector<io::MiddleburyPair> pairs;
+  if (pair_mode) {
+    COMIC_CHECK(!right.empty(), kInvalidArgument, "missing argument RIGHT");
+    COMIC_CHECK(!disparity.empty(), kInvalidArgument,
+                "missing --disparity GT (the left image's ground-truth disparity)");
+    io::MiddleburyPairPaths paths;
+    paths.left = left;
+    paths.right = right;
+    paths.disparity = disparity;
+    paths.disparity_scale = parser.WasSet("scale") ? scale : ScaleFromLeftName(left);
+    COMIC_CHECK(parser.WasSet("scale") || paths.disparity_scale > 0, kInvalidArgument,
+                "--scale is required: " << io::FileName(left)
+                                        << " does not say which Middlebury pair it is");
+    paths.nonocc = nonocc;
+    paths.disc = disc;
+    pairs.push_back(io::LoadMiddleburyPair(paths, options.working_height));
+  } else {
+    COMIC_CHECK(disparity.empty() && disc.empty() && nonocc.empty(), kInvalidArgument,
+                "--disparity, --disc and --nonocc go with LEFT RIGHT; --middlebury folders hold "
+                "their own");
+    COMIC_CHECK(!parser.WasSet("scale") || scale > 0, kInvalidArgument,
+                "--scale must be > 0, got " << scale);
+    for (const std::string& folder : SplitList(middlebury, "middlebury")) {
+      pairs.push_back(io::LoadMiddleburyFolder(folder, options.working_height, scale));
+    }
+  }
+
+  // Outputs: checked up front, written atomically at the end.
+  io::EnsureWritableDirectory(out_dir);
+  const std::vector<std::string> tables = {
+      "protocol",          "pairs",         "detections",      "scores",
+      "matched_precision", "repeatability", "paper_comparison"};
+  std::vector<std::string> outputs = {io::JoinPaths(out_dir, "stereo_eval.md"),
+                                      io::JoinPaths(out_dir, "stereo_eval.json")};
+  for (const std::string& table : tables) outputs.push_back(io::JoinPaths(out_dir, table + ".csv"));
+  for (const io::MiddleburyPair& pair : pairs) {
+    outputs.push_back(io::JoinPaths(out_dir, "matches_" + Safe(pair.name) + ".png"));
+  }
+  for (const std::string& path : outputs) io::CheckWritableFile(path);
+
+  const fe::StereoProgress progress = [quiet](const std::string& message) {
+    if (!quiet) std::cout << message << std::endl;
+  };
+  std::vector<fe::StereoPairEvaluation> results;
+  std::vector<cv::Mat> figures;
+  for (const io::MiddleburyPair& pair : pairs) {
+    results.push_back(fe::EvaluateStereoPair(pair, options, progress));
+    figures.push_back(
+        fe::DrawStereoMatchFigure(pair, results.back().runs.front(), drawn, options.max_cost));
+  }
+
+  const fe::StereoReport report = fe::BuildStereoReport(results, options);
+  io::WriteFileAtomically(outputs[0], fe::StereoReportMarkdown(report, results, options));
+  io::WriteFileAtomically(outputs[1], report.ToJson().dump(2) + "\n");
+  const io::ReportTable* csv[] = {
+      &report.protocol,          &report.pairs,         &report.detections,      &report.scores,
+      &report.matched_precision, &report.repeatability, &report.paper_comparison};
+  for (size_t t = 0; t < tables.size(); ++t)
+    io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
+  }
+  if (!quiet) std::cout << "wrote " << outputs.size() << " files to " << out_dir << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return comic::apps::RunMain("comic_stereo_eval", [&] { return Run(argc, argv); });
+}
