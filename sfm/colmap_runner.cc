@@ -227,8 +227,19 @@ std::optional<std::string> RunColmapMapper(const std::string& database_path,
   io::EnsureWritableDirectory(output_path);
   COMIC_CHECK(!FindLargestColmapModel(output_path), kIo,
               output_path << ": holds COLMAP models already (use an empty folder)");
-  RunColmap(ColmapMapperArguments(database_path, image_path, output_path, options), log_path,
-            executable);
+  const size_t log_offset = FileSize(log_path);
+  try {
+    RunColmap(ColmapMapperArguments(database_path, image_path, output_path, options), log_path,
+              executable);
+  } catch (const Error& e) {
+    // COLMAP 3.8 exits with status 1 when it finds no initial pair: an expected outcome, not an
+    // error of the program.
+    const std::string log = io::ReadFileToString(log_path);
+    const bool no_initial_pair = e.kind() == ErrorKind::kExternal &&
+                                 log.find("No good initial image pair found",
+                                          std::min(log_offset, log.size())) != std::string::npos;
+    if (!no_initial_pair || FindLargestColmapModel(output_path)) throw;
+  }
   return FindLargestColmapModel(output_path);
 }
 

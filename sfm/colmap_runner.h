@@ -78,7 +78,8 @@ std::string ColmapMapperCommandLine(const std::string& database_path, const std:
 
 // Creates `output_path` (which must not hold models already: comic::Error(kIo)), runs
 // `colmap mapper` and returns the largest model it wrote (see FindLargestColmapModel), or
-// std::nullopt if it wrote none (COLMAP found no initial pair).
+// std::nullopt if it wrote none because it found no initial pair (COLMAP 3.8 then exits with
+// status 1; any other failure throws comic::Error(kExternal)).
 std::optional<std::string> RunColmapMapper(const std::string& database_path,
                                            const std::string& image_path,
                                            const std::string& output_path,

@@ -216,5 +216,32 @@ TEST(RunColmapMapper, ReconstructsASyntheticForwardSequenceWithTheRecommendedOpt
       Error);
 }
 
+// No parallax at all (a camera panning on the spot): COLMAP finds no initial pair, exits with
+// status 1, and that is reported as "no model", not as an error.
+TEST(RunColmapMapper, NoInitialPairGivesNoModel) {
+  if (!IsColmapAvailable()) GTEST_SKIP() << "colmap is not installed";
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kPureRotation;
+  scene_options.num_frames = 4;
+  scene_options.num_points = 400;
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  ScopedTempDir dir;
+  std::filesystem::create_directories(dir.File("images"));
+  ExportTracksToColmapDatabase(scene.tracks, scene.camera, ColmapExportOptions(), dir.File("db.db"),
+                               false);
+  ColmapMapperOptions options;
+  options.num_threads = 2;
+  const std::string log = dir.File("colmap.log");
+  const auto model =
+      RunColmapMapper(dir.File("db.db"), dir.File("images"), dir.File("sparse"), options, log);
+  EXPECT_FALSE(model);
+  EXPECT_NE(io::ReadFileToString(log).find("No good initial image pair found"), std::string::npos);
+  // A database COLMAP cannot read is an error, not "no model".
+  io::WriteFileAtomically(dir.File("bad.db"), "not a database\n");
+  EXPECT_THROW(
+      RunColmapMapper(dir.File("bad.db"), dir.File("images"), dir.File("sparse2"), options, log),
+      Error);
+}
+
 }  // namespace
 }  // namespace comic::sfm
