@@ -1,5 +1,15 @@
 #include "frontend/comic_detector.h"
 
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <unordered_map>
+#include <vector>
+
+#include "frontend/corner_convergence.h"
+#include "frontend/initial_corners.h"
+#include "frontend/parallel_for.h"
+#include "frontend/side_mask.h"
 #include "io/error.h"
 
 namespace comic::frontend {
@@ -18,18 +28,184 @@ void ComicDetectorOptions::Check() const {
   COMIC_CHECK(merge_radius >= 0, kInvalidArgument, "comic: merge_radius must be >= 0");
   COMIC_CHECK(min_stability >= 0, kInvalidArgument, "comic: min_stability must be >= 0");
   COMIC_CHECK(num_threads >= 0, kInvalidArgument, "comic: num_threads must be >= 0");
+  COMIC_CHECK(min_cornerness >= 0 && min_cornerness <= 0.25, kInvalidArgument,
+              "comic: min_cornerness must be in [0, 0.25], got " << min_cornerness);
 }
 
 ComicDetector::ComicDetector(const ComicDetectorOptions& options) : options_(options) {
   options_.Check();
 }
 
-// PLACEHOLDER until the detector lands (issue "The CoMIC detector, faithful to the paper, fast,
-// with comic_detect"): validates the input and returns no features.
+namespace {
+
+constexpr double kSqrt2 = 1.41421356237309504880;
+
+// Greedy suppression of candidates closer than `radius` to a kept one, in the given order
+// (strongest first). `same_group` restricts which pairs may suppress each other. Grid-hashed.
+template <class T, class Position, class SameGroup>
+std::vector<T> SuppressNeighbours(std::vector<T> items, double radius, Position position,
+                                  SameGroup same_group) {
+  if (radius <= 0) return items;
+  const double cell = radius;
+  std::unordered_map<int64_t, std::vector<int>> grid;
+  auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); };
+  std::vector<T> kept;
+  kept.reserve(items.size());
+  for (T& item : items) {
+    const cv::Point2f p = position(item);
+    const int64_t cx = static_cast<int64_t>(std::floor(p.x / cell));
+    const int64_t cy = static_cast<int64_t>(std::floor(p.y / cell));
+    bool suppressed = false;
+    for (int64_t dy = -1; dy <= 1 && !suppressed; ++dy) {
+      for (int64_t dx = -1; dx <= 1 && !suppressed; ++dx) {
+        auto it = grid.find(key(cx + dx, cy + dy));
+        if (it == grid.end()) continue;
+        for (int index : it->second) {
+          const cv::Point2f q = position(kept[index]);
+          if (std::hypot(p.x - q.x, p.y - q.y) <= radius && same_group(kept[index], item)) {
+            suppressed = true;
+            break;
+          }
+        }
+      }
+    }
+    if (suppressed) continue;
+    grid[key(cx, cy)].push_back(static_cast<int>(kept.size()));
+    kept.push_back(std::move(item));
+  }
+  return kept;
+}
+
+}  // namespace
+
 FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
   COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
               "comic: expected a non-empty 8-bit single-channel image");
-  return {};
+  const ComicDetectorOptions& o = options_;
+  if (gray.cols < o.block_size || gray.rows < o.block_size) return {};
+
+  // ---- Initialisation (Algorithm 1 lines 4-6): blocks B x B, stride B/2, scale 2s, δ/2. ----
+  const int factor = o.coarse_initialisation ? 2 : 1;
+  cv::Mat init_image = gray;
+  if (factor == 2) {
+    // Exact 2x2 means: an even crop halved by INTER_AREA. Half-resolution pixel (x, y) covers
+    // full-resolution pixels 2x, 2x + 1, so its centre is at 2x + 0.5.
+    cv::resize(gray(cv::Rect(0, 0, gray.cols & ~1, gray.rows & ~1)), init_image, cv::Size(), 0.5,
+               0.5, cv::INTER_AREA);
+  }
+  const int init_block = std::max(8, o.block_size / factor);
+  const int init_stride = std::max(1, o.block_size / (2 * factor));
+  InitialCornerOptions init_options;
+  init_options.delta = 0.5 * o.delta;
+  init_options.half_length =
+      std::max(2, static_cast<int>(std::lround(2.0 * o.half_length / factor)));
+  init_options.sigma = 2.0 * o.scale / kSqrt2 / factor;
+  init_options.min_cornerness = o.min_cornerness;
+  const std::vector<int> xs = BlockOrigins(init_image.cols, init_block, init_stride);
+  const std::vector<int> ys = BlockOrigins(init_image.rows, init_block, init_stride);
+  const int num_blocks = static_cast<int>(xs.size() * ys.size());
+  const int num_workers = ResolveNumThreads(o.num_threads, 2 * num_blocks);
+  std::vector<std::vector<InitialCorner>> per_item(2 * num_blocks);
+  {
+    std::vector<InitialCornerDetector> detectors(num_workers);
+    ParallelFor(2 * num_blocks, o.num_threads, [&](int item, int worker) {
+      const int block = item / 2;
+      const int bx = block % static_cast<int>(xs.size());
+      const int by = block / static_cast<int>(xs.size());
+      const cv::Rect rect(xs[bx], ys[by], init_block, init_block);
+      const auto [x0, x1] = OwnedRange(xs, init_block, bx, init_image.cols);
+      const auto [y0, y1] = OwnedRange(ys, init_block, by, init_image.rows);
+      detectors[worker].DetectInBlock(init_image, rect, cv::Rect(x0, y0, x1 - x0, y1 - y0),
+                                      item % 2 == 1, init_options, &per_item[item]);
+    });
+  }
+  std::vector<InitialCorner> initial;
+  for (auto& corners : per_item) {
+    for (InitialCorner& corner : corners) {
+      if (factor == 2) {
+        auto to_full = [](const cv::Point2f& p) {
+          return cv::Point2f(2 * p.x + 0.5f, 2 * p.y + 0.5f);
+        };
+        corner.position = to_full(corner.position);
+        for (cv::Point2f& p : corner.curve) p = to_full(p);
+      }
+      initial.push_back(std::move(corner));
+    }
+  }
+  per_item.clear();
+  // The same corner comes from overlapping blocks and neighbouring levels: keep the most stable.
+  std::sort(initial.begin(), initial.end(), [](const InitialCorner& a, const InitialCorner& b) {
+    if (a.stability != b.stability) return a.stability > b.stability;
+    if (a.cornerness != b.cornerness) return a.cornerness > b.cornerness;
+    if (a.position.y != b.position.y) return a.position.y < b.position.y;
+    if (a.position.x != b.position.x) return a.position.x < b.position.x;
+    return a.level < b.level;
+  });
+  initial = SuppressNeighbours(
+      std::move(initial), 1.0, [](const InitialCorner& c) { return c.position; },
+      [&](const InitialCorner& a, const InitialCorner& b) {
+        return a.polarity == b.polarity && std::abs(a.level - b.level) <= o.delta;
+      });
+
+  // ---- Feature convergence (Algorithm 1 lines 7-17): B/2 blocks, scale s, δ, weights. ----
+  ConvergenceOptions convergence;
+  convergence.block_size = std::max(8, o.block_size / 2);
+  convergence.half_length = o.half_length;
+  convergence.sigma = o.scale / kSqrt2;
+  convergence.delta = o.delta;
+  convergence.min_cornerness = o.min_cornerness;
+  convergence.max_iterations = o.max_iterations;
+  convergence.tolerance = o.convergence_tolerance;
+  convergence.corner.arm_end = o.half_length;
+  convergence.corner.arm_begin = std::min(4.0, 0.5 * o.half_length);
+  convergence.corner.max_vertex_shift = 0.25 * o.half_length;
+  std::vector<ConvergedCorner> converged(initial.size());
+  std::vector<uint8_t> settled(initial.size(), 0);
+  {
+    std::vector<ConvergenceWorkspace> workspaces(
+        ResolveNumThreads(o.num_threads, static_cast<int>(initial.size())));
+    ParallelFor(static_cast<int>(initial.size()), o.num_threads, [&](int i, int worker) {
+      settled[i] = ConvergeCorner(gray, initial[i].position, initial[i].curve, initial[i].level,
+                                  convergence, &converged[i], &workspaces[worker]);
+    });
+  }
+  std::vector<ConvergedCorner> corners;
+  for (size_t i = 0; i < converged.size(); ++i) {
+    if (settled[i] && converged[i].stability >= o.min_stability) {
+      corners.push_back(std::move(converged[i]));
+    }
+  }
+  converged.clear();
+  // Seeds converging to the same corner: keep the most stable (ties broken by position, level).
+  std::sort(corners.begin(), corners.end(), [](const ConvergedCorner& a, const ConvergedCorner& b) {
+    if (a.stability != b.stability) return a.stability > b.stability;
+    if (a.position.y != b.position.y) return a.position.y < b.position.y;
+    if (a.position.x != b.position.x) return a.position.x < b.position.x;
+    if (a.threshold != b.threshold) return a.threshold < b.threshold;
+    return a.cornerness > b.cornerness;
+  });
+  corners = SuppressNeighbours(
+      std::move(corners), o.merge_radius, [](const ConvergedCorner& c) { return c.position; },
+      [](const ConvergedCorner&, const ConvergedCorner&) { return true; });
+
+  // ---- Output: one feature per corner, with the side mask of its patch. ----
+  FeatureSet features(corners.size());
+  ParallelFor(static_cast<int>(corners.size()), o.num_threads, [&](int i, int) {
+    const ConvergedCorner& c = corners[i];
+    Feature& f = features[i];
+    f.x = c.position.x;
+    f.y = c.position.y;
+    f.scale = static_cast<float>(o.scale);
+    f.response = static_cast<float>(c.stability);
+    f.cornerness = static_cast<float>(c.cornerness);
+    f.level = c.level;
+    f.polarity = c.polarity;
+    f.curve = c.segment;
+    const cv::Point centre(static_cast<int>(std::lround(f.x)), static_cast<int>(std::lround(f.y)));
+    f.side_mask = ComputeSideMask(gray, c.threshold, c.apex, centre);
+  });
+  SortByResponse(&features);
+  return features;
 }
 
 }  // namespace comic::frontend

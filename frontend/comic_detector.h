@@ -15,7 +15,9 @@
 namespace comic::frontend {
 
 struct ComicDetectorOptions {
-  // Final detection scale s in pixels (paper §3: s = 8.4). Initialisation runs at 2s.
+  // Final detection scale s in pixels (paper §3: s = 8.4). Initialisation runs at 2s. The
+  // along-curve Gaussians (ρ weights, κ window) have σ = s/√2 samples, ≈ k/2 at the defaults, so
+  // that the segment of ±k points spans ±2σ.
   double scale = 8.4;
   // Block size B in pixels (paper §3: B = 100). Initialisation blocks are B x B with stride B/2;
   // convergence blocks are B/2 x B/2 centred on the corner.
@@ -36,6 +38,14 @@ struct ComicDetectorOptions {
   double min_stability = 0.0;
   // Worker threads over blocks (0 = all hardware threads). Output is identical for any value.
   int num_threads = 1;
+  // Cornerness threshold: a corner needs κ = det(Σ)/trace(Σ)² >= this (κ is 0 on a straight line,
+  // ~0.2 at a right angle, 0.25 at most). The paper takes every local maximum of κ; without a floor
+  // the noise wiggles of straight edges would be corners. 0.03 keeps turns of more than ~35°.
+  double min_cornerness = 0.03;
+  // Run the initialisation stage (scale 2s) on the image downsampled by 2 (2x2 means), with
+  // blocks, segments and Gaussians halved in pixels: the same physical scale at a quarter of the
+  // pixels. false runs it at full resolution as written in Algorithm 1.
+  bool coarse_initialisation = true;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;

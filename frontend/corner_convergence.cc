@@ -1,0 +1,172 @@
+#include "frontend/corner_convergence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "frontend/iso_curve.h"
+#include "io/error.h"
+
+namespace comic::frontend {
+
+void ConvergenceOptions::Check() const {
+  COMIC_CHECK(block_size >= 8, kInvalidArgument, "convergence: block_size must be >= 8");
+  COMIC_CHECK(half_length >= 2, kInvalidArgument, "convergence: half_length must be >= 2");
+  COMIC_CHECK(sigma > 0, kInvalidArgument, "convergence: sigma must be > 0");
+  COMIC_CHECK(delta > 0, kInvalidArgument, "convergence: delta must be > 0");
+  COMIC_CHECK(min_cornerness >= 0, kInvalidArgument, "convergence: min_cornerness must be >= 0");
+  COMIC_CHECK(max_iterations >= 1, kInvalidArgument, "convergence: max_iterations must be >= 1");
+  COMIC_CHECK(tolerance >= 0, kInvalidArgument, "convergence: tolerance must be >= 0");
+}
+
+WeightedStabilityOptions ConvergenceOptions::StabilityOptions() const {
+  WeightedStabilityOptions stability;
+  stability.half_length = half_length;
+  stability.sigma = sigma;
+  stability.delta = delta;
+  // Bands wider than half a segment are of curves too unstable to matter.
+  stability.max_distance = std::max(3.0, 0.5 * half_length);
+  return stability;
+}
+
+namespace {
+
+double Distance(const cv::Point2f& a, const cv::Point2f& b) {
+  return std::hypot(static_cast<double>(a.x) - b.x, static_cast<double>(a.y) - b.y);
+}
+
+// Where the selected level's curve crosses the central normal, interpolated between levels.
+cv::Point2f CurvePointOnCentralNormal(const StabilityProfile& profile, const StableLevel& level) {
+  const double index = level.threshold - 0.5 - profile.first_level;
+  const int i0 = std::clamp(static_cast<int>(std::floor(index)), 0, profile.NumLevels() - 1);
+  const int i1 = std::min(i0 + 1, profile.NumLevels() - 1);
+  const double t = std::clamp(index - i0, 0.0, 1.0);
+  const double u =
+      profile.centre_offset[i0] + t * (profile.centre_offset[i1] - profile.centre_offset[i0]);
+  const cv::Point2d q = profile.centre + u * profile.normal;
+  return cv::Point2f(q);
+}
+
+}  // namespace
+
+bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
+                    const std::vector<cv::Point2f>& reference, double previous_level,
+                    const ConvergenceOptions& options, ConvergedCorner* result,
+                    ConvergenceWorkspace* workspace) {
+  ConvergenceWorkspace local_workspace;
+  if (workspace == nullptr) workspace = &local_workspace;
+  const int k = options.half_length;
+  // Weights centred on p, the point of the previous MSICS nearest to the corner.
+  const double s_p = ProjectOntoPolyline(reference, false, position);
+  int centre = 0;
+  const std::vector<cv::Point2f> segment =
+      ResamplePolyline(reference, false, 1.0, s_p, k + 1, k + 1, &centre);
+  // The MSICS nearest in level to the previous one: search a window of ±3 levels first, then
+  // ±2δ, then all levels, stopping at the first window that holds a maximum. The answer is the
+  // same as searching all levels at once: a maximum inside a window is nearer than any outside.
+  const WeightedStabilityOptions stability_options = options.StabilityOptions();
+  const int centre_level = static_cast<int>(std::lround(previous_level));
+  StabilityProfile& profile = workspace->profile;
+  StableLevel stable;
+  bool found = false;
+  for (const int window : {3, static_cast<int>(std::ceil(2 * options.delta)), 256}) {
+    found = ComputeWeightedStabilityProfile(gray, segment, centre, stability_options, &profile,
+                                            centre_level - window, centre_level + window) &&
+            SelectMaximallyStableLevel(profile, previous_level, stability_options.run_tolerance,
+                                       &stable) &&
+            (window == 256 || std::abs(stable.level - previous_level) < window);
+    if (found) break;
+  }
+  if (!found) return false;
+
+  // Trace the MSICS at its refined threshold in the B/2 block centred on the corner.
+  const int half = options.block_size / 2;
+  const cv::Rect block(static_cast<int>(std::lround(position.x)) - half,
+                       static_cast<int>(std::lround(position.y)) - half, options.block_size,
+                       options.block_size);
+  const IsoCurveTracer tracer(gray, block, stable.threshold);
+  CurveEdge seed;
+  if (!tracer.FindNearestCrossing(CurvePointOnCentralNormal(profile, stable), 2, &seed)) {
+    return false;
+  }
+  // The new corner may lie up to k px along the curve from p; κ there needs the filter's support
+  // (3 box radii) beyond the segment. Crossings are 0.5-1 px apart.
+  const int reach = 2 * k + 3 * BoxRadiusForGaussian(options.sigma) + 2;
+  IsoCurve traced;
+  tracer.Trace(seed, 2 * reach, &traced);
+  if (traced.closed && PolylineLength(traced.points, true) < 4 * k + 1) return false;
+  int origin = 0;
+  const double s_seed = ArcLengthAt(traced.points, traced.seed_index);
+  std::vector<cv::Point2f> samples =
+      ResamplePolyline(traced.points, traced.closed, 1.0, s_seed, reach, reach, &origin);
+  const int n = static_cast<int>(samples.size());
+  if (n < 2 * k + 1) return false;
+
+  // The corner on it nearest to the previous one.
+  const std::vector<double> kappa = CurveCornerness(samples, traced.closed, options.sigma, k);
+  const int nms_radius = std::max(1, static_cast<int>(std::lround(options.sigma)));
+  double best_distance = std::numeric_limits<double>::infinity();
+  int best_index = -1;
+  for (int index : CornernessMaxima(kappa, traced.closed, nms_radius, options.min_cornerness)) {
+    const double d = Distance(samples[index], position);
+    if (d < best_distance) {
+      best_distance = d;
+      best_index = index;
+    }
+  }
+  if (best_index < 0) return false;
+  const CurveCorner best =
+      RefineCurveCorner(samples, traced.closed, kappa, best_index, options.corner);
+  if (!(Distance(best.vertex, position) <= k)) return false;
+
+  result->position = best.vertex;
+  result->apex = best.apex;
+  result->level = stable.level;
+  result->threshold = stable.threshold;
+  result->stability = stable.stability;
+  result->cornerness = best.cornerness;
+  result->polarity = best.polarity;
+  const int corner_index = static_cast<int>(std::lround(best.index));
+  const int half_segment = traced.closed ? std::min(k, (n - 1) / 2) : k;
+  result->segment.clear();
+  for (int j = corner_index - half_segment; j <= corner_index + half_segment; ++j) {
+    if (!traced.closed && (j < 0 || j >= n)) continue;
+    result->segment.push_back(samples[((j % n) + n) % n]);
+  }
+  if (traced.closed) {
+    // Open the loop opposite the corner so the next iteration sees a simple polyline.
+    std::rotate(samples.begin(), samples.begin() + ((corner_index + n / 2) % n), samples.end());
+  }
+  result->curve = std::move(samples);
+  return true;
+}
+
+bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
+                    const std::vector<cv::Point2f>& reference, double level,
+                    const ConvergenceOptions& options, ConvergedCorner* result,
+                    ConvergenceWorkspace* workspace) {
+  ConvergenceWorkspace local_workspace;
+  if (workspace == nullptr) workspace = &local_workspace;
+  cv::Point2f current = position;
+  std::vector<cv::Point2f> current_reference = reference;
+  double current_level = level;
+  for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
+    ConvergedCorner next;
+    if (!RedetectCorner(gray, current, current_reference, current_level, options, &next,
+                        workspace)) {
+      return false;
+    }
+    const double moved = Distance(next.position, current);
+    current = next.position;
+    current_level = next.threshold - 0.5;
+    if (moved <= options.tolerance) {
+      *result = std::move(next);
+      result->iterations = iteration;
+      return true;
+    }
+    current_reference = std::move(next.curve);
+  }
+  return false;
+}
+
+}  // namespace comic::frontend

@@ -1,0 +1,88 @@
+// CoMIC's feature-convergence stage (paper §3, Algorithm 1 lines 7-17). Starting from an initial
+// corner found at scale 2s, a B/2 x B/2 block is centred on the corner and, at scale s with
+// Gaussian weights along the curve from the corner, the maximally stable iso-curve segment most
+// similar to the previous one is re-detected (the local maximum of the weighted ρ over levels
+// nearest to the previous level, refined below one grey level), its curve traced with sub-pixel
+// precision in the block, and the corner of that curve nearest to the previous corner taken as
+// the new corner. This repeats until the corner stops moving (moves at most `tolerance`); a
+// corner that has not settled after `max_iterations` is dropped.
+//
+//   ConvergedCorner corner;
+//   if (ConvergeCorner(gray, initial.position, initial.curve, initial.level, options, &corner))
+//     ... corner.position, corner.stability (ρ), corner.cornerness (κ), corner.segment (MSICS)
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "frontend/curve_cornerness.h"
+#include "frontend/feature.h"
+#include "frontend/iso_curve_stability.h"
+
+namespace comic::frontend {
+
+struct ConvergenceOptions {
+  // Side of the block centred on the corner in which the curve is re-traced, px (B/2).
+  int block_size = 50;
+  // Samples on either side of the corner in its segment, k (≈ 25 points per ICS at scale s).
+  int half_length = 12;
+  // Standard deviation of the along-curve Gaussians (ρ weights and κ window), samples (∝ s).
+  double sigma = 5.94;
+  // δ in grey levels.
+  double delta = 5.0;
+  // Corners need κ >= this.
+  double min_cornerness = 0.03;
+  // Iterations before a corner that keeps moving is dropped.
+  int max_iterations = 5;
+  // A corner has settled when its last move was at most this far, px.
+  double tolerance = 1.0;
+  // Arms and bounds of the vertex refinement (curve_cornerness.h).
+  CurveCornerOptions corner;
+
+  void Check() const;
+  // The weighted-stability settings these options imply.
+  WeightedStabilityOptions StabilityOptions() const;
+};
+
+struct ConvergedCorner {
+  // The feature position: the corner's vertex (apex refined by the arms), sub-pixel.
+  cv::Point2f position;
+  // The κ maximum on the curve.
+  cv::Point2f apex;
+  // The MSICS: integer level I (dark side {v <= I}) and the refined threshold of its curve.
+  int level = 0;
+  double threshold = 0.5;
+  // Weighted ρ (1/px) and κ at the corner.
+  double stability = 0.0;
+  double cornerness = 0.0;
+  Polarity polarity = Polarity::kNone;
+  // The MSICS: ±half_length samples (1 px apart) around the corner, dark side on the left.
+  std::vector<cv::Point2f> segment;
+  // The whole curve traced in the block, resampled at 1 px (the reference of the next iteration).
+  std::vector<cv::Point2f> curve;
+  // Iterations used (1 if the first re-detection did not move).
+  int iterations = 0;
+};
+
+// Buffers reused across calls (one per thread).
+struct ConvergenceWorkspace {
+  StabilityProfile profile;
+};
+
+// One convergence iteration: weights centred on the point of `reference` (a polyline along the
+// previous MSICS, dark side on the left) nearest to `position`; re-detects the MSICS nearest in
+// level to `previous_level` and the corner on it nearest to `position`. False if there is no
+// stable level, no curve or no corner within half_length px.
+bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
+                    const std::vector<cv::Point2f>& reference, double previous_level,
+                    const ConvergenceOptions& options, ConvergedCorner* result,
+                    ConvergenceWorkspace* workspace = nullptr);
+
+// Iterates RedetectCorner from an initial corner until it settles. False if it is lost or does
+// not settle within max_iterations.
+bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
+                    const std::vector<cv::Point2f>& reference, double level,
+                    const ConvergenceOptions& options, ConvergedCorner* result,
+                    ConvergenceWorkspace* workspace = nullptr);
+
+}  // namespace comic::frontend

@@ -1,0 +1,236 @@
+#include "frontend/curve_cornerness.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace comic::frontend {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Floor division for possibly negative numerators.
+long FloorDiv(long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// One box-filter pass of radius r: out[i] = sum of in[i - r .. i + r], truncated at the ends of an
+// open sequence, wrapped around a closed one. `prefix` is scratch space.
+void BoxPass(const std::vector<double>& in, bool closed, int r, std::vector<double>* prefix,
+             std::vector<double>* out) {
+  const long n = static_cast<long>(in.size());
+  prefix->assign(n + 1, 0.0);
+  for (long i = 0; i < n; ++i) (*prefix)[i + 1] = (*prefix)[i] + in[i];
+  out->resize(n);
+  if (closed) {
+    const double total = (*prefix)[n];
+    auto cumulative = [&](long x) {  // sum of in[j mod n] for j in [0, x)
+      const long wraps = FloorDiv(x, n);
+      return wraps * total + (*prefix)[x - wraps * n];
+    };
+    for (long i = 0; i < n; ++i) (*out)[i] = cumulative(i + r + 1) - cumulative(i - r);
+  } else {
+    for (long i = 0; i < n; ++i) {
+      (*out)[i] = (*prefix)[std::min(n, i + r + 1)] - (*prefix)[std::max(0L, i - r)];
+    }
+  }
+}
+
+cv::Point2d SampleAt(const std::vector<cv::Point2f>& points, bool closed, double index) {
+  const int n = static_cast<int>(points.size());
+  if (!closed) index = std::clamp(index, 0.0, static_cast<double>(n - 1));
+  const double base = std::floor(index);
+  const double t = index - base;
+  int i0 = static_cast<int>(base);
+  int i1 = i0 + 1;
+  if (closed) {
+    i0 = ((i0 % n) + n) % n;
+    i1 = ((i1 % n) + n) % n;
+  } else {
+    i1 = std::min(i1, n - 1);
+  }
+  return cv::Point2d(points[i0]) * (1.0 - t) + cv::Point2d(points[i1]) * t;
+}
+
+struct Line {
+  cv::Point2d centroid;
+  cv::Point2d direction;
+};
+
+// Total-least-squares line through the samples with index in [from, to] (wrapped if closed).
+bool FitLine(const std::vector<cv::Point2f>& points, bool closed, double from, double to,
+             Line* line) {
+  const int n = static_cast<int>(points.size());
+  std::vector<cv::Point2d> samples;
+  for (int j = static_cast<int>(std::ceil(from)); j <= static_cast<int>(std::floor(to)); ++j) {
+    if (!closed && (j < 0 || j >= n)) continue;
+    samples.push_back(points[((j % n) + n) % n]);
+  }
+  if (samples.size() < 3) return false;
+  cv::Point2d mean(0, 0);
+  for (const auto& p : samples) mean += p;
+  mean *= 1.0 / samples.size();
+  double sxx = 0, sxy = 0, syy = 0;
+  for (const auto& p : samples) {
+    const cv::Point2d d = p - mean;
+    sxx += d.x * d.x;
+    sxy += d.x * d.y;
+    syy += d.y * d.y;
+  }
+  const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  line->centroid = mean;
+  line->direction = {std::cos(angle), std::sin(angle)};
+  return true;
+}
+
+double Cross(const cv::Point2d& a, const cv::Point2d& b) { return a.x * b.y - a.y * b.x; }
+
+}  // namespace
+
+int BoxRadiusForGaussian(double sigma) {
+  const double r = 0.5 * (std::sqrt(1.0 + 4.0 * sigma * sigma) - 1.0);
+  return std::max(1, static_cast<int>(std::lround(r)));
+}
+
+std::vector<double> CurveCornerness(const std::vector<cv::Point2f>& points, bool closed,
+                                    double sigma, int min_support) {
+  const int n = static_cast<int>(points.size());
+  std::vector<double> kappa(n, -1.0);
+  if (n < 3) return kappa;
+  const int r = BoxRadiusForGaussian(sigma);
+  // Channels 1, x, y, x², xy, y² (relative to the first point, for numerical range); the
+  // filtered "1" channel normalises truncated windows.
+  std::vector<std::vector<double>> channels(6, std::vector<double>(n));
+  const cv::Point2d origin = points[0];
+  for (int i = 0; i < n; ++i) {
+    const double x = points[i].x - origin.x;
+    const double y = points[i].y - origin.y;
+    channels[0][i] = 1.0;
+    channels[1][i] = x;
+    channels[2][i] = y;
+    channels[3][i] = x * x;
+    channels[4][i] = x * y;
+    channels[5][i] = y * y;
+  }
+  std::vector<double> prefix;
+  std::vector<double> tmp;
+  for (auto& channel : channels) {
+    for (int pass = 0; pass < 3; ++pass) {
+      BoxPass(channel, closed, r, &prefix, &tmp);
+      channel.swap(tmp);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!closed && (i < min_support || i > n - 1 - min_support)) continue;
+    const double w = channels[0][i];
+    const double mx = channels[1][i] / w;
+    const double my = channels[2][i] / w;
+    const double sxx = channels[3][i] / w - mx * mx;
+    const double sxy = channels[4][i] / w - mx * my;
+    const double syy = channels[5][i] / w - my * my;
+    const double trace = sxx + syy;
+    const double det = sxx * syy - sxy * sxy;
+    kappa[i] = trace > 1e-12 ? std::clamp(det / (trace * trace), 0.0, 0.25) : 0.0;
+  }
+  return kappa;
+}
+
+std::vector<int> CornernessMaxima(const std::vector<double>& kappa, bool closed, int radius,
+                                  double min_cornerness) {
+  const int n = static_cast<int>(kappa.size());
+  std::vector<int> maxima;
+  for (int i = 0; i < n; ++i) {
+    const double k = kappa[i];
+    if (k < 0 || k < min_cornerness) continue;
+    bool is_max = true;
+    for (int offset = -radius; offset <= radius && is_max; ++offset) {
+      if (offset == 0) continue;
+      int j = i + offset;
+      if (closed) {
+        j = ((j % n) + n) % n;
+        if (j == i) continue;
+      } else if (j < 0 || j >= n) {
+        continue;
+      }
+      if (kappa[j] < 0) continue;
+      is_max = offset < 0 ? kappa[j] < k : kappa[j] <= k;
+    }
+    if (is_max) maxima.push_back(i);
+  }
+  return maxima;
+}
+
+CurveCorner RefineCurveCorner(const std::vector<cv::Point2f>& points, bool closed,
+                              const std::vector<double>& kappa, int index,
+                              const CurveCornerOptions& options) {
+  const int n = static_cast<int>(points.size());
+  auto kappa_at = [&](int j) -> double {
+    if (closed) return kappa[((j % n) + n) % n];
+    return (j < 0 || j >= n) ? -1.0 : kappa[j];
+  };
+  CurveCorner corner;
+  const double k0 = kappa_at(index);
+  const double km = kappa_at(index - 1);
+  const double kp = kappa_at(index + 1);
+  double offset = 0.0;
+  corner.cornerness = k0;
+  const double curvature = km - 2.0 * k0 + kp;
+  if (km >= 0 && kp >= 0 && curvature < 0) {
+    offset = std::clamp(0.5 * (km - kp) / curvature, -0.5, 0.5);
+    corner.cornerness = k0 - 0.25 * (km - kp) * offset;
+  }
+  corner.index = index + offset;
+  const cv::Point2d apex = SampleAt(points, closed, corner.index);
+  corner.apex = apex;
+  corner.vertex = apex;
+
+  // Turning direction and vertex from lines fitted to the two arms.
+  Line before, after;
+  const bool arms_fit = (!closed || n > 2 * options.arm_end + 2) &&
+                        FitLine(points, closed, corner.index - options.arm_end,
+                                corner.index - options.arm_begin, &before) &&
+                        FitLine(points, closed, corner.index + options.arm_begin,
+                                corner.index + options.arm_end, &after);
+  cv::Point2d out_before, out_after;  // unit vectors from the apex along each arm
+  if (arms_fit) {
+    out_before = before.direction;
+    if (out_before.dot(before.centroid - apex) < 0) out_before = -out_before;
+    out_after = after.direction;
+    if (out_after.dot(after.centroid - apex) < 0) out_after = -out_after;
+  } else {
+    // Too short for lines: use the chords to the farthest samples available on each side.
+    const double reach = std::min(options.arm_end, closed ? 0.5 * (n - 1) : options.arm_end);
+    out_before = SampleAt(points, closed, corner.index - reach) - apex;
+    out_after = SampleAt(points, closed, corner.index + reach) - apex;
+    const double nb = std::hypot(out_before.x, out_before.y);
+    const double na = std::hypot(out_after.x, out_after.y);
+    if (nb <= 0 || na <= 0) return corner;
+    out_before *= 1.0 / nb;
+    out_after *= 1.0 / na;
+  }
+  const double interior = std::acos(std::clamp(out_before.dot(out_after), -1.0, 1.0));
+  const double turn = kPi - interior;
+  // Incoming direction -out_before, outgoing out_after; with y pointing down a negative cross
+  // product is a turn to the left, the dark side.
+  const bool towards_dark = Cross(-out_before, out_after) < 0;
+  corner.turn_angle = towards_dark ? turn : -turn;
+  corner.polarity = towards_dark ? Polarity::kDark : Polarity::kBright;
+  if (!arms_fit) return corner;
+
+  const double turn_degrees = turn * 180.0 / kPi;
+  const double blend =
+      std::clamp((turn_degrees - options.blend_begin_degrees) /
+                     std::max(1e-9, options.blend_end_degrees - options.blend_begin_degrees),
+                 0.0, 1.0);
+  const double det = Cross(before.direction, after.direction);
+  if (blend <= 0 || std::abs(det) < 1e-6) return corner;
+  // before.centroid + a * before.direction = after.centroid + b * after.direction.
+  const cv::Point2d gap = after.centroid - before.centroid;
+  const double a = Cross(gap, after.direction) / det;
+  const cv::Point2d intersection = before.centroid + a * before.direction;
+  cv::Point2d shift = intersection - apex;
+  const double length = std::hypot(shift.x, shift.y);
+  if (length > options.max_vertex_shift) shift *= options.max_vertex_shift / length;
+  corner.vertex = apex + blend * shift;
+  return corner;
+}
+
+}  // namespace comic::frontend

@@ -1,0 +1,170 @@
+#include "frontend/initial_corners.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "frontend/curve_cornerness.h"
+#include "frontend/iso_curve_stability.h"
+#include "io/error.h"
+
+namespace comic::frontend {
+
+void InitialCornerOptions::Check() const {
+  COMIC_CHECK(delta > 0, kInvalidArgument, "initial corners: delta must be > 0");
+  COMIC_CHECK(half_length >= 2, kInvalidArgument, "initial corners: half_length must be >= 2");
+  COMIC_CHECK(sigma > 0, kInvalidArgument, "initial corners: sigma must be > 0");
+  COMIC_CHECK(min_cornerness >= 0, kInvalidArgument,
+              "initial corners: min_cornerness must be >= 0");
+  COMIC_CHECK(min_stability >= 0, kInvalidArgument, "initial corners: min_stability must be >= 0");
+}
+
+std::vector<int> BlockOrigins(int size, int block, int stride) {
+  std::vector<int> origins;
+  if (size < block || block <= 0 || stride <= 0) return origins;
+  for (int origin = 0; origin + block <= size; origin += stride) origins.push_back(origin);
+  if (origins.back() + block < size) origins.push_back(size - block);
+  return origins;
+}
+
+std::pair<int, int> OwnedRange(const std::vector<int>& origins, int block, int index, int size) {
+  const int count = static_cast<int>(origins.size());
+  // Twice the centre of block i is 2 * origins[i] + block; midpoints between centres as bounds.
+  const int begin = index == 0 ? 0 : (origins[index - 1] + origins[index] + block + 1) / 2;
+  const int end = index + 1 == count ? size : (origins[index] + origins[index + 1] + block + 1) / 2;
+  return {begin, end};
+}
+
+void InitialCornerDetector::DetectInBlock(const cv::Mat& image, const cv::Rect& block,
+                                          const cv::Rect& owned, bool upper_sets,
+                                          const InitialCornerOptions& options,
+                                          std::vector<InitialCorner>* corners) {
+  tree_.Build(image(block), upper_sets);
+  const int k = options.half_length;
+  // A segment of 2k + 1 samples needs a boundary at least that long. Along a lineage, maxima
+  // closer than the band half-width are the same curve seen at nearly the same level: keep the
+  // best within that radius (one seed curve is enough; the convergence stage re-selects the level
+  // at scale s).
+  const int level_radius = std::max(1, static_cast<int>(std::ceil(options.delta)));
+  const std::vector<StableComponent> stable = FindMaximallyStableComponents(
+      tree_, options.delta, 2 * k + 1, options.min_stability, level_radius);
+  if (stable.empty()) return;
+
+  const int padded_size = tree_.Stride() * (tree_.height() + 2);
+  if (static_cast<int>(edge_stamp_.size()) < 2 * padded_size) edge_stamp_.resize(2 * padded_size);
+  std::fill(edge_stamp_.begin(), edge_stamp_.begin() + 2 * padded_size, 0);
+  int stamp = 0;
+  const int max_points = 8 * (block.width + block.height);
+  for (const StableComponent& component : stable) {
+    ++stamp;  // visited marks per (pixel, right/down) edge, per traced component
+    // In the tree's values the component is {value <= level}. In the image's grey values its
+    // curve is at 254.5 - level for upper sets (the component is {v >= 255 - level}).
+    const int level = component.level;
+    const IsoCurveTracer tracer(image, block, upper_sets ? 254.5 - level : level + 0.5);
+    const CornerContext context{
+        &image, &block, &owned, upper_sets ? 254 - level : level, component.stability, &options};
+    // Seeds: the crossings of the component's level in the owned part whose inside pixel belongs
+    // to the component; each curve is traced once.
+    for (int y = owned.y; y < owned.y + owned.height; ++y) {
+      for (int x = owned.x; x < owned.x + owned.width; ++x) {
+        const int p = tree_.PixelIndex(x - block.x, y - block.y);
+        for (int offset : {1, tree_.Stride()}) {
+          const int q = p + offset;
+          if (!tree_.InBlock(q)) continue;
+          const bool p_in = tree_.Value(p) <= level;
+          if (p_in == (tree_.Value(q) <= level)) continue;
+          const int in = p_in ? p : q;
+          const int out = p_in ? q : p;
+          const int slot = 2 * std::min(p, q) + (offset == 1 ? 0 : 1);
+          if (edge_stamp_[slot] == stamp) continue;
+          if (tree_.AncestorAtLevel(tree_.NodeOfPixel(in), level) != component.node) continue;
+          const cv::Point in_pixel(tree_.PixelX(in) + block.x, tree_.PixelY(in) + block.y);
+          const cv::Point out_pixel(tree_.PixelX(out) + block.x, tree_.PixelY(out) + block.y);
+          // The tracer's inside is the dark side: the component for lower sets, its complement
+          // for upper sets.
+          tracer.Trace(upper_sets ? CurveEdge{out_pixel, in_pixel} : CurveEdge{in_pixel, out_pixel},
+                       max_points, &curve_);
+          for (const CurveEdge& edge : curve_.edges) {
+            const cv::Point a = edge.inside - block.tl();
+            const cv::Point b = edge.outside - block.tl();
+            edge_stamp_[2 * tree_.PixelIndex(std::min(a.x, b.x), std::min(a.y, b.y)) +
+                        (a.y == b.y ? 0 : 1)] = stamp;
+          }
+          AddCornersOfCurve(context, corners);
+        }
+      }
+    }
+  }
+}
+
+void InitialCornerDetector::AddCornersOfCurve(const CornerContext& context,
+                                              std::vector<InitialCorner>* corners) {
+  const InitialCornerOptions& options = *context.options;
+  const cv::Rect& owned = *context.owned;
+  const int k = options.half_length;
+  if (static_cast<int>(curve_.points.size()) < 2 * k + 1) return;
+  // A closed curve must be long enough for a segment to be a proper part of it (at most half):
+  // on a small loop κ is near its maximum everywhere and the corner is arbitrary.
+  const double length = PolylineLength(curve_.points, curve_.closed);
+  if (curve_.closed && length < 4 * k + 1) return;
+  int origin_index = 0;
+  samples_ = ResamplePolyline(curve_.points, curve_.closed, 1.0, 0.0, 0,
+                              static_cast<int>(length) + 1, &origin_index);
+  const int n = static_cast<int>(samples_.size());
+  if (n < 2 * k + 1) return;
+  auto in_owned = [&](const cv::Point2f& p) {
+    return owned.contains(cv::Point(static_cast<int>(std::floor(p.x + 0.5f)),
+                                    static_cast<int>(std::floor(p.y + 0.5f))));
+  };
+  // κ only around the owned part (all of a closed curve): the samples there plus the support of
+  // the filter and of the non-maximum suppression.
+  const int nms_radius = std::max(1, static_cast<int>(std::lround(options.sigma)));
+  const int filter_support = 3 * BoxRadiusForGaussian(options.sigma);
+  int first = 0;
+  int last = n - 1;
+  if (!curve_.closed) {
+    first = n;
+    last = -1;
+    for (int j = 0; j < n; ++j) {
+      if (!in_owned(samples_[j])) continue;
+      first = std::min(first, j);
+      last = std::max(last, j);
+    }
+    if (last < 0) return;
+    first = std::max(0, first - filter_support - nms_radius - 1);
+    last = std::min(n - 1, last + filter_support + nms_radius + 1);
+  }
+  part_.assign(samples_.begin() + first, samples_.begin() + last + 1);
+  const std::vector<double> part_kappa = CurveCornerness(part_, curve_.closed, options.sigma, 0);
+  kappa_.assign(n, -1.0);
+  for (int j = first; j <= last; ++j) {
+    // κ counts only where the segment is complete on the whole curve and the filter saw its full
+    // support within the part.
+    const bool complete = curve_.closed || (j >= k && j <= n - 1 - k);
+    const bool supported = curve_.closed || ((j - first >= filter_support || first == 0) &&
+                                             (last - j >= filter_support || last == n - 1));
+    if (complete && supported) kappa_[j] = part_kappa[j - first];
+  }
+  CurveCornerOptions corner_options;
+  corner_options.arm_end = k;
+  for (int index : CornernessMaxima(kappa_, curve_.closed, nms_radius, options.min_cornerness)) {
+    const CurveCorner corner =
+        RefineCurveCorner(samples_, curve_.closed, kappa_, index, corner_options);
+    if (!in_owned(corner.apex)) continue;
+    InitialCorner initial;
+    initial.position = corner.apex;
+    initial.level = context.grey_level;
+    initial.polarity = corner.polarity;
+    initial.stability = static_cast<float>(context.stability);
+    initial.cornerness = static_cast<float>(corner.cornerness);
+    // Closed curves shorter than the reach would repeat samples.
+    const int reach = curve_.closed ? std::min(2 * k, (n - 1) / 2) : 2 * k;
+    for (int j = index - reach; j <= index + reach; ++j) {
+      if (!curve_.closed && (j < 0 || j >= n)) continue;
+      if (j == index) initial.corner_index = static_cast<int>(initial.curve.size());
+      initial.curve.push_back(samples_[((j % n) + n) % n]);
+    }
+    corners->push_back(std::move(initial));
+  }
+}
+
+}  // namespace comic::frontend

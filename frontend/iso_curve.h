@@ -1,0 +1,99 @@
+// Sub-pixel iso-intensity curves. An iso-curve at threshold T is the level line f = T of the image
+// interpolated linearly between pixel centres, traced marching-squares style: it separates the
+// "inside" pixels {v < T} (the dark side) from the others and crosses every 4-neighbour pair
+// (inside, outside) once, at the linearly interpolated point. For CoMIC's level I the threshold is
+// T = I + 0.5 (DESIGN.md: the boundary between {v <= I} and {v > I}); a fractional T in (I, I + 1)
+// separates the same pixels but places the crossings in between, which is how a level is refined
+// below one grey level (paper §2, "choose the level consistently", see iso_curve_stability.h).
+//
+// Tracing follows pixel-edge crossings, so the curve is a polyline through crossing points rather
+// than the staircase of pixel edges. In a saddle cell (two inside pixels on a diagonal) the curve
+// is resolved by the cell's mean value, as the bilinear interpolant does, which treats both
+// polarities alike. Curves are oriented with the dark side on the left (image coordinates, y
+// down).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace comic::frontend {
+
+// A 4-neighbour pixel pair crossed by a curve: `inside` has value < T, `outside` >= T.
+struct CurveEdge {
+  cv::Point inside;
+  cv::Point outside;
+  bool operator==(const CurveEdge& other) const {
+    return inside == other.inside && outside == other.outside;
+  }
+};
+
+struct IsoCurve {
+  // Crossing points in order, dark side on the left. Sub-pixel, OpenCV pixel-centre convention.
+  std::vector<cv::Point2f> points;
+  // The pixel pair crossed at each point (same order as `points`).
+  std::vector<CurveEdge> edges;
+  // True if the curve closes on itself inside the domain; false if it ends at the domain border
+  // (or at the length limit).
+  bool closed = false;
+  // Index in `points` of the seed the trace started from.
+  int seed_index = 0;
+};
+
+// Traces level lines of one 8-bit image at one threshold, within a rectangular domain of pixels.
+class IsoCurveTracer {
+ public:
+  // `image` is CV_8UC1; `domain` is clipped to the image. The tracer keeps a reference to the
+  // image data: it must outlive the tracer.
+  IsoCurveTracer(const cv::Mat& image, const cv::Rect& domain, double threshold);
+
+  double threshold() const { return threshold_; }
+  const cv::Rect& domain() const { return domain_; }
+  bool InDomain(const cv::Point& p) const { return domain_.contains(p); }
+  int Value(const cv::Point& p) const { return image_.ptr<uint8_t>(p.y)[p.x]; }
+  bool IsInside(const cv::Point& p) const { return Value(p) < threshold_; }
+  // True if the pair is a valid crossing of this tracer: both in the domain, 4-neighbours,
+  // inside/outside as named.
+  bool IsCrossing(const CurveEdge& edge) const;
+  // Where the curve crosses `edge` (linear interpolation between the two pixel centres).
+  cv::Point2f Crossing(const CurveEdge& edge) const;
+
+  // Traces the curve through `seed` both ways until it closes, leaves the domain, or has
+  // `max_points_each_way` points on a side. `seed` must satisfy IsCrossing.
+  void Trace(const CurveEdge& seed, int max_points_each_way, IsoCurve* curve) const;
+
+  // The crossing of this threshold nearest to `point` among the 4-neighbour pairs whose pixels
+  // lie within `radius` pixels of it (inclusive, Chebyshev). Returns false if there is none.
+  bool FindNearestCrossing(const cv::Point2f& point, int radius, CurveEdge* edge) const;
+
+ private:
+  // One step along the curve: forward keeps the inside on the left.
+  bool Step(const CurveEdge& edge, bool forward, CurveEdge* next) const;
+
+  const cv::Mat& image_;
+  cv::Rect domain_;
+  double threshold_;
+};
+
+// Arc length of a polyline (closing segment included when `closed`).
+double PolylineLength(const std::vector<cv::Point2f>& points, bool closed);
+
+// Resamples a polyline at a uniform spacing along its arc length. For an open polyline, samples
+// are at arc lengths origin + k * spacing for k in [-max_before, max_after], kept where they fall
+// within the polyline; *origin_index receives the index of k = 0. For a closed polyline the
+// spacing is adjusted to divide the length exactly and the samples go once around starting at
+// `origin` (max_before/max_after ignored; *origin_index = 0).
+std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points, bool closed,
+                                          double spacing, double origin, int max_before,
+                                          int max_after, int* origin_index);
+
+// Arc length along the polyline of the point of the polyline nearest to `query`.
+double ProjectOntoPolyline(const std::vector<cv::Point2f>& points, bool closed,
+                           const cv::Point2f& query);
+
+// Arc length of vertex `index` along the polyline.
+double ArcLengthAt(const std::vector<cv::Point2f>& points, int index);
+
+// The point at arc length `s` (clamped for open polylines, wrapped for closed ones).
+cv::Point2f PointAtArcLength(const std::vector<cv::Point2f>& points, bool closed, double s);
+
+}  // namespace comic::frontend

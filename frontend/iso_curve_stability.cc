@@ -1,0 +1,376 @@
+#include "frontend/iso_curve_stability.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace comic::frontend {
+
+int UpLevel(double threshold, double delta) {
+  return static_cast<int>(std::ceil(threshold + delta)) - 1;
+}
+
+int DownLevel(double threshold, double delta) {
+  return static_cast<int>(std::ceil(threshold - delta)) - 1;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Initialisation stage.
+
+double ComponentStability(const ComponentTree& tree, int node, int level, double delta) {
+  const double threshold = level + 0.5;
+  const int up = tree.Area(tree.AncestorAtLevel(node, UpLevel(threshold, delta)));
+  const int down = tree.MainDescendantArea(node, DownLevel(threshold, delta));
+  return tree.Perimeter(node) / static_cast<double>(std::max(1, up - down));
+}
+
+std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& tree, double delta,
+                                                           int min_perimeter, double min_stability,
+                                                           int level_radius) {
+  std::vector<StableComponent> result;
+  const int root = tree.Root();
+  for (int node : tree.Nodes()) {
+    if (node == root || tree.Perimeter(node) < min_perimeter) continue;
+    const int first = tree.Level(node);
+    const int last = tree.Level(tree.Parent(node)) - 1;
+    // Best ρ over the span, and the run of levels attaining it.
+    double best = -1.0;
+    int run_begin = first;
+    int run_end = first;
+    bool in_run = false;
+    for (int level = first; level <= last; ++level) {
+      const double rho = ComponentStability(tree, node, level, delta);
+      if (rho > best) {
+        best = rho;
+        run_begin = run_end = level;
+        in_run = true;
+      } else if (rho == best && in_run) {
+        run_end = level;
+      } else {
+        in_run = false;
+      }
+    }
+    if (best < min_stability) continue;
+    // Local maximum along the lineage: compare with the levels beyond the span that are within
+    // level_radius of the best run.
+    bool is_max = true;
+    for (int level = first - 1; is_max && level >= run_begin - level_radius; --level) {
+      const int below = tree.MainDescendantAtLevel(node, level);
+      if (below < 0) break;
+      is_max = best > ComponentStability(tree, below, level, delta);
+    }
+    for (int level = last + 1; is_max && level <= run_end + level_radius && level <= 255; ++level) {
+      const int above = tree.AncestorAtLevel(node, level);
+      if (above == root) break;
+      is_max = best >= ComponentStability(tree, above, level, delta);
+    }
+    if (!is_max) continue;
+    result.push_back({node, (run_begin + run_end) / 2, best});
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Convergence stage.
+
+namespace {
+
+// Cubic convolution (Catmull-Rom, Keys a = -0.5) interpolation of an 8-bit image, the border
+// replicated. Unlike bilinear interpolation, whose profile across a sharp edge is linear between
+// the two pixels straddling it (a flat gradient, hence a flat ρ over many levels), it has a
+// continuous gradient with a maximum near the edge, so the most stable level is well defined.
+class CubicSampler {
+ public:
+  explicit CubicSampler(const cv::Mat& gray) : gray_(gray) {}
+  float operator()(double x, double y) const {
+    const int x0 = static_cast<int>(std::floor(x));
+    const int y0 = static_cast<int>(std::floor(y));
+    float wx[4], wy[4];
+    Weights(static_cast<float>(x - x0), wx);
+    Weights(static_cast<float>(y - y0), wy);
+    float sum = 0.0f;
+    if (x0 >= 1 && y0 >= 1 && x0 + 2 < gray_.cols && y0 + 2 < gray_.rows) {
+      const uint8_t* row = gray_.ptr<uint8_t>(y0 - 1) + (x0 - 1);
+      for (int j = 0; j < 4; ++j, row += gray_.step[0]) {
+        sum += wy[j] * (wx[0] * row[0] + wx[1] * row[1] + wx[2] * row[2] + wx[3] * row[3]);
+      }
+      return sum;
+    }
+    for (int j = 0; j < 4; ++j) {
+      const uint8_t* row = gray_.ptr<uint8_t>(std::clamp(y0 - 1 + j, 0, gray_.rows - 1));
+      float line = 0.0f;
+      for (int i = 0; i < 4; ++i) line += wx[i] * row[std::clamp(x0 - 1 + i, 0, gray_.cols - 1)];
+      sum += wy[j] * line;
+    }
+    return sum;
+  }
+
+ private:
+  static void Weights(float t, float* w) {
+    const float t2 = t * t, t3 = t2 * t;
+    w[0] = -0.5f * t3 + t2 - 0.5f * t;
+    w[1] = 1.5f * t3 - 2.5f * t2 + 1.0f;
+    w[2] = -1.5f * t3 + 2.0f * t2 + 0.5f * t;
+    w[3] = 0.5f * t3 - 0.5f * t2;
+  }
+  const cv::Mat& gray_;
+};
+
+constexpr float kNotSampled = -1.0f;
+
+// Crossings of the thresholds first_threshold + j (j = 0..count-1, ascending) along one normal
+// profile f[k] at u_k = (k - m) * step, searched outwards from the centre sample m: for a
+// threshold above f[m] the first k > m with f[k] >= T, for one at or below it the first k < m with
+// f[k] < T, interpolated linearly. Not found: +-m * step and `clipped` set. Samples are taken
+// on demand (`sample(k)` fills f[k]), so a steep profile is read only near its centre.
+template <class Sample>
+void ProfileCrossings(float* f, int size, int m, double step, double first_threshold, int count,
+                      const Sample& sample, double* crossing, uint8_t* clipped) {
+  auto at = [&](int k) {
+    if (f[k] == kNotSampled) f[k] = sample(k);
+    return static_cast<double>(f[k]);
+  };
+  const double centre = at(m);
+  const int last = size - 1;
+  // Thresholds above the centre value, ascending: walk outwards.
+  int k = m + 1;
+  for (int j = 0; j < count; ++j) {
+    const double t = first_threshold + j;
+    if (t <= centre) continue;
+    while (k <= last && at(k) < t) ++k;
+    if (k > last) {
+      crossing[j] = (last - m) * step;
+      clipped[j] = 1;
+    } else {
+      crossing[j] = ((k - 1 - m) + (t - f[k - 1]) / (f[k] - f[k - 1])) * step;
+      clipped[j] = 0;
+    }
+  }
+  // Thresholds at or below the centre value, descending: walk inwards.
+  k = m - 1;
+  for (int j = count - 1; j >= 0; --j) {
+    const double t = first_threshold + j;
+    if (t > centre) continue;
+    while (k >= 0 && at(k) >= t) --k;
+    if (k < 0) {
+      crossing[j] = -m * step;
+      clipped[j] = 1;
+    } else {
+      crossing[j] = ((k - m) + (t - f[k]) / (f[k + 1] - f[k])) * step;
+      clipped[j] = 0;
+    }
+  }
+}
+
+}  // namespace
+
+bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::Point2f>& reference,
+                                     int centre_index, const WeightedStabilityOptions& options,
+                                     StabilityProfile* profile, int min_level, int max_level) {
+  const int n = static_cast<int>(reference.size());
+  if (centre_index < 1 || centre_index > n - 2) return false;
+  const int first = std::max(0, centre_index - options.half_length);
+  const int last = std::min(n - 1, centre_index + options.half_length);
+  const int num_normals = last - first + 1;
+  const int m =
+      std::max(1, static_cast<int>(std::lround(options.max_distance / options.sample_step)));
+  const double step = options.sample_step;
+  const CubicSampler interpolate(gray);
+
+  // Unit normals towards the bright side (the right of the direction of travel).
+  std::vector<cv::Point2d>& normals = profile->normals;
+  std::vector<double>& weights = profile->weights;
+  normals.resize(num_normals);
+  weights.resize(num_normals);
+  for (int i = first; i <= last; ++i) {
+    const cv::Point2d tangent =
+        cv::Point2d(reference[std::min(n - 1, i + 1)]) - cv::Point2d(reference[std::max(0, i - 1)]);
+    const double norm = std::sqrt(tangent.x * tangent.x + tangent.y * tangent.y);
+    normals[i - first] =
+        norm > 0 ? cv::Point2d(-tangent.y / norm, tangent.x / norm) : cv::Point2d(0, 0);
+    const double d = i - centre_index;
+    weights[i - first] = std::exp(-d * d / (2.0 * options.sigma * options.sigma));
+  }
+
+  // Intensity profiles along the normals (row i: samples k = 0..2m at u = (k - m) * step), read
+  // on demand.
+  const int samples = 2 * m + 1;
+  std::vector<float>& profiles = profile->samples;
+  profiles.assign(static_cast<size_t>(num_normals) * samples, kNotSampled);
+  auto sampler = [&](int i) {
+    const cv::Point2d p = reference[first + i];
+    const cv::Point2d normal = normals[i];
+    return [&interpolate, p, normal, m, step](int k) {
+      const double u = (k - m) * step;
+      return interpolate(p.x + u * normal.x, p.y + u * normal.y);
+    };
+  };
+
+  // Levels whose curve crosses the central normal within the search radius.
+  const int centre_row = centre_index - first;
+  float* centre_profile = &profiles[static_cast<size_t>(centre_row) * samples];
+  const auto centre_sample = sampler(centre_row);
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  const int reach = static_cast<int>(std::floor(options.search_radius / step + 1e-9));
+  for (int k = std::max(0, m - reach); k <= std::min(2 * m, m + reach); ++k) {
+    centre_profile[k] = centre_sample(k);
+    low = std::min(low, static_cast<double>(centre_profile[k]));
+    high = std::max(high, static_cast<double>(centre_profile[k]));
+  }
+  // Level J is crossed if low < J + 0.5 <= high.
+  const int level_lo = std::max(min_level, static_cast<int>(std::ceil(low - 0.5 + 1e-9)));
+  const int level_hi = std::min(max_level, static_cast<int>(std::ceil(high - 0.5)) - 1);
+  if (level_hi < level_lo) return false;
+  const int first_level = level_lo - 1;
+  const int num_levels = level_hi - level_lo + 3;
+  const int delta_steps = static_cast<int>(std::ceil(options.delta));
+  // Thresholds J + 0.5 + e for e in [-delta, delta]; delta is whole in practice (an int option),
+  // fractional values are rounded up for the table and interpolated below.
+  const int first_threshold_level = first_level - delta_steps;
+  const int num_thresholds = num_levels + 2 * delta_steps;
+  std::vector<double>& crossing = profile->crossings;
+  std::vector<uint8_t>& clipped = profile->clipped;
+  crossing.resize(static_cast<size_t>(num_normals) * num_thresholds);
+  clipped.resize(crossing.size());
+  for (int i = 0; i < num_normals; ++i) {
+    ProfileCrossings(&profiles[static_cast<size_t>(i) * samples], samples, m, step,
+                     first_threshold_level + 0.5, num_thresholds, sampler(i),
+                     &crossing[static_cast<size_t>(i) * num_thresholds],
+                     &clipped[static_cast<size_t>(i) * num_thresholds]);
+  }
+  auto u_at = [&](int i, double j) {  // crossing of threshold index j (may be fractional)
+    const double* row = &crossing[static_cast<size_t>(i) * num_thresholds];
+    const int j0 = std::clamp(static_cast<int>(std::floor(j)), 0, num_thresholds - 1);
+    const int j1 = std::min(j0 + 1, num_thresholds - 1);
+    const double t = std::clamp(j - j0, 0.0, 1.0);
+    return row[j0] + t * (row[j1] - row[j0]);
+  };
+
+  profile->first_level = first_level;
+  profile->stability.assign(num_levels, 0.0);
+  profile->length.assign(num_levels, 0.0);
+  profile->band_area.assign(num_levels, 0.0);
+  profile->centre_offset.assign(num_levels, 0.0);
+  profile->centre = reference[centre_index];
+  profile->normal = normals[centre_row];
+  double weight_sum = 0;
+  for (double w : weights) weight_sum += w;
+  std::vector<double>& element = profile->elements;
+  element.resize(num_normals);
+  for (int l = 0; l < num_levels; ++l) {
+    const int j = l + delta_steps;  // threshold index of the level itself
+    // Length element of the level's curve at each normal: half of each adjoining chord between
+    // the points where the curve crosses consecutive normals (0 where it does not cross).
+    std::fill(element.begin(), element.end(), 0.0);
+    cv::Point2d previous;
+    bool previous_valid = false;
+    for (int i = 0; i < num_normals; ++i) {
+      const size_t index = static_cast<size_t>(i) * num_thresholds + j;
+      const bool valid = !clipped[index];
+      const cv::Point2d q = cv::Point2d(reference[first + i]) + crossing[index] * normals[i];
+      if (valid && previous_valid) {
+        const double dx = q.x - previous.x;
+        const double dy = q.y - previous.y;
+        const double chord = std::sqrt(dx * dx + dy * dy);
+        element[i - 1] += 0.5 * chord;
+        element[i] += 0.5 * chord;
+      }
+      previous = q;
+      previous_valid = valid;
+    }
+    // The strip of normal i has the band's width there times the curve's length element: the
+    // area between Up and Down in that strip.
+    double length = 0;
+    double band = 0;
+    for (int i = 0; i < num_normals; ++i) {
+      length += weights[i] * element[i];
+      band += weights[i] * element[i] * (u_at(i, j + options.delta) - u_at(i, j - options.delta));
+    }
+    band = std::max(band, 1e-6 * weight_sum);
+    profile->band_area[l] = band;
+    profile->length[l] = length;
+    profile->stability[l] = length / band;
+    profile->centre_offset[l] = crossing[static_cast<size_t>(centre_row) * num_thresholds + j];
+  }
+  return true;
+}
+
+bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous_level,
+                                double run_tolerance, StableLevel* selected) {
+  const std::vector<double>& rho = profile.stability;
+  const int count = profile.NumLevels();
+  std::vector<int> maxima;
+  for (int l = 1; l + 1 < count; ++l) {
+    if (rho[l] > rho[l - 1] && rho[l] >= rho[l + 1]) maxima.push_back(l);
+  }
+  if (maxima.empty()) return false;
+  // The maximum nearest in level to the previous MSICS (ties: larger ρ, then lower level).
+  int current = 0;
+  for (int m = 1; m < static_cast<int>(maxima.size()); ++m) {
+    const double d = std::abs(profile.first_level + maxima[m] - previous_level);
+    const double d_best = std::abs(profile.first_level + maxima[current] - previous_level);
+    if (d < d_best || (d == d_best && rho[maxima[m]] > rho[maxima[current]])) current = m;
+  }
+  // Ripples are not separate curves: climb to a higher neighbouring maximum while the dip between
+  // is shallower than the tolerance (relative to the lower of the two), as MSER ignores
+  // insignificant extrema.
+  auto dip_between = [&](int a, int b) {  // minimum of ρ strictly between levels a < b
+    double low = std::numeric_limits<double>::infinity();
+    for (int l = a + 1; l < b; ++l) low = std::min(low, rho[l]);
+    return low;
+  };
+  for (;;) {
+    const int l = maxima[current];
+    const double floor = (1.0 - run_tolerance) * rho[l];
+    int next = -1;
+    for (int m : {current - 1, current + 1}) {
+      if (m < 0 || m >= static_cast<int>(maxima.size())) continue;
+      const int other = maxima[m];
+      if (rho[other] <= rho[l]) continue;
+      if (dip_between(std::min(l, other), std::max(l, other)) < floor) continue;
+      if (next < 0 || rho[other] > rho[maxima[next]]) next = m;
+    }
+    if (next < 0) break;
+    current = next;
+  }
+  const int best = maxima[current];
+  // The run of levels around the peak whose ρ is within the tolerance of it. On a sharp edge ρ is
+  // nearly flat over most of the edge's range (the band keeps its width while it moves across the
+  // edge), so the exact maximum would be decided by ripples; the centre of the run is the middle
+  // of the edge, a choice that moves with the image.
+  const double floor = (1.0 - run_tolerance) * rho[best];
+  int run_begin = best;
+  int run_end = best;
+  while (run_begin > 0 && rho[run_begin - 1] >= floor) --run_begin;
+  while (run_end + 1 < count && rho[run_end + 1] >= floor) ++run_end;
+  // The ρ-weighted centroid of the run (excess over the floor): its ends, where the band reaches
+  // the flat sides of the edge, are ill-defined and weigh little.
+  double weight_sum = 0.0;
+  double weighted_levels = 0.0;
+  for (int l = run_begin; l <= run_end; ++l) {
+    const double w = rho[l] - floor;
+    weight_sum += w;
+    weighted_levels += w * l;
+  }
+  double centre = weight_sum > 0 ? weighted_levels / weight_sum : best;
+  double peak = rho[best];
+  if (run_begin == run_end) {
+    // A sharp maximum: refine it below one level with a parabola through its neighbours.
+    const double a = rho[best - 1];
+    const double b = rho[best];
+    const double c = rho[best + 1];
+    const double curvature = a - 2.0 * b + c;
+    if (curvature < 0) {
+      const double offset = std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
+      centre = best + offset;
+      peak = b - 0.25 * (a - c) * offset;
+    }
+  }
+  selected->threshold = profile.first_level + centre + 0.5;
+  selected->level = static_cast<int>(std::ceil(selected->threshold)) - 1;
+  selected->stability = peak;
+  return true;
+}
+
+}  // namespace comic::frontend
