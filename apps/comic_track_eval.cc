@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -126,6 +127,7 @@ int Run(int argc, char** argv) {
   std::string detector_list = "comic,harris,hessian,mser,fast";
   std::string comic_matchers = "split,like-sides,full";
   std::string poses_file, calib_file, out_dir = "track_eval";
+  std::string sweep_list = "100,200,400,800,1600,inf";
   int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 1;
   comic::io::ImageSequenceOptions sequence_options;
   sequence_options.resize_height = 700;
@@ -195,13 +197,17 @@ int Run(int argc, char** argv) {
                    &epipolar_tolerance);
   parser.AddOption("target-precision", "P",
                    "also compare matchers at this epipolar precision (0-1)", &target_precision);
+  parser.AddOption("sweep", "LIST",
+                   "also score every row at these SSD thresholds (inf = every mutual-best match)",
+                   &sweep_list);
   parser.AddOption("overlay-frames", "K", "write track overlays of K frames (0 = none)",
                    &overlay_frames);
   parser.AddOption("threads", "N", "CoMIC worker threads (results do not depend on it)", &threads);
   parser.AddOption("out", "DIR", "output folder (created if needed)", &out_dir);
   parser.AddEpilog(
       "Outputs in DIR: scores_n<n>.{md,csv,json} (Table 1/2 layout), scores_n<n>.png (bar\n"
-      "charts), precision_n<n>.{md,csv,json} with --poses, evaluation.json (everything, with\n"
+      "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
+      "precision_n<n>.{md,csv,json} with --poses, evaluation.json (everything, with\n"
       "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n\n"
       "Example:\n"
       "  comic_track_eval ../shared/data/otb_Crossing/img --boxes "
@@ -231,6 +237,14 @@ int Run(int argc, char** argv) {
   options.boundary_band = band;
   options.epipolar_tolerance = epipolar_tolerance;  // in stored pixels until the size is known
   options.target_precision = target_precision;
+  options.sweep_costs.clear();
+  for (const std::string& item : SplitList(sweep_list)) {
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    COMIC_CHECK(!item.empty() && *end == '\0', kInvalidArgument,
+                "--sweep: expected numbers or inf, got '" << item << "'");
+    options.sweep_costs.push_back(value);
+  }
   options.Check();
   const comic::io::RegionFileFormat format = comic::io::ParseRegionFileFormat(region_format);
   comic::io::EnsureWritableDirectory(out_dir);
@@ -327,6 +341,11 @@ int Run(int argc, char** argv) {
     comic::io::WriteImageAtomically(comic::io::JoinPaths(out_dir, name + ".png"),
                                     ScoreChart(evaluation, k, comic::io::FileName(frames_path)));
     report << "## M_score(" << nk << ") and ResM_" << nk << "\n\n" << table.ToMarkdown() << "\n";
+    const ReportTable sweep = fe::ThresholdSweepTable(evaluation, nk);
+    WriteTable(out_dir, "threshold_sweep_n" + std::to_string(nk), sweep);
+    report << "## M_score(" << nk << ") and ResM_" << nk
+           << " at other SSD thresholds T (same matches, re-thresholded)\n\n"
+           << sweep.ToMarkdown() << "\n";
     if (ground_truth) {
       const ReportTable precision = fe::PrecisionTable(evaluation, nk);
       WriteTable(out_dir, "precision_n" + std::to_string(nk), precision);

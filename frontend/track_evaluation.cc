@@ -44,6 +44,10 @@ void TrackEvaluationOptions::Check() const {
               "evaluation: epipolar_tolerance must be > 0 px, got " << epipolar_tolerance);
   COMIC_CHECK(target_precision > 0 && target_precision <= 1, kInvalidArgument,
               "evaluation: target_precision must be in (0, 1], got " << target_precision);
+  for (double t : sweep_costs) {
+    COMIC_CHECK(t >= 0 && !std::isnan(t), kInvalidArgument,
+                "evaluation: sweep thresholds must be >= 0, got " << t);
+  }
 }
 
 namespace {
@@ -259,6 +263,14 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
       row.scores.push_back(
           ComputeMatchingScores(row.tracking.tracks, row.labels, {n, options.frame_step}));
     }
+    for (double t : options.sweep_costs) {
+      const FeatureTracks rethresholded = TracksAtThreshold(row.tracking, t);
+      std::vector<MatchingScores> at_t;
+      for (int n : options.ns) {
+        at_t.push_back(ComputeMatchingScores(rethresholded, row.labels, {n, options.frame_step}));
+      }
+      row.sweep.push_back(std::move(at_t));
+    }
     if (ground_truth) row.precision = SummarisePrecision(row, *ground_truth, options);
   }
   return evaluation;
@@ -326,6 +338,33 @@ io::ReportTable PrecisionTable(const TrackEvaluation& evaluation, int n) {
   return table;
 }
 
+io::ReportTable ThresholdSweepTable(const TrackEvaluation& evaluation, int n) {
+  const size_t k = IndexOfN(evaluation, n);
+  const std::string ms = "M_score(" + std::to_string(n) + ") % ";
+  const std::string res = "ResM_" + std::to_string(n) + " ";
+  io::ReportTable table({"detector", "T", ms + "boundary", ms + "non-boundary", ms + "overall",
+                         res + "boundary", res + "non-boundary", res + "overall"});
+  for (const char* region : {"boundary", "non-boundary", "overall"}) {
+    table.SetPrecision(ms + region, 1);
+    table.SetPrecision(res + region, 1);
+  }
+  table.SetPrecision("T", 0);
+  for (const EvaluationRow& row : evaluation.rows) {
+    for (size_t t = 0; t < evaluation.options.sweep_costs.size(); ++t) {
+      const MatchingScores& s = row.sweep[t][k];
+      const auto regional = [&](double value) {
+        return evaluation.has_regions ? io::ReportTable::Cell(value) : io::ReportTable::Cell();
+      };
+      table.AddRow({row.label, evaluation.options.sweep_costs[t],
+                    regional(Percent(s.boundary.mean_m_score)),
+                    regional(Percent(s.non_boundary.mean_m_score)), Percent(s.overall.mean_m_score),
+                    regional(s.boundary.mean_res_m), regional(s.non_boundary.mean_res_m),
+                    s.overall.mean_res_m});
+    }
+  }
+  return table;
+}
+
 nlohmann::json EvaluationToJson(const TrackEvaluation& evaluation) {
   const TrackEvaluationOptions& o = evaluation.options;
   nlohmann::json costs = nlohmann::json::array();
@@ -348,7 +387,13 @@ nlohmann::json EvaluationToJson(const TrackEvaluation& evaluation) {
         {"frame_step", o.frame_step},
         {"boundary_band_px", o.boundary_band},
         {"epipolar_tolerance_px", o.epipolar_tolerance},
-        {"target_precision", o.target_precision}}},
+        {"target_precision", o.target_precision},
+        {"sweep_costs",
+         [&] {
+           nlohmann::json costs = nlohmann::json::array();
+           for (double t : o.sweep_costs) costs.push_back(NumberOrNull(t));
+           return costs;
+         }()}}},
   };
   nlohmann::json rows = nlohmann::json::array();
   for (const EvaluationRow& row : evaluation.rows) {
@@ -356,6 +401,12 @@ nlohmann::json EvaluationToJson(const TrackEvaluation& evaluation) {
     for (const FeatureSet& f : row.tracking.tracks.features) features += f.size();
     nlohmann::json scores = nlohmann::json::array();
     for (const MatchingScores& s : row.scores) scores.push_back(ScoresJson(s));
+    nlohmann::json sweep = nlohmann::json::array();
+    for (size_t t = 0; t < row.sweep.size(); ++t) {
+      nlohmann::json at_t = nlohmann::json::array();
+      for (const MatchingScores& s : row.sweep[t]) at_t.push_back(ScoresJson(s));
+      sweep.push_back({{"max_cost", NumberOrNull(o.sweep_costs[t])}, {"scores", at_t}});
+    }
     nlohmann::json entry = {
         {"label", row.label},
         {"detector", row.detector},
@@ -371,6 +422,7 @@ nlohmann::json EvaluationToJson(const TrackEvaluation& evaluation) {
         {"features_per_frame", static_cast<double>(features) / evaluation.num_frames},
         {"tracks", tracks},
         {"scores", scores},
+        {"threshold_sweep", sweep},
     };
     if (row.precision) {
       const PrecisionSummary& p = *row.precision;

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,6 +66,11 @@ struct TrackEvaluationOptions {
   // epipolar line, and matchers are also compared at this precision (0–1).
   double epipolar_tolerance = 1.0;
   double target_precision = 0.85;
+  // SSD thresholds at which every row is also scored (tracks rebuilt from the stored mutual-best
+  // matches, no re-matching): how the comparison depends on T, which the paper does not give.
+  // +infinity = every mutual-best match accepted.
+  std::vector<double> sweep_costs = {100, 200,  400,
+                                     800, 1600, std::numeric_limits<double>::infinity()};
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -99,7 +105,9 @@ struct EvaluationRow {
   TrackingResult tracking;                       // features (after the cut), matches and tracks
   std::vector<std::vector<RegionLabel>> labels;  // per frame and feature; empty without regions
   std::vector<MatchingScores> scores;            // per options.ns
-  std::optional<PrecisionSummary> precision;     // with epipolar ground truth only
+  // sweep[t][k]: the scores at options.sweep_costs[t] for options.ns[k].
+  std::vector<std::vector<MatchingScores>> sweep;
+  std::optional<PrecisionSummary> precision;  // with epipolar ground truth only
 };
 
 struct TrackEvaluation {
@@ -130,6 +138,10 @@ io::ReportTable ScoreTable(const TrackEvaluation& evaluation, int n);
 // Epipolar precision per row (needs ground truth): matches per frame pair and precision at T,
 // for every mutual-best match, and at the target precision with M_score(n) / ResM_n there.
 io::ReportTable PrecisionTable(const TrackEvaluation& evaluation, int n);
+
+// M_score(n) and ResM_n per row at every threshold of options.sweep_costs: one line per row and
+// threshold.
+io::ReportTable ThresholdSweepTable(const TrackEvaluation& evaluation, int n);
 
 // Everything as JSON: options, N, per row the cut-off, per-n scores with every start frame's
 // counts, and precision.

@@ -97,7 +97,8 @@ TEST(ComicTrackEval, WritesTheTablesChartsAndOverlaysWithMasks) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* file :
        {"scores_n5.md", "scores_n5.csv", "scores_n5.json", "scores_n5.png", "scores_n1.md",
-        "scores_n1.csv", "scores_n1.json", "scores_n1.png", "evaluation.json", "report.md"}) {
+        "scores_n1.csv", "scores_n1.json", "scores_n1.png", "threshold_sweep_n5.md",
+        "threshold_sweep_n5.csv", "threshold_sweep_n5.json", "evaluation.json", "report.md"}) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
   }
   int overlays = 0;
@@ -127,6 +128,20 @@ TEST(ComicTrackEval, WritesTheTablesChartsAndOverlaysWithMasks) {
                 .size(),
             3u);  // start frames 0, 1, 2 with n = 5 over 8 frames
   EXPECT_NE(ReadText(out + "/report.md").find("comic_track_eval"), std::string::npos);
+  // The sweep: one line per row and threshold; M_score grows with T, and the line at T = 400
+  // is the main table's.
+  const nlohmann::json sweep = nlohmann::json::parse(ReadText(out + "/threshold_sweep_n5.json"));
+  ASSERT_EQ(sweep.size(), 3u * 6u);
+  for (size_t r = 0; r < 3; ++r) {
+    for (size_t t = 1; t < 6; ++t) {
+      EXPECT_GE(sweep[r * 6 + t]["M_score(5) % overall"].get<double>(),
+                sweep[r * 6 + t - 1]["M_score(5) % overall"].get<double>() - 1e-9);
+    }
+    EXPECT_EQ(sweep[r * 6 + 2]["T"], 400.0);
+    EXPECT_DOUBLE_EQ(sweep[r * 6 + 2]["M_score(5) % overall"].get<double>(),
+                     table[r]["M_score(5) % overall"].get<double>());
+  }
+  EXPECT_TRUE(sweep[5]["T"].is_null());  // infinity
   EXPECT_NE(result.output.find("frame 8/8"), std::string::npos) << result.output;
 }
 
@@ -221,6 +236,7 @@ TEST(ComicTrackEval, BadInputGivesOneLineErrorAndNonZeroExit) {
       {frames + " --detectors harris", 2, "give the feature count N"},
       {frames + ok + " --comic-matchers ncc", 2, "unknown match cost 'ncc'"},
       {frames + ok + " --radius 0", 2, "radius must be > 0"},
+      {frames + ok + " --sweep 100,x", 2, "--sweep: expected numbers or inf, got 'x'"},
       {frames + ok + " --bogus", 2, "unknown option --bogus"},
       {frames + " --detectors harris --num-features 10 --out /proc/none", 1, "cannot create"},
   };
