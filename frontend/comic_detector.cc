@@ -25,6 +25,7 @@ void ComicDetectorOptions::Check() const {
               "comic: max_iterations must be >= 1, got " << max_iterations);
   COMIC_CHECK(convergence_tolerance >= 0, kInvalidArgument,
               "comic: convergence_tolerance must be >= 0");
+  COMIC_CHECK(stop_tolerance >= 0, kInvalidArgument, "comic: stop_tolerance must be >= 0");
   COMIC_CHECK(merge_radius >= 0, kInvalidArgument, "comic: merge_radius must be >= 0");
   COMIC_CHECK(min_stability >= 0, kInvalidArgument, "comic: min_stability must be >= 0");
   COMIC_CHECK(num_threads >= 0, kInvalidArgument, "comic: num_threads must be >= 0");
@@ -156,26 +157,57 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
   convergence.min_cornerness = o.min_cornerness;
   convergence.max_iterations = o.max_iterations;
   convergence.tolerance = o.convergence_tolerance;
+  convergence.stop_tolerance = o.stop_tolerance;
   convergence.corner.arm_end = o.half_length;
   convergence.corner.arm_begin = std::min(4.0, 0.5 * o.half_length);
   convergence.corner.max_vertex_shift = 0.25 * o.half_length;
-  std::vector<ConvergedCorner> converged(initial.size());
-  std::vector<uint8_t> settled(initial.size(), 0);
-  {
-    std::vector<ConvergenceWorkspace> workspaces(
-        ResolveNumThreads(o.num_threads, static_cast<int>(initial.size())));
-    ParallelFor(static_cast<int>(initial.size()), o.num_threads, [&](int i, int worker) {
-      settled[i] = ConvergeCorner(gray, initial[i].position, initial[i].curve, initial[i].level,
+  std::vector<ConvergenceWorkspace> workspaces(ResolveNumThreads(o.num_threads, 1 << 20));
+  // Converges every seed (in parallel); appends the settled corners to `corners` in seed order.
+  std::vector<ConvergedCorner> corners;
+  auto converge = [&](const std::vector<InitialCorner>& seeds) {
+    std::vector<ConvergedCorner> converged(seeds.size());
+    std::vector<uint8_t> settled(seeds.size(), 0);
+    ParallelFor(static_cast<int>(seeds.size()), o.num_threads, [&](int i, int worker) {
+      settled[i] = ConvergeCorner(gray, seeds[i].position, seeds[i].curve, seeds[i].level,
                                   convergence, &converged[i], &workspaces[worker]);
     });
-  }
-  std::vector<ConvergedCorner> corners;
-  for (size_t i = 0; i < converged.size(); ++i) {
-    if (settled[i] && converged[i].stability >= o.min_stability) {
-      corners.push_back(std::move(converged[i]));
+    for (size_t i = 0; i < seeds.size(); ++i) {
+      if (settled[i]) corners.push_back(std::move(converged[i]));
     }
+  };
+  converge(initial);
+  if (o.seed_neighbouring_corners) {
+    // One more round from the other corners on the converged MSICSs that no corner found yet.
+    std::vector<InitialCorner> neighbours;
+    for (const ConvergedCorner& corner : corners) {
+      for (const cv::Point2f& apex : corner.other_corners) {
+        InitialCorner seed;
+        seed.position = apex;
+        seed.level = corner.level;
+        seed.curve = corner.curve;
+        neighbours.push_back(std::move(seed));
+      }
+    }
+    std::vector<InitialCorner> found(corners.size());
+    for (size_t i = 0; i < corners.size(); ++i) found[i].position = corners[i].position;
+    const size_t num_found = found.size();
+    for (InitialCorner& seed : neighbours) found.push_back(std::move(seed));
+    // Suppression in this order drops the seeds near a corner already found, and duplicates.
+    found = SuppressNeighbours(
+        std::move(found), std::max(1.0, o.merge_radius),
+        [](const InitialCorner& c) { return c.position; },
+        [](const InitialCorner&, const InitialCorner&) { return true; });
+    std::vector<InitialCorner> new_seeds;
+    for (InitialCorner& seed : found) {
+      if (!seed.curve.empty()) new_seeds.push_back(std::move(seed));
+    }
+    (void)num_found;
+    converge(new_seeds);
   }
-  converged.clear();
+  corners.erase(
+      std::remove_if(corners.begin(), corners.end(),
+                     [&](const ConvergedCorner& c) { return c.stability < o.min_stability; }),
+      corners.end());
   // Seeds converging to the same corner: keep the most stable (ties broken by position, level).
   std::sort(corners.begin(), corners.end(), [](const ConvergedCorner& a, const ConvergedCorner& b) {
     if (a.stability != b.stability) return a.stability > b.stability;

@@ -31,6 +31,9 @@ struct ComicDetectorOptions {
   int max_iterations = 5;
   // A corner has settled when its last move was at most this far, in pixels.
   double convergence_tolerance = 1.0;
+  // Convergence iterations stop early once the corner moves at most this far, in pixels
+  // (Algorithm 1 iterates "while d > 0"; sub-pixel positions need a small positive bound).
+  double stop_tolerance = 0.05;
   // Features closer than this (pixels) are duplicates; the one with the higher ρ is kept.
   double merge_radius = 2.0;
   // Stability threshold on ρ = len / ΔA (Eq. 1): features below it are not returned. 0 returns
@@ -46,6 +49,10 @@ struct ComicDetectorOptions {
   // blocks, segments and Gaussians halved in pixels: the same physical scale at a quarter of the
   // pixels. false runs it at full resolution as written in Algorithm 1.
   bool coarse_initialisation = true;
+  // Also converge, once, from the other corners found on each converged MSICS: corners closer
+  // together than the initialisation scale (2s) can share one initial corner, and Algorithm 1
+  // would keep only the nearest.
+  bool seed_neighbouring_corners = true;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;

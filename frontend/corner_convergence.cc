@@ -17,6 +17,7 @@ void ConvergenceOptions::Check() const {
   COMIC_CHECK(min_cornerness >= 0, kInvalidArgument, "convergence: min_cornerness must be >= 0");
   COMIC_CHECK(max_iterations >= 1, kInvalidArgument, "convergence: max_iterations must be >= 1");
   COMIC_CHECK(tolerance >= 0, kInvalidArgument, "convergence: tolerance must be >= 0");
+  COMIC_CHECK(stop_tolerance >= 0, kInvalidArgument, "convergence: stop_tolerance must be >= 0");
 }
 
 WeightedStabilityOptions ConvergenceOptions::StabilityOptions() const {
@@ -107,7 +108,9 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   const int nms_radius = std::max(1, static_cast<int>(std::lround(options.sigma)));
   double best_distance = std::numeric_limits<double>::infinity();
   int best_index = -1;
-  for (int index : CornernessMaxima(kappa, traced.closed, nms_radius, options.min_cornerness)) {
+  const std::vector<int> maxima =
+      CornernessMaxima(kappa, traced.closed, nms_radius, options.min_cornerness);
+  for (int index : maxima) {
     const double d = Distance(samples[index], position);
     if (d < best_distance) {
       best_distance = d;
@@ -115,6 +118,13 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
     }
   }
   if (best_index < 0) return false;
+  result->other_corners.clear();
+  for (int index : maxima) {
+    const int gap = traced.closed
+                        ? std::min(std::abs(index - best_index), n - std::abs(index - best_index))
+                        : std::abs(index - best_index);
+    if (index != best_index && gap <= 2 * k) result->other_corners.push_back(samples[index]);
+  }
   const CurveCorner best =
       RefineCurveCorner(samples, traced.closed, kappa, best_index, options.corner);
   if (!(Distance(best.vertex, position) <= k)) return false;
@@ -159,12 +169,13 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
     const double moved = Distance(next.position, current);
     current = next.position;
     current_level = next.threshold - 0.5;
-    if (moved <= options.tolerance) {
+    if (moved <= options.stop_tolerance || iteration == options.max_iterations) {
+      if (moved > options.tolerance) return false;  // still moving: not settled
       *result = std::move(next);
       result->iterations = iteration;
       return true;
     }
-    current_reference = std::move(next.curve);
+    current_reference = next.curve;
   }
   return false;
 }

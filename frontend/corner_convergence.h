@@ -34,7 +34,10 @@ struct ConvergenceOptions {
   double min_cornerness = 0.03;
   // Iterations before a corner that keeps moving is dropped.
   int max_iterations = 5;
-  // A corner has settled when its last move was at most this far, px.
+  // Iterations stop when the corner moves at most this far, px (Algorithm 1: "while d > 0").
+  double stop_tolerance = 0.05;
+  // After the last iteration, a corner whose last move was farther than this (px) has not settled
+  // and is dropped.
   double tolerance = 1.0;
   // Arms and bounds of the vertex refinement (curve_cornerness.h).
   CurveCornerOptions corner;
@@ -60,6 +63,9 @@ struct ConvergedCorner {
   std::vector<cv::Point2f> segment;
   // The whole curve traced in the block, resampled at 1 px (the reference of the next iteration).
   std::vector<cv::Point2f> curve;
+  // Apexes of the other corners (κ maxima) on the curve within 2 half_length samples of this one:
+  // corners closer together than the initialisation scale may have been seeded only once.
+  std::vector<cv::Point2f> other_corners;
   // Iterations used (1 if the first re-detection did not move).
   int iterations = 0;
 };
@@ -78,8 +84,9 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
                     const ConvergenceOptions& options, ConvergedCorner* result,
                     ConvergenceWorkspace* workspace = nullptr);
 
-// Iterates RedetectCorner from an initial corner until it settles. False if it is lost or does
-// not settle within max_iterations.
+// Iterates RedetectCorner from an initial corner until it stops moving (a move of at most
+// stop_tolerance) or max_iterations are done. False if it is lost, or if its last move was
+// farther than `tolerance` (it has not settled).
 bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
                     const std::vector<cv::Point2f>& reference, double level,
                     const ConvergenceOptions& options, ConvergedCorner* result,

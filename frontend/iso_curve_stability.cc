@@ -256,6 +256,24 @@ bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::
   profile->normal = normals[centre_row];
   double weight_sum = 0;
   for (double w : weights) weight_sum += w;
+  // The intensities on the two sides of the curve: the darkest on the dark half and the
+  // brightest on the bright half of each normal within `side_distance` (extremes rather than the
+  // ends, because near a sharp tip a normal soon crosses to the other side of the shape).
+  const int side_reach = std::min(m, static_cast<int>(std::lround(options.side_distance / step)));
+  double sides = 0;
+  for (int i = 0; i < num_normals; ++i) {
+    float* row = &profiles[static_cast<size_t>(i) * samples];
+    const auto sample = sampler(i);
+    float dark = std::numeric_limits<float>::infinity();
+    float bright = -dark;
+    for (int k = m - side_reach; k <= m + side_reach; ++k) {
+      if (row[k] == kNotSampled) row[k] = sample(k);
+      if (k <= m) dark = std::min(dark, row[k]);
+      if (k >= m) bright = std::max(bright, row[k]);
+    }
+    sides += weights[i] * 0.5 * (dark + bright);
+  }
+  profile->middle_level = sides / weight_sum - 0.5;
   std::vector<double>& element = profile->elements;
   element.resize(num_normals);
   for (int l = 0; l < num_levels; ++l) {
@@ -337,23 +355,17 @@ bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous
   const int best = maxima[current];
   // The run of levels around the peak whose ρ is within the tolerance of it. On a sharp edge ρ is
   // nearly flat over most of the edge's range (the band keeps its width while it moves across the
-  // edge), so the exact maximum would be decided by ripples; the centre of the run is the middle
-  // of the edge, a choice that moves with the image.
+  // edge), so the exact maximum would be decided by ripples and by the corner's geometry.
   const double floor = (1.0 - run_tolerance) * rho[best];
   int run_begin = best;
   int run_end = best;
   while (run_begin > 0 && rho[run_begin - 1] >= floor) --run_begin;
   while (run_end + 1 < count && rho[run_end + 1] >= floor) ++run_end;
-  // The ρ-weighted centroid of the run (excess over the floor): its ends, where the band reaches
-  // the flat sides of the edge, are ill-defined and weigh little.
-  double weight_sum = 0.0;
-  double weighted_levels = 0.0;
-  for (int l = run_begin; l <= run_end; ++l) {
-    const double w = rho[l] - floor;
-    weight_sum += w;
-    weighted_levels += w * l;
-  }
-  double centre = weight_sum > 0 ? weighted_levels / weight_sum : best;
+  // Every level of the run is as stable as the peak within the tolerance: take the one in the
+  // middle of the intensities on the two sides of the curve (for a blurred step edge, the level
+  // line through the edge itself), which depends only on the image.
+  double centre = std::clamp(profile.middle_level - profile.first_level,
+                             static_cast<double>(run_begin), static_cast<double>(run_end));
   double peak = rho[best];
   if (run_begin == run_end) {
     // A sharp maximum: refine it below one level with a parabola through its neighbours.

@@ -85,6 +85,9 @@ struct WeightedStabilityOptions {
   // Levels whose ρ_w is within this fraction of the maximum's count as equally stable
   // (SelectMaximallyStableLevel).
   double run_tolerance = 0.10;
+  // How far along the normals the two sides' intensities are read for middle_level, px (beyond
+  // the ~2.5σ reach of a blurred edge).
+  double side_distance = 3.0;
 };
 
 // ρ_w as a function of the level near a point. level(i) = first_level + i. Reuse one object
@@ -100,6 +103,10 @@ struct StabilityProfile {
   // p and the unit normal at p (towards the bright side).
   cv::Point2d centre;
   cv::Point2d normal;
+  // The level halfway between the intensities on the two sides of the curve: the Gaussian-weighted
+  // mean over the normals of (darkest on the dark half + brightest on the bright half) / 2 within
+  // side_distance, fractional.
+  double middle_level = 0.0;
   int NumLevels() const { return static_cast<int>(stability.size()); }
 
   // Working buffers of ComputeWeightedStabilityProfile.
@@ -136,11 +143,12 @@ struct StableLevel {
 // picks the one whose level is nearest to `previous_level` (ties: larger ρ_w, then lower level),
 // the "MSICS similar to the previous one" of Algorithm 1. Maxima separated by a dip shallower
 // than `run_tolerance` (relative) are ripples of one curve's stability, not different curves: the
-// choice climbs to the highest of them. Its level is then the centroid of the run of levels
-// around the peak with ρ_w >= floor = (1 - run_tolerance) ρ_peak, weighted by ρ_w - floor (ρ is
-// nearly flat across the steep part of a sharp edge, where ripples would decide), or, for a run
-// of one level, the vertex of a parabola through ρ_w at I - 1, I, I + 1. Returns false if there
-// is no maximum.
+// choice climbs to the highest of them. All levels of the run around the peak with
+// ρ_w >= (1 - run_tolerance) ρ_peak are then equally stable (ρ is nearly flat across the steep
+// part of a sharp edge, where ripples and the corner's geometry would decide), and the level
+// chosen is the profile's middle_level clamped to that run: the middle of the edge. A run of one
+// level is refined by the vertex of a parabola through ρ_w at I - 1, I, I + 1. Returns false if
+// there is no maximum.
 bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous_level,
                                 double run_tolerance, StableLevel* selected);
 
