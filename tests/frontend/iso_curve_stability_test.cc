@@ -1,0 +1,159 @@
+#include "frontend/iso_curve_stability.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "frontend/iso_curve.h"
+#include "tests/frontend/synthetic_images.h"
+
+namespace comic::frontend {
+namespace {
+
+TEST(IsoCurveStability, UpAndDownLevelsBoundABandOfTwoDeltaLevels) {
+  EXPECT_EQ(UpLevel(100.5, 5), 105);
+  EXPECT_EQ(DownLevel(100.5, 5), 95);  // band 96..105
+  EXPECT_EQ(UpLevel(100.5, 2.5), 102);
+  EXPECT_EQ(DownLevel(100.5, 2.5), 97);  // band 98..102
+}
+
+TEST(IsoCurveStability, UnweightedStabilityOfARampIsItsGradientOverTwoDelta) {
+  cv::Mat block(10, 20, CV_8UC1);
+  for (int x = 0; x < 20; ++x) block.col(x).setTo(5 * x);  // 5 grey levels per px
+  ComponentTree tree;
+  tree.Build(block, false);
+  const int node = tree.AncestorAtLevel(tree.NodeOfPixel(tree.PixelIndex(0, 0)), 47);
+  EXPECT_EQ(tree.Perimeter(node), 10);
+  EXPECT_DOUBLE_EQ(ComponentStability(tree, node, 47, 2.5), 1.0);  // 5 / (2 * 2.5)
+  EXPECT_DOUBLE_EQ(ComponentStability(tree, node, 47, 5.0), 0.5);  // 5 / (2 * 5)
+}
+
+TEST(IsoCurveStability, MaximallyStableComponentsOfAnEdgeLieOnItsSteepPart) {
+  const test::Polygon right{{{20.3, -10}, {60, -10}, {60, 60}, {20.3, 60}}, 200};
+  const cv::Mat block = test::RenderPolygons(test::FlatBackground({40, 30}, 50), {right}, 1.0);
+  ComponentTree tree;
+  tree.Build(block, false);
+  const auto stable = FindMaximallyStableComponents(tree, 2.5, 25, 0.0);
+  ASSERT_FALSE(stable.empty());
+  bool on_edge = false;
+  for (const StableComponent& c : stable) {
+    EXPECT_EQ(tree.Perimeter(c.node), 30);  // the edge crosses all 30 rows
+    on_edge |= c.level > 70 && c.level < 180;
+  }
+  EXPECT_TRUE(on_edge);
+}
+
+// The level-`threshold` curve through `near`, resampled at 1 px with the centre sample nearest to
+// `near`; *centre receives its index.
+std::vector<cv::Point2f> Reference(const cv::Mat& image, double threshold, cv::Point2f near,
+                                   int* centre) {
+  const IsoCurveTracer tracer(image, cv::Rect(0, 0, image.cols, image.rows), threshold);
+  CurveEdge seed;
+  EXPECT_TRUE(tracer.FindNearestCrossing(near, 3, &seed));
+  IsoCurve curve;
+  tracer.Trace(seed, 1000, &curve);
+  const double s = ProjectOntoPolyline(curve.points, false, near);
+  return ResamplePolyline(curve.points, false, 1.0, s, 20, 20, centre);
+}
+
+TEST(IsoCurveStability, WeightedStabilityPeaksInTheMiddleOfABlurredEdge) {
+  const test::Polygon bright{{{30.4, -10}, {90, -10}, {90, 90}, {44.1, 90}}, 200};
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({80, 80}, 50), {bright}, 1.0);
+  int centre = 0;
+  const auto reference = Reference(image, 90.5, {37.0f, 40.0f}, &centre);
+  StabilityProfile profile;
+  ASSERT_TRUE(ComputeWeightedStabilityProfile(image, reference, centre, {}, &profile));
+  EXPECT_NEAR(profile.middle_level + 0.5, 125.0, 2.0);
+  StableLevel level;
+  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 90.0, 0.10, &level));
+  EXPECT_NEAR(level.threshold, 125.0, 3.0);
+  EXPECT_EQ(level.level, static_cast<int>(std::ceil(level.threshold)) - 1);
+  // ρ = mean displacement per 2δ levels: the edge's steepest gradient, 150 φ(0) / σ ≈ 57 grey
+  // levels per px (σ ≈ 1.04 with the pixel's area), over 2δ = 10.
+  EXPECT_NEAR(level.stability, 5.7, 0.6);
+}
+
+TEST(IsoCurveStability, AffineIntensityChangesKeepTheMiddleOfTheEdge) {
+  const test::Polygon bright{{{30.4, -10}, {90, -10}, {90, 90}, {44.1, 90}}, 200};
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({80, 80}, 50), {bright}, 1.0);
+  cv::Mat changed;
+  image.convertTo(changed, CV_8U, 0.8, 20);
+  int centre = 0;
+  const auto reference = Reference(changed, 90.5, {37.0f, 40.0f}, &centre);
+  StabilityProfile profile;
+  ASSERT_TRUE(ComputeWeightedStabilityProfile(changed, reference, centre, {}, &profile));
+  StableLevel level;
+  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 90.0, 0.10, &level));
+  EXPECT_NEAR(level.threshold, 0.8 * 125.0 + 20, 3.0);
+}
+
+TEST(IsoCurveStability, GaussianWeightsMakeInstabilityNearPCountMost) {
+  // A sharp vertical edge with a soft stretch, either around p or 14 px away along the curve:
+  // the paper's reason for weighting (§2.1, Fig. 3).
+  const test::Polygon right{{{30.0, -10}, {90, -10}, {90, 90}, {30.0, 90}}, 200};
+  const cv::Mat sharp = test::RenderPolygons(test::FlatBackground({60, 80}, 50), {right}, 0.7);
+  const cv::Mat soft = test::RenderPolygons(test::FlatBackground({60, 80}, 50), {right}, 3.0);
+  auto with_soft_rows = [&](int from, int to) {
+    cv::Mat image = sharp.clone();
+    soft.rowRange(from, to).copyTo(image.rowRange(from, to));
+    return image;
+  };
+  auto rho_at_p = [](const cv::Mat& image) {
+    int centre = 0;
+    const auto reference = Reference(image, 125.5, {30.0f, 40.0f}, &centre);
+    StabilityProfile profile;
+    EXPECT_TRUE(ComputeWeightedStabilityProfile(image, reference, centre, {}, &profile));
+    StableLevel level;
+    EXPECT_TRUE(SelectMaximallyStableLevel(profile, 125.0, 0.10, &level));
+    return level.stability;
+  };
+  const double near = rho_at_p(with_soft_rows(36, 45));
+  const double far = rho_at_p(with_soft_rows(50, 59));
+  const double none = rho_at_p(sharp);
+  EXPECT_LT(near, 0.7 * far);
+  EXPECT_LT(far, none);
+}
+
+StabilityProfile SyntheticProfile(int first_level, std::vector<double> rho, double middle) {
+  StabilityProfile profile;
+  profile.first_level = first_level;
+  profile.stability = std::move(rho);
+  profile.middle_level = middle;
+  return profile;
+}
+
+TEST(IsoCurveStability, SelectionTakesTheMiddleOfTheStableRunAndClimbsOverRipples) {
+  // Levels 100..110; a plateau 102..108 with ripples (a dip of 2 %).
+  const auto profile =
+      SyntheticProfile(100, {1.0, 2.0, 4.0, 4.1, 4.05, 4.12, 4.04, 4.1, 3.9, 2.0, 1.0}, 105.3);
+  StableLevel level;
+  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 103.0, 0.10, &level));
+  EXPECT_NEAR(level.threshold, 105.8, 1e-9);  // middle_level + 0.5, inside the run
+  EXPECT_NEAR(level.stability, 4.12, 1e-9);  // the highest of the ripples
+  EXPECT_EQ(level.level, 105);
+  // The middle is clamped to the run.
+  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(100, profile.stability, 120.0), 103.0,
+                                         0.10, &level));
+  EXPECT_NEAR(level.threshold, 108.5, 1e-9);
+}
+
+TEST(IsoCurveStability, SelectionKeepsDistinctCurvesApart) {
+  // Two peaks separated by a deep dip: two different curves. The one nearest in level wins.
+  const std::vector<double> rho = {1.0, 3.0, 1.0, 0.5, 1.0, 5.0, 1.0};
+  StableLevel level;
+  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(50, rho, 0.0), 50.0, 0.10, &level));
+  EXPECT_EQ(level.level, 51);
+  EXPECT_DOUBLE_EQ(level.stability, 3.0);
+  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(50, rho, 0.0), 56.0, 0.10, &level));
+  EXPECT_EQ(level.level, 55);
+  // A single-level run is refined by a parabola.
+  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 3.0, 2.0}, 0.0), 1.0, 0.10,
+                                         &level));
+  EXPECT_NEAR(level.threshold, 1.0 + 1.0 / 6.0 + 0.5, 1e-9);
+  // No interior maximum: nothing selected.
+  EXPECT_FALSE(
+      SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 2.0, 3.0}, 0.0), 1.0, 0.10, &level));
+}
+
+}  // namespace
+}  // namespace comic::frontend
