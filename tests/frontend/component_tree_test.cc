@@ -22,11 +22,8 @@ int NodeAt(const ComponentTree& tree, int x, int y) {
 }
 
 TEST(ComponentTree, AreasPerimetersAndParentsOfASmallBlock) {
-  const cv::Mat block = Block({{9, 9, 9, 9, 9},
-                               {9, 1, 1, 9, 9},
-                               {9, 1, 1, 9, 9},
-                               {9, 9, 9, 5, 9},
-                               {9, 9, 9, 9, 9}});
+  const cv::Mat block =
+      Block({{9, 9, 9, 9, 9}, {9, 1, 1, 9, 9}, {9, 1, 1, 9, 9}, {9, 9, 9, 5, 9}, {9, 9, 9, 9, 9}});
   ComponentTree tree;
   tree.Build(block, /*upper_sets=*/false);
   const int square = NodeAt(tree, 1, 1);
@@ -60,11 +57,8 @@ TEST(ComponentTree, EdgesAgainstTheBlockBorderAreNotBoundary) {
 }
 
 TEST(ComponentTree, UpperSetsAreTheTreeOfTheInvertedBlock) {
-  const cv::Mat block = Block({{9, 9, 9, 9, 9},
-                               {9, 1, 1, 9, 9},
-                               {9, 1, 1, 9, 9},
-                               {9, 9, 9, 5, 9},
-                               {9, 9, 9, 9, 9}});
+  const cv::Mat block =
+      Block({{9, 9, 9, 9, 9}, {9, 1, 1, 9, 9}, {9, 1, 1, 9, 9}, {9, 9, 9, 5, 9}, {9, 9, 9, 9, 9}});
   ComponentTree tree;
   tree.Build(block, /*upper_sets=*/true);
   EXPECT_TRUE(tree.upper_sets());
@@ -120,7 +114,8 @@ void FloodComponent(const cv::Mat& block, int x, int y, int level, int* area, in
     const cv::Point p = queue.front();
     queue.pop();
     ++*area;
-    for (const cv::Point d : {cv::Point(1, 0), cv::Point(-1, 0), cv::Point(0, 1), cv::Point(0, -1)}) {
+    for (const cv::Point d :
+         {cv::Point(1, 0), cv::Point(-1, 0), cv::Point(0, 1), cv::Point(0, -1)}) {
       const cv::Point q = p + d;
       if (q.x < 0 || q.y < 0 || q.x >= block.cols || q.y >= block.rows) continue;
       if (block.at<uint8_t>(q) > level) {

@@ -81,8 +81,8 @@ TEST_F(CornerConvergence, ReportsTheOtherCornersOnTheCurve) {
   const cv::Mat image = test::RenderPolygons(test::FlatBackground({100, 100}, 50), {bar}, 1.0);
   const cv::Point2f start(30.5f, 41.0f);
   ConvergedCorner corner;
-  ASSERT_TRUE(ConvergeCorner(image, start, CurveThrough(image, 125.5, start), 125.0, options_,
-                             &corner));
+  ASSERT_TRUE(
+      ConvergeCorner(image, start, CurveThrough(image, 125.5, start), 125.0, options_, &corner));
   bool found_neighbour = false;
   for (const cv::Point2f& p : corner.other_corners) {
     found_neighbour |= cv::norm(p - cv::Point2f(48.2f, 40.6f)) < 2.0;

@@ -76,8 +76,10 @@ TEST(CurveCornerness, SharperTurnsAreMoreCornerLike) {
   double previous = 0;
   for (double turn_degrees : {30.0, 60.0, 90.0, 120.0}) {
     const double t = turn_degrees * kPi / 180.0;
-    const auto curve = Sampled({{-40, 0}, {0, 0}, {static_cast<float>(40 * std::cos(t)),
-                                                  static_cast<float>(40 * std::sin(t))}});
+    const auto curve =
+        Sampled({{-40, 0},
+                 {0, 0},
+                 {static_cast<float>(40 * std::cos(t)), static_cast<float>(40 * std::sin(t))}});
     const auto kappa = CurveCornerness(curve, false, 6.0, 12);
     EXPECT_GT(kappa[40], previous) << turn_degrees;
     previous = kappa[40];
@@ -115,8 +117,8 @@ TEST(CurveCornerness, RefinementFindsASharpVertexBetweenSamples) {
 
 TEST(CurveCornerness, ArmIntersectionRecoversTheVertexOfABlurredCorner) {
   const cv::Point2d vertex(30.37, 25.62);
-  const cv::Mat image = test::RenderPolygons(
-      test::FlatBackground({80, 80}, 50), {test::MakeSquare(vertex, 30, 200)}, 1.0);
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({80, 80}, 50),
+                                             {test::MakeSquare(vertex, 30, 200)}, 1.0);
   const IsoCurveTracer tracer(image, cv::Rect(0, 0, 80, 80), 125.5);
   CurveEdge seed;
   ASSERT_TRUE(tracer.FindNearestCrossing(cv::Point2f(vertex), 3, &seed));
@@ -155,8 +157,10 @@ TEST(CurveCornerness, TurningTowardsTheDarkLeftSideIsDarkPolarity) {
 
 TEST(CurveCornerness, NoVertexCorrectionForNearlyStraightCurves) {
   const double t = 20.0 * kPi / 180.0;  // below the blend range
-  const auto curve = Sampled({{-40, 0}, {0, 0}, {static_cast<float>(40 * std::cos(t)),
-                                                static_cast<float>(40 * std::sin(t))}});
+  const auto curve =
+      Sampled({{-40, 0},
+               {0, 0},
+               {static_cast<float>(40 * std::cos(t)), static_cast<float>(40 * std::sin(t))}});
   const auto kappa = CurveCornerness(curve, false, 6.0, 12);
   const CurveCorner c = RefineCurveCorner(curve, false, kappa, 40, CurveCornerOptions());
   EXPECT_EQ(c.vertex, c.apex);

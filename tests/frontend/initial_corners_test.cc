@@ -51,9 +51,8 @@ class InitialCornersInABlock : public ::testing::Test {
 
 TEST_F(InitialCornersInABlock, FindsTheCornerOfABrightSquareWithItsPolarity) {
   const cv::Point2d vertex(20.3, 18.6);
-  const cv::Mat image =
-      test::RenderPolygons(test::FlatBackground({50, 50}, 60), {test::MakeSquare(vertex, 40, 190)},
-                           1.0);
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({50, 50}, 60),
+                                             {test::MakeSquare(vertex, 40, 190)}, 1.0);
   for (bool upper : {false, true}) {
     const auto corners = Detect(image, upper);
     ASSERT_FALSE(corners.empty()) << upper;
@@ -77,9 +76,8 @@ TEST_F(InitialCornersInABlock, FindsTheCornerOfABrightSquareWithItsPolarity) {
 
 TEST_F(InitialCornersInABlock, DarkSquareCornerHasDarkPolarity) {
   const cv::Point2d vertex(20.3, 18.6);
-  const cv::Mat image =
-      test::RenderPolygons(test::FlatBackground({50, 50}, 190), {test::MakeSquare(vertex, 40, 60)},
-                           1.0);
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({50, 50}, 190),
+                                             {test::MakeSquare(vertex, 40, 60)}, 1.0);
   const auto corners = Detect(image, false);
   ASSERT_FALSE(corners.empty());
   for (const InitialCorner& c : corners) {
@@ -98,8 +96,8 @@ TEST_F(InitialCornersInABlock, FlatBlocksAndStraightEdgesHaveNoCorners) {
 }
 
 TEST_F(InitialCornersInABlock, OnlyCornersInTheOwnedPartAreReported) {
-  const cv::Mat image = test::RenderPolygons(
-      test::FlatBackground({50, 50}, 60), {test::MakeSquare({10.3, 10.6}, 30, 190)}, 1.0);
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({50, 50}, 60),
+                                             {test::MakeSquare({10.3, 10.6}, 30, 190)}, 1.0);
   InitialCornerOptions options;
   options.half_length = 12;
   options.sigma = 6.0;

@@ -129,7 +129,7 @@ TEST(IsoCurveStability, SelectionTakesTheMiddleOfTheStableRunAndClimbsOverRipple
   StableLevel level;
   ASSERT_TRUE(SelectMaximallyStableLevel(profile, 103.0, 0.10, &level));
   EXPECT_NEAR(level.threshold, 105.8, 1e-9);  // middle_level + 0.5, inside the run
-  EXPECT_NEAR(level.stability, 4.12, 1e-9);  // the highest of the ripples
+  EXPECT_NEAR(level.stability, 4.12, 1e-9);   // the highest of the ripples
   EXPECT_EQ(level.level, 105);
   // The middle is clamped to the run.
   ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(100, profile.stability, 120.0), 103.0,
@@ -147,8 +147,8 @@ TEST(IsoCurveStability, SelectionKeepsDistinctCurvesApart) {
   ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(50, rho, 0.0), 56.0, 0.10, &level));
   EXPECT_EQ(level.level, 55);
   // A single-level run is refined by a parabola.
-  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 3.0, 2.0}, 0.0), 1.0, 0.10,
-                                         &level));
+  ASSERT_TRUE(
+      SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 3.0, 2.0}, 0.0), 1.0, 0.10, &level));
   EXPECT_NEAR(level.threshold, 1.0 + 1.0 / 6.0 + 0.5, 1e-9);
   // No interior maximum: nothing selected.
   EXPECT_FALSE(

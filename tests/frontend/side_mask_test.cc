@@ -13,8 +13,8 @@ PatchSide At(const std::vector<PatchSide>& mask, int u, int v) {
 
 TEST(SideMask, SplitsThePatchAlongTheCornerCurve) {
   // A bright square whose top-left vertex is the patch centre.
-  const cv::Mat image = test::RenderPolygons(
-      test::FlatBackground({80, 80}, 50), {test::MakeSquare({30.0, 30.0}, 40, 200)}, 1.0);
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({80, 80}, 50),
+                                             {test::MakeSquare({30.0, 30.0}, 40, 200)}, 1.0);
   const auto mask = ComputeSideMask(image, 125.5, {31.0f, 31.0f}, {30, 30});
   ASSERT_EQ(mask.size(), static_cast<size_t>(kPatchSize * kPatchSize));
   int plus = 0, minus = 0, none = 0;
@@ -50,13 +50,13 @@ TEST(SideMask, FollowsTheCurveNotTheIntensityOfOtherTexture) {
 }
 
 TEST(SideMask, PixelsOutsideTheImageOrWithoutACurveAreNone) {
-  const cv::Mat image = test::RenderPolygons(
-      test::FlatBackground({40, 40}, 50), {test::MakeSquare({5.0, 5.0}, 20, 200)}, 1.0);
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({40, 40}, 50),
+                                             {test::MakeSquare({5.0, 5.0}, 20, 200)}, 1.0);
   const auto mask = ComputeSideMask(image, 125.5, {6.0f, 6.0f}, {5, 5});
   EXPECT_EQ(At(mask, -kPatchRadius, -kPatchRadius), PatchSide::kNone);  // outside the image
   EXPECT_EQ(At(mask, 3, 3), PatchSide::kPlus);
-  const auto empty = ComputeSideMask(cv::Mat(40, 40, CV_8UC1, cv::Scalar(9)), 125.5,
-                                     {20.0f, 20.0f}, {20, 20});
+  const auto empty =
+      ComputeSideMask(cv::Mat(40, 40, CV_8UC1, cv::Scalar(9)), 125.5, {20.0f, 20.0f}, {20, 20});
   for (PatchSide side : empty) EXPECT_EQ(side, PatchSide::kNone);
 }
 
