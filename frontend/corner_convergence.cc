@@ -63,8 +63,8 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   const std::vector<cv::Point2f> segment =
       ResamplePolyline(reference, false, 1.0, s_p, k + 1, k + 1, &centre);
   // The MSICS nearest in level to the previous one: search a window of ±3 levels first, then
-  // ±2δ, then all levels, stopping at the first window that holds a maximum. The answer is the
-  // same as searching all levels at once: a maximum inside a window is nearer than any outside.
+  // ±2δ, then all levels, stopping at the first window whose answer cannot depend on the levels
+  // outside it (see StableLevel::isolated): the same answer as searching all levels at once.
   const WeightedStabilityOptions stability_options = options.StabilityOptions();
   const int centre_level = static_cast<int>(std::lround(previous_level));
   StabilityProfile& profile = workspace->profile;
@@ -74,8 +74,9 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
     found = ComputeWeightedStabilityProfile(gray, segment, centre, stability_options, &profile,
                                             centre_level - window, centre_level + window) &&
             SelectMaximallyStableLevel(profile, previous_level, stability_options.run_tolerance,
-                                       &stable) &&
-            (window == 256 || std::abs(stable.level - previous_level) < window);
+                                       stability_options.ripple_tolerance, &stable) &&
+            (window == 256 ||
+             (std::abs(stable.nearest_maximum - previous_level) < window && stable.isolated));
     if (found) break;
   }
   if (!found) return false;
@@ -167,9 +168,12 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
       return false;
     }
     const double moved = Distance(next.position, current);
+    // A fixed point keeps its MSICS too: a corner that barely moved while its curve jumped to
+    // another level (typical of the first iteration, from the initialisation's level) goes on.
+    const bool same_curve = std::abs(next.threshold - 0.5 - current_level) <= 1.0;
     current = next.position;
     current_level = next.threshold - 0.5;
-    if (moved <= options.stop_tolerance || iteration == options.max_iterations) {
+    if ((moved <= options.stop_tolerance && same_curve) || iteration == options.max_iterations) {
       if (moved > options.tolerance) return false;  // still moving: not settled
       *result = std::move(next);
       result->iterations = iteration;

@@ -175,7 +175,7 @@ CurveCorner RefineCurveCorner(const std::vector<cv::Point2f>& points, bool close
   const double curvature = km - 2.0 * k0 + kp;
   if (km >= 0 && kp >= 0 && curvature < 0) {
     offset = std::clamp(0.5 * (km - kp) / curvature, -0.5, 0.5);
-    corner.cornerness = k0 - 0.25 * (km - kp) * offset;
+    corner.cornerness = std::min(0.25, k0 - 0.25 * (km - kp) * offset);  // κ <= 1/4
   }
   corner.index = index + offset;
   const cv::Point2d apex = SampleAt(points, closed, corner.index);

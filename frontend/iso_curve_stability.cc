@@ -256,11 +256,14 @@ bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::
   profile->normal = normals[centre_row];
   double weight_sum = 0;
   for (double w : weights) weight_sum += w;
-  // The intensities on the two sides of the curve: the darkest on the dark half and the
-  // brightest on the bright half of each normal within `side_distance` (extremes rather than the
-  // ends, because near a sharp tip a normal soon crosses to the other side of the shape).
+  // The intensities on the two sides of the curve: per normal, the darkest value on the dark
+  // half and the brightest on the bright half within side_distance (extremes reach the flat sides
+  // of a blurred edge whatever the reference curve's level), and across normals the weighted
+  // median of their mid-points, robust to texture and to the few normals that cross to the far
+  // side of a sharp tip.
   const int side_reach = std::min(m, static_cast<int>(std::lround(options.side_distance / step)));
-  double sides = 0;
+  std::vector<std::pair<double, double>>& mids = profile->mids;
+  mids.clear();
   for (int i = 0; i < num_normals; ++i) {
     float* row = &profiles[static_cast<size_t>(i) * samples];
     const auto sample = sampler(i);
@@ -271,9 +274,19 @@ bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::
       if (k <= m) dark = std::min(dark, row[k]);
       if (k >= m) bright = std::max(bright, row[k]);
     }
-    sides += weights[i] * 0.5 * (dark + bright);
+    mids.emplace_back(0.5 * (dark + bright), weights[i]);
   }
-  profile->middle_level = sides / weight_sum - 0.5;
+  std::sort(mids.begin(), mids.end());
+  double cumulative = 0;
+  double median = mids.back().first;
+  for (const auto& [mid, weight] : mids) {
+    cumulative += weight;
+    if (cumulative >= 0.5 * weight_sum) {
+      median = mid;
+      break;
+    }
+  }
+  profile->middle_level = median - 0.5;
   std::vector<double>& element = profile->elements;
   element.resize(num_normals);
   for (int l = 0; l < num_levels; ++l) {
@@ -315,7 +328,8 @@ bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::
 }
 
 bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous_level,
-                                double run_tolerance, StableLevel* selected) {
+                                double run_tolerance, double ripple_tolerance,
+                                StableLevel* selected) {
   const std::vector<double>& rho = profile.stability;
   const int count = profile.NumLevels();
   std::vector<int> maxima;
@@ -330,9 +344,11 @@ bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous
     const double d_best = std::abs(profile.first_level + maxima[current] - previous_level);
     if (d < d_best || (d == d_best && rho[maxima[m]] > rho[maxima[current]])) current = m;
   }
+  selected->nearest_maximum = profile.first_level + maxima[current];
+  const double first_peak = rho[maxima[current]];
   // Ripples are not separate curves: climb to a higher neighbouring maximum while the dip between
-  // is shallower than the tolerance (relative to the lower of the two), as MSER ignores
-  // insignificant extrema.
+  // is shallower than ripple_tolerance (relative to the lower of the two), as MSER ignores
+  // insignificant extrema. Between two distinct curves ρ drops by most of its value.
   auto dip_between = [&](int a, int b) {  // minimum of ρ strictly between levels a < b
     double low = std::numeric_limits<double>::infinity();
     for (int l = a + 1; l < b; ++l) low = std::min(low, rho[l]);
@@ -340,7 +356,7 @@ bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous
   };
   for (;;) {
     const int l = maxima[current];
-    const double floor = (1.0 - run_tolerance) * rho[l];
+    const double floor = (1.0 - ripple_tolerance) * rho[l];
     int next = -1;
     for (int m : {current - 1, current + 1}) {
       if (m < 0 || m >= static_cast<int>(maxima.size())) continue;
@@ -382,6 +398,9 @@ bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous
   selected->threshold = profile.first_level + centre + 0.5;
   selected->level = static_cast<int>(std::ceil(selected->threshold)) - 1;
   selected->stability = peak;
+  // Nothing beyond the profile's ends could have joined the climb or the run.
+  const double beyond = (1.0 - ripple_tolerance) * first_peak;
+  selected->isolated = rho.front() < beyond && rho.back() < beyond;
   return true;
 }
 

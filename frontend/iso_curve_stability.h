@@ -31,6 +31,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <utility>
 #include <vector>
 
 #include "frontend/component_tree.h"
@@ -85,6 +86,9 @@ struct WeightedStabilityOptions {
   // Levels whose ρ_w is within this fraction of the maximum's count as equally stable
   // (SelectMaximallyStableLevel).
   double run_tolerance = 0.10;
+  // Maxima of ρ_w separated by a relative dip shallower than this are ripples of one curve
+  // (SelectMaximallyStableLevel).
+  double ripple_tolerance = 0.25;
   // How far along the normals the two sides' intensities are read for middle_level, px (beyond
   // the ~2.5σ reach of a blurred edge).
   double side_distance = 3.0;
@@ -103,9 +107,9 @@ struct StabilityProfile {
   // p and the unit normal at p (towards the bright side).
   cv::Point2d centre;
   cv::Point2d normal;
-  // The level halfway between the intensities on the two sides of the curve: the Gaussian-weighted
-  // mean over the normals of (darkest on the dark half + brightest on the bright half) / 2 within
-  // side_distance, fractional.
+  // The level halfway between the intensities on the two sides of the curve: over the normals, the
+  // Gaussian-weighted median of the mid-points between the darkest value on the dark side and the
+  // brightest on the bright side within side_distance, fractional.
   double middle_level = 0.0;
   int NumLevels() const { return static_cast<int>(stability.size()); }
 
@@ -116,6 +120,7 @@ struct StabilityProfile {
   std::vector<double> crossings;
   std::vector<uint8_t> clipped;
   std::vector<double> elements;
+  std::vector<std::pair<double, double>> mids;
 };
 
 // Computes the profile around reference[centre_index]. `reference` is a segment of iso-curve
@@ -137,19 +142,26 @@ struct StableLevel {
   int level = 0;
   // ρ_w of the MSICS.
   double stability = 0.0;
+  // The local maximum nearest to the previous level, where the choice started.
+  int nearest_maximum = 0;
+  // True if ρ_w at both ends of the profile is too low for anything beyond them to have changed
+  // the choice (a profile computed over a window of levels then gives the same answer as over
+  // all levels, provided the nearest maximum is nearer than the window's half-width).
+  bool isolated = false;
 };
 
 // Among the local maxima of the profile (ρ_w(I) > ρ_w(I - 1) and >= ρ_w(I + 1), not at the ends)
 // picks the one whose level is nearest to `previous_level` (ties: larger ρ_w, then lower level),
 // the "MSICS similar to the previous one" of Algorithm 1. Maxima separated by a dip shallower
-// than `run_tolerance` (relative) are ripples of one curve's stability, not different curves: the
-// choice climbs to the highest of them. All levels of the run around the peak with
-// ρ_w >= (1 - run_tolerance) ρ_peak are then equally stable (ρ is nearly flat across the steep
+// than `ripple_tolerance` (relative to the lower one) are ripples of one curve's stability, not
+// different curves: the choice climbs to the highest of them. All levels of the run around the peak
+// with ρ_w >= (1 - run_tolerance) ρ_peak are then equally stable (ρ is nearly flat across the steep
 // part of a sharp edge, where ripples and the corner's geometry would decide), and the level
 // chosen is the profile's middle_level clamped to that run: the middle of the edge. A run of one
 // level is refined by the vertex of a parabola through ρ_w at I - 1, I, I + 1. Returns false if
 // there is no maximum.
 bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous_level,
-                                double run_tolerance, StableLevel* selected);
+                                double run_tolerance, double ripple_tolerance,
+                                StableLevel* selected);
 
 }  // namespace comic::frontend

@@ -65,7 +65,7 @@ TEST(IsoCurveStability, WeightedStabilityPeaksInTheMiddleOfABlurredEdge) {
   ASSERT_TRUE(ComputeWeightedStabilityProfile(image, reference, centre, {}, &profile));
   EXPECT_NEAR(profile.middle_level + 0.5, 125.0, 2.0);
   StableLevel level;
-  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 90.0, 0.10, &level));
+  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 90.0, 0.10, 0.25, &level));
   EXPECT_NEAR(level.threshold, 125.0, 3.0);
   EXPECT_EQ(level.level, static_cast<int>(std::ceil(level.threshold)) - 1);
   // ρ = mean displacement per 2δ levels: the edge's steepest gradient, 150 φ(0) / σ ≈ 57 grey
@@ -83,7 +83,7 @@ TEST(IsoCurveStability, AffineIntensityChangesKeepTheMiddleOfTheEdge) {
   StabilityProfile profile;
   ASSERT_TRUE(ComputeWeightedStabilityProfile(changed, reference, centre, {}, &profile));
   StableLevel level;
-  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 90.0, 0.10, &level));
+  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 90.0, 0.10, 0.25, &level));
   EXPECT_NEAR(level.threshold, 0.8 * 125.0 + 20, 3.0);
 }
 
@@ -104,7 +104,7 @@ TEST(IsoCurveStability, GaussianWeightsMakeInstabilityNearPCountMost) {
     StabilityProfile profile;
     EXPECT_TRUE(ComputeWeightedStabilityProfile(image, reference, centre, {}, &profile));
     StableLevel level;
-    EXPECT_TRUE(SelectMaximallyStableLevel(profile, 125.0, 0.10, &level));
+    EXPECT_TRUE(SelectMaximallyStableLevel(profile, 125.0, 0.10, 0.25, &level));
     return level.stability;
   };
   const double near = rho_at_p(with_soft_rows(36, 45));
@@ -127,13 +127,13 @@ TEST(IsoCurveStability, SelectionTakesTheMiddleOfTheStableRunAndClimbsOverRipple
   const auto profile =
       SyntheticProfile(100, {1.0, 2.0, 4.0, 4.1, 4.05, 4.12, 4.04, 4.1, 3.9, 2.0, 1.0}, 105.3);
   StableLevel level;
-  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 103.0, 0.10, &level));
+  ASSERT_TRUE(SelectMaximallyStableLevel(profile, 103.0, 0.10, 0.25, &level));
   EXPECT_NEAR(level.threshold, 105.8, 1e-9);  // middle_level + 0.5, inside the run
   EXPECT_NEAR(level.stability, 4.12, 1e-9);   // the highest of the ripples
   EXPECT_EQ(level.level, 105);
   // The middle is clamped to the run.
   ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(100, profile.stability, 120.0), 103.0,
-                                         0.10, &level));
+                                         0.10, 0.25, &level));
   EXPECT_NEAR(level.threshold, 108.5, 1e-9);
 }
 
@@ -141,18 +141,18 @@ TEST(IsoCurveStability, SelectionKeepsDistinctCurvesApart) {
   // Two peaks separated by a deep dip: two different curves. The one nearest in level wins.
   const std::vector<double> rho = {1.0, 3.0, 1.0, 0.5, 1.0, 5.0, 1.0};
   StableLevel level;
-  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(50, rho, 0.0), 50.0, 0.10, &level));
+  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(50, rho, 0.0), 50.0, 0.10, 0.25, &level));
   EXPECT_EQ(level.level, 51);
   EXPECT_DOUBLE_EQ(level.stability, 3.0);
-  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(50, rho, 0.0), 56.0, 0.10, &level));
+  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(50, rho, 0.0), 56.0, 0.10, 0.25, &level));
   EXPECT_EQ(level.level, 55);
   // A single-level run is refined by a parabola.
-  ASSERT_TRUE(
-      SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 3.0, 2.0}, 0.0), 1.0, 0.10, &level));
+  ASSERT_TRUE(SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 3.0, 2.0}, 0.0), 1.0, 0.10, 0.25,
+                                         &level));
   EXPECT_NEAR(level.threshold, 1.0 + 1.0 / 6.0 + 0.5, 1e-9);
   // No interior maximum: nothing selected.
-  EXPECT_FALSE(
-      SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 2.0, 3.0}, 0.0), 1.0, 0.10, &level));
+  EXPECT_FALSE(SelectMaximallyStableLevel(SyntheticProfile(0, {1.0, 2.0, 3.0}, 0.0), 1.0, 0.10,
+                                          0.25, &level));
 }
 
 }  // namespace
