@@ -93,7 +93,9 @@ int Run(int argc, char** argv) {
   int resize_height = 0;
   int max_features = 0;
   bool full_resolution_init = false;
+  bool no_neighbour_seeds = false;
   comic::frontend::ComicDetectorOptions options;
+  options.num_threads = 0;  // all cores: the output does not depend on the thread count
   comic::apps::ArgParser parser(
       "comic_detect", "IMAGE [--out overlay.png] [--json features.json] [options]",
       "Detects CoMIC features (Corners on Maximally-stable Iso-intensity Curves, Ravindran &\n"
@@ -126,12 +128,20 @@ int Run(int argc, char** argv) {
                    &options.max_iterations);
   parser.AddOption("convergence-tolerance", "PX", "a corner has settled when it moves at most this",
                    &options.convergence_tolerance);
+  parser.AddOption("stop-tolerance", "PX",
+                   "convergence iterations stop once a corner moves at most this",
+                   &options.stop_tolerance);
   parser.AddOption("merge-radius", "PX", "features closer than this are merged (higher rho kept)",
                    &options.merge_radius);
   parser.AddOption("min-stability", "RHO", "stability threshold on rho = len / dA, 1/px (0 = all)",
                    &options.min_stability);
   parser.AddOption("min-cornerness", "KAPPA", "cornerness threshold on kappa, in [0, 0.25]",
                    &options.min_cornerness);
+  parser.AddFlag(
+      "no-neighbour-seeds",
+      "do not converge again from the other corners found on each MSICS (corners\n"
+      "                              closer than the initialisation scale 2s may be missed)",
+      &no_neighbour_seeds);
   parser.AddFlag("full-resolution-init",
                  "run the initialisation stage at full resolution (default: on the image\n"
                  "                              halved, same physical scale, 4x fewer pixels)",
@@ -152,6 +162,7 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
   COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
   options.coarse_initialisation = !full_resolution_init;
+  options.seed_neighbouring_corners = !no_neighbour_seeds;
   options.Check();
   if (!overlay_path.empty()) comic::io::CheckWritableFile(overlay_path);
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
@@ -190,6 +201,8 @@ int Run(int argc, char** argv) {
                                    {"half_length", options.half_length},
                                    {"max_iterations", options.max_iterations},
                                    {"convergence_tolerance", options.convergence_tolerance},
+                                   {"stop_tolerance", options.stop_tolerance},
+                                   {"seed_neighbouring_corners", options.seed_neighbouring_corners},
                                    {"merge_radius", options.merge_radius},
                                    {"min_stability", options.min_stability},
                                    {"min_cornerness", options.min_cornerness},
