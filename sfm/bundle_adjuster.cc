@@ -36,14 +36,21 @@ class ReprojectionCost {
   template <typename T>
   bool operator()(const T* rotation_coeffs, const T* translation_data, const T* point_data,
                   const T* intrinsics, T* residuals) const {
+    return Residuals(rotation_coeffs, translation_data, point_data, intrinsics, observed_,
+                     residuals);
+  }
+
+  template <typename T, typename I>
+  static bool Residuals(const T* rotation_coeffs, const T* translation_data, const T* point_data,
+                        const I* intrinsics, const Eigen::Vector2d& observed, T* residuals) {
     const Eigen::Map<const Eigen::Quaternion<T>> rotation(rotation_coeffs);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(translation_data);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> point(point_data);
     const Eigen::Matrix<T, 3, 1> point_in_cam = rotation * point + translation;
     residuals[0] =
-        intrinsics[0] * point_in_cam.x() / point_in_cam.z() + intrinsics[2] - T(observed_.x());
+        intrinsics[0] * (point_in_cam.x() / point_in_cam.z()) + intrinsics[2] - T(observed.x());
     residuals[1] =
-        intrinsics[1] * point_in_cam.y() / point_in_cam.z() + intrinsics[3] - T(observed_.y());
+        intrinsics[1] * (point_in_cam.y() / point_in_cam.z()) + intrinsics[3] - T(observed.y());
     return true;
   }
 
@@ -54,6 +61,32 @@ class ReprojectionCost {
 
  private:
   Eigen::Vector2d observed_;
+};
+
+// The same residual with the intrinsics held fixed: they are stored in the functor instead of a
+// parameter block, so automatic differentiation carries 10 derivatives instead of 14 (the
+// common case, and the bulk of the solver's time).
+class FixedIntrinsicsReprojectionCost {
+ public:
+  FixedIntrinsicsReprojectionCost(const Eigen::Vector2d& observed, const double* intrinsics)
+      : observed_(observed),
+        intrinsics_{intrinsics[0], intrinsics[1], intrinsics[2], intrinsics[3]} {}
+
+  template <typename T>
+  bool operator()(const T* rotation_coeffs, const T* translation_data, const T* point_data,
+                  T* residuals) const {
+    return ReprojectionCost::Residuals(rotation_coeffs, translation_data, point_data,
+                                       intrinsics_.data(), observed_, residuals);
+  }
+
+  static ceres::CostFunction* Create(const Eigen::Vector2d& observed, const double* intrinsics) {
+    return new ceres::AutoDiffCostFunction<FixedIntrinsicsReprojectionCost, 2, 4, 3, 3>(
+        new FixedIntrinsicsReprojectionCost(observed, intrinsics));
+  }
+
+ private:
+  Eigen::Vector2d observed_;
+  std::array<double, 4> intrinsics_;
 };
 
 double RmsReprojectionError(const Reconstruction& reconstruction,
@@ -159,9 +192,15 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
     double* translation = rotation + 4;
     for (const Point2D& point2D : image.points2D) {
       if (!point2D.HasPoint3D()) continue;
-      problem.AddResidualBlock(ReprojectionCost::Create(point2D.xy), loss, rotation, translation,
-                               point_params.at(point2D.point3D_id),
-                               camera_params.at(image.camera_id));
+      if (options_.refine_focal_length) {
+        problem.AddResidualBlock(ReprojectionCost::Create(point2D.xy), loss, rotation, translation,
+                                 point_params.at(point2D.point3D_id),
+                                 camera_params.at(image.camera_id));
+      } else {
+        problem.AddResidualBlock(
+            FixedIntrinsicsReprojectionCost::Create(point2D.xy, camera_params.at(image.camera_id)),
+            loss, rotation, translation, point_params.at(point2D.point3D_id));
+      }
     }
     problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
     if (config_.constant_pose_ids.count(image_id)) {
@@ -180,11 +219,9 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
     if (point_params.count(point3D_id))
       problem.SetParameterBlockConstant(point_params.at(point3D_id));
   }
-  for (camera_t camera_id : camera_ids) {
-    if (options_.refine_focal_length) {
+  if (options_.refine_focal_length) {
+    for (camera_t camera_id : camera_ids) {
       problem.SetManifold(camera_params.at(camera_id), new ceres::SubsetManifold(4, {2, 3}));
-    } else {
-      problem.SetParameterBlockConstant(camera_params.at(camera_id));
     }
   }
 
@@ -196,7 +233,11 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
     ordering->AddElementToGroup(pose_params.at(image_id), 1);
     ordering->AddElementToGroup(pose_params.at(image_id) + 4, 1);
   }
-  for (camera_t camera_id : camera_ids) ordering->AddElementToGroup(camera_params.at(camera_id), 1);
+  if (options_.refine_focal_length) {
+    for (camera_t camera_id : camera_ids) {
+      ordering->AddElementToGroup(camera_params.at(camera_id), 1);
+    }
+  }
 
   ceres::Solver::Options solver_options;
   // Dense Schur is fastest for the few dozen cameras of a video window; larger problems need the

@@ -15,8 +15,10 @@ void IncrementalMapper::Options::Check() const {
               "mapper init_min_num_matches must be >= 5, got " << init_min_num_matches);
   COMIC_CHECK(init_min_num_inliers >= 5, kInvalidArgument,
               "mapper init_min_num_inliers must be >= 5, got " << init_min_num_inliers);
-  COMIC_CHECK(init_min_median_tri_angle_deg >= 0 && init_min_median_tri_angle_deg < 90,
-              kInvalidArgument, "mapper init_min_median_tri_angle_deg must be in [0, 90)");
+  COMIC_CHECK(init_tri_angle_deg > 0 && init_tri_angle_deg < 90, kInvalidArgument,
+              "mapper init_tri_angle_deg must be in (0, 90)");
+  COMIC_CHECK(init_min_score >= 0, kInvalidArgument, "mapper init_min_score must be >= 0");
+  COMIC_CHECK(init_num_anchors >= 1, kInvalidArgument, "mapper init_num_anchors must be >= 1");
   COMIC_CHECK(init_max_frame_gap >= 1, kInvalidArgument, "mapper init_max_frame_gap must be >= 1");
   COMIC_CHECK(init_max_num_trials >= 1, kInvalidArgument,
               "mapper init_max_num_trials must be >= 1");
@@ -78,9 +80,18 @@ int FeatureInFrame(const frontend::Track& track, int frame) {
 
 }  // namespace
 
-std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair() const {
+std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair(
+    const std::set<image_t>& excluded) const {
+  std::vector<InitialPair> pairs = FindInitialPairs(excluded);
+  if (pairs.empty()) return std::nullopt;
+  return std::move(pairs.front());
+}
+
+std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
+    const std::set<image_t>& excluded) const {
+  std::vector<InitialPair> pairs;
   const int num_frames = static_cast<int>(tracks_->NumFrames());
-  if (num_frames < 2) return std::nullopt;
+  if (num_frames < 2) return pairs;
   // Anchors: frames with the most tracked features first (for a video, the middle frames, whose
   // tracks run both ways), ties by frame index.
   std::vector<int> num_tracked(num_frames, 0);
@@ -88,14 +99,18 @@ std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair
     if (track.Length() < 2) continue;
     for (const frontend::TrackObservation& obs : track.observations) ++num_tracked[obs.frame];
   }
-  std::vector<int> anchors(num_frames);
-  std::iota(anchors.begin(), anchors.end(), 0);
+  std::vector<int> anchors;
+  for (int frame = 0; frame < num_frames; ++frame) {
+    if (!excluded.count(ImageIdOfFrame(frame))) anchors.push_back(frame);
+  }
   std::stable_sort(anchors.begin(), anchors.end(),
                    [&](int a, int b) { return num_tracked[a] > num_tracked[b]; });
 
   const Camera& camera = reconstruction_.camera(camera_id_);
   int num_trials = 0;
-  for (int frame1 : anchors) {
+  const int num_anchors = std::min<int>(options_.init_num_anchors, anchors.size());
+  for (int a = 0; a < num_anchors && num_trials < options_.init_max_num_trials; ++a) {
+    const int frame1 = anchors[a];
     if (num_tracked[frame1] < options_.init_min_num_matches) break;
     // Tracks through the anchor.
     std::vector<int> anchor_tracks;
@@ -103,9 +118,12 @@ std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair
       const int t = track_of_feature_[frame1][f];
       if (t >= 0 && tracks_->tracks[t].Length() >= 2) anchor_tracks.push_back(t);
     }
-    // Growing gaps: the smallest gap with enough parallax keeps the most matches.
+    // Growing gaps: parallax grows with the gap while the shared tracks dwindle, so the score
+    // rises to a peak and falls again.
+    double anchor_best_score = 0.0;
     for (int gap = 1; gap <= options_.init_max_frame_gap && frame1 + gap < num_frames; ++gap) {
       const int frame2 = frame1 + gap;
+      if (excluded.count(ImageIdOfFrame(frame2))) continue;
       InitialPair pair;
       pair.image_id1 = ImageIdOfFrame(frame1);
       pair.image_id2 = ImageIdOfFrame(frame2);
@@ -117,24 +135,37 @@ std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair
         pair.track_ids.push_back(t);
         pair.point2D_idxs1.push_back(static_cast<point2D_t>(feature1));
         pair.point2D_idxs2.push_back(static_cast<point2D_t>(feature2));
-        const frontend::Feature& a = tracks_->features[frame1][feature1];
-        const frontend::Feature& b = tracks_->features[frame2][feature2];
-        points1.emplace_back(a.x, a.y);
-        points2.emplace_back(b.x, b.y);
+        const frontend::Feature& f1 = tracks_->features[frame1][feature1];
+        const frontend::Feature& f2 = tracks_->features[frame2][feature2];
+        points1.emplace_back(f1.x, f1.y);
+        points2.emplace_back(f2.x, f2.y);
       }
       // Tracks only end as the gap grows, so larger gaps will not do better.
       if (static_cast<int>(pair.track_ids.size()) < options_.init_min_num_matches) break;
-      if (num_trials++ >= options_.init_max_num_trials) return std::nullopt;
+      if (num_trials++ >= options_.init_max_num_trials) break;
       pair.geometry =
           EstimateCalibratedTwoViewGeometry(camera, camera, points1, points2, options_.two_view);
-      if (pair.geometry.configuration == TwoViewConfiguration::kCalibrated &&
-          pair.geometry.num_inliers >= options_.init_min_num_inliers &&
-          pair.geometry.median_triangulation_angle_deg >= options_.init_min_median_tri_angle_deg) {
-        return pair;
+      if (pair.geometry.configuration != TwoViewConfiguration::kCalibrated ||
+          pair.geometry.num_inliers < options_.init_min_num_inliers) {
+        continue;
       }
+      double score = 0.0;
+      for (double angle : pair.geometry.triangulation_angles_deg) {
+        score += std::min(angle / options_.init_tri_angle_deg, 1.0);
+      }
+      pair.score = score;
+      const bool saturated =
+          pair.geometry.median_triangulation_angle_deg >= options_.init_tri_angle_deg;
+      if (score >= options_.init_min_score) pairs.push_back(std::move(pair));
+      // Past this anchor's peak, or most inliers already count fully so that larger gaps can
+      // only lose matches.
+      if (score < 0.5 * anchor_best_score || saturated) break;
+      anchor_best_score = std::max(anchor_best_score, score);
     }
   }
-  return std::nullopt;
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [](const InitialPair& a, const InitialPair& b) { return a.score > b.score; });
+  return pairs;
 }
 
 size_t IncrementalMapper::RegisterInitialPair(const InitialPair& pair) {

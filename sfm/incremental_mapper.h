@@ -40,13 +40,21 @@ class IncrementalMapper {
     int init_min_num_matches = 100;
     // Initial pair: at least this many essential-matrix inliers in front of both cameras.
     int init_min_num_inliers = 60;
-    // Initial pair: median triangulation angle of the inliers at least this (degrees). Pairs
-    // are searched over frame gaps, so forward motion finds the gap that gives this parallax.
-    double init_min_median_tri_angle_deg = 3.0;
+    // Initial pair: an inlier counts fully towards the pair's score when its triangulation angle
+    // reaches this (degrees), proportionally below. The score, Σ min(angle / this, 1), rewards
+    // parallax without requiring it of every point: under forward motion the points near the
+    // epipole never have any, so a median-angle test (COLMAP's) rejects every pair.
+    double init_tri_angle_deg = 4.0;
+    // Initial pair: the best pair must score at least this.
+    double init_min_score = 30.0;
     // Initial pair: frames at most this far apart (in frame index).
     int init_max_frame_gap = 20;
-    // Initial pair: at most this many pairs are verified geometrically.
-    int init_max_num_trials = 200;
+    // Initial pair: anchor frames tried (those with the most tracks); each anchor is paired with
+    // the following frames at growing gaps until its score has clearly passed its peak or the
+    // median inlier angle reaches init_tri_angle_deg.
+    int init_num_anchors = 6;
+    // Initial pair: at most this many pairs are verified geometrically per search.
+    int init_max_num_trials = 100;
     // Initial pair: essential matrix RANSAC and homography check.
     TwoViewGeometryOptions two_view;
     // Registration of a new frame: PnP RANSAC on its tracks that have 3-D points.
@@ -74,6 +82,8 @@ class IncrementalMapper {
     std::vector<int> track_ids;
     std::vector<point2D_t> point2D_idxs1;
     std::vector<point2D_t> point2D_idxs2;
+    // Parallax score, Σ over inliers of min(angle / init_tri_angle_deg, 1).
+    double score = 0.0;
   };
 
   // Builds an empty reconstruction with one camera and one unregistered image per frame of
@@ -82,10 +92,16 @@ class IncrementalMapper {
   IncrementalMapper(const frontend::FeatureTracks& tracks, const Camera& camera,
                     const Options& options);
 
-  // Searches frame pairs (anchors with the most tracks first, growing frame gaps) for one with
-  // enough matches, inliers and parallax that is not explained by a homography. std::nullopt if
-  // no pair qualifies (pure rotation, too few tracks, too little parallax).
-  std::optional<InitialPair> FindInitialPair() const;
+  // Searches frame pairs (anchors with the most tracks first, growing frame gaps) for the one
+  // with the highest parallax score among those with enough matches and inliers whose matches a
+  // homography does not explain. std::nullopt if no pair qualifies (pure rotation, too few
+  // tracks, too little parallax).
+  // Frames (image ids) in `excluded` take no part.
+  std::optional<InitialPair> FindInitialPair(const std::set<image_t>& excluded = {}) const;
+  // Every qualifying pair the search verified, best score first (FindInitialPair returns the
+  // first). Pairs are independent of the mapper's state, so a pipeline may compute them once and
+  // start several models from them.
+  std::vector<InitialPair> FindInitialPairs(const std::set<image_t>& excluded = {}) const;
 
   // Sets the pair's poses (first at the origin, unit baseline), registers both and triangulates
   // their inlier tracks. Returns the number of 3-D points created (0: the pair is unusable).

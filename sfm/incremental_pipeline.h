@@ -48,6 +48,10 @@ struct IncrementalPipelineOptions {
   int max_registration_trials = 3;
   // The initial pair must triangulate at least this many points.
   int min_num_initial_points = 30;
+  // Models grown at most: when a model leaves frames unregistered, another is started from an
+  // initial pair among the frames no earlier model reached, and the model with the most
+  // registered frames is returned.
+  int max_num_models = 4;
 
   IncrementalPipelineOptions();
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -58,6 +62,7 @@ struct IncrementalPipelineOptions {
 struct MapperProgress {
   int frame = -1;  // frame index just registered
   std::string frame_name;
+  int attempt = 0;            // which model (0 = the first; see max_num_models)
   bool initial_pair = false;  // registered as part of the initial pair
   size_t num_registered = 0;  // registered frames so far
   size_t num_frames = 0;
@@ -73,6 +78,8 @@ struct IncrementalReconstruction {
   std::vector<int> unregistered_frames;  // ascending
   int initial_frame1 = -1;
   int initial_frame2 = -1;
+  int num_models = 0;  // models grown (the best is returned)
+  // Over all models grown:
   int num_local_ba = 0;
   int num_global_ba = 0;
   double local_ba_time_s = 0.0;
@@ -81,8 +88,9 @@ struct IncrementalReconstruction {
   double wall_time_s = 0.0;          // the whole reconstruction
 };
 
-// Reconstructs the frames of `tracks` seen by `camera`. Throws comic::Error only for invalid
-// input (tracks, camera, options); expected failures come back as the status.
+// Reconstructs the frames of `tracks` seen by `camera`: one model, the largest of up to
+// options.max_num_models. Throws comic::Error only for invalid input (tracks, camera, options);
+// expected failures come back as the status (that of the first attempt when none succeeds).
 IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks& tracks,
                                                    const Camera& camera,
                                                    const IncrementalPipelineOptions& options,

@@ -98,6 +98,7 @@ TwoViewGeometry EstimateCalibratedTwoViewGeometry(const Camera& camera1, const C
     geometry.points3D.push_back(*point);
     angles.push_back(TriangulationAngleDeg(Eigen::Vector3d::Zero(), center2, *point));
   }
+  geometry.triangulation_angles_deg = angles;
   geometry.num_inliers = static_cast<int>(angles.size());
   if (!angles.empty()) {
     std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());

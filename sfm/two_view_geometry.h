@@ -19,7 +19,7 @@ struct TwoViewGeometryOptions {
   // RANSAC confidence (0..1).
   double confidence = 0.999;
   // Maximum number of RANSAC iterations.
-  int max_num_iterations = 2000;
+  int max_num_iterations = 1000;
   // Fewer essential-matrix inliers than this: kDegenerate.
   int min_num_inliers = 15;
   // Homography inliers / essential inliers above this: kPlanarOrPanoramic.
@@ -47,8 +47,10 @@ struct TwoViewGeometry {
   int num_essential_inliers = 0;  // before the cheirality check
   int num_homography_inliers = 0;
   double median_triangulation_angle_deg = 0.0;  // over the inliers
-  // The inliers triangulated in camera 1's frame (unit baseline), in the order of inlier_mask.
+  // The inliers triangulated in camera 1's frame (unit baseline), in the order of inlier_mask,
+  // and their triangulation angles (degrees).
   std::vector<Eigen::Vector3d> points3D;
+  std::vector<double> triangulation_angles_deg;
 };
 
 // Estimates the relative pose of camera 2 with respect to camera 1 from pixel correspondences

@@ -35,7 +35,7 @@ void ExpectAccurate(const SyntheticSceneOptions& scene_options) {
   EXPECT_EQ(result.reconstruction.NumRegisteredImages(), scene.cams_from_world.size());
   EXPECT_TRUE(result.unregistered_frames.empty());
   EXPECT_EQ(reported.size(), scene.cams_from_world.size());
-  EXPECT_GT(result.reconstruction.NumPoints3D(), 200u);
+  EXPECT_GT(result.reconstruction.NumPoints3D(), 300u);
   EXPECT_LT(result.reconstruction.ComputeMeanReprojectionError(), 1.0);
   const auto evaluation = Evaluate(result, scene);
   ASSERT_TRUE(evaluation.has_value());
@@ -47,14 +47,16 @@ void ExpectAccurate(const SyntheticSceneOptions& scene_options) {
 TEST(IncrementalPipeline, HandHeldVideoRegistersEveryFrameAccurately) {
   SyntheticSceneOptions scene_options;
   scene_options.motion = SyntheticMotion::kHandHeld;
+  scene_options.num_frames = 20;
+  scene_options.num_points = 600;
   ExpectAccurate(scene_options);
 }
 
 TEST(IncrementalPipeline, ForwardMotionRegistersEveryFrameAccurately) {
   SyntheticSceneOptions scene_options;
   scene_options.motion = SyntheticMotion::kForward;
-  scene_options.num_frames = 40;
-  scene_options.num_points = 3000;
+  scene_options.num_frames = 25;
+  scene_options.num_points = 800;
   ExpectAccurate(scene_options);
 }
 
@@ -100,7 +102,8 @@ TEST(IncrementalPipeline, TwoFramesGiveAClearStatus) {
 
 TEST(IncrementalPipeline, SameInputGivesIdenticalOutput) {
   SyntheticSceneOptions scene_options;
-  scene_options.num_frames = 12;
+  scene_options.num_frames = 10;
+  scene_options.num_points = 300;
   const SyntheticScene scene = MakeSyntheticScene(scene_options);
   const IncrementalReconstruction a =
       ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());

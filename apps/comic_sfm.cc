@@ -1,0 +1,492 @@
+// comic_sfm: structure from motion on a frame sequence. Detects and tracks features with the
+// chosen detector, reconstructs the cameras and points incrementally (two-view initialisation,
+// PnP, triangulation, Ceres bundle adjustment), and writes a COLMAP text model, a coloured PLY
+// point cloud, report.json and a top-view trajectory plot; with ground-truth cameras it also
+// reports the Sim(3)-aligned trajectory error. --compare runs several detectors on the same frames
+// and writes one table. All the work is done by the libraries (sfm/sequence_reconstruction.h,
+// sfm/sfm_report.h, ...); this file only wires flags to them.
+#include <algorithm>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/common/arg_parser.h"
+#include "frontend/detector_factory.h"
+#include "frontend/region_labels.h"
+#include "frontend/tracker.h"
+#include "io/colmap_text_model.h"
+#include "io/error.h"
+#include "io/file_utils.h"
+#include "io/ground_truth_cameras.h"
+#include "io/image_sequence.h"
+#include "io/mask_folder.h"
+#include "io/ply.h"
+#include "io/region_annotations.h"
+#include "io/report_table.h"
+#include "sfm/camera.h"
+#include "sfm/colmap_model_conversion.h"
+#include "sfm/ground_truth.h"
+#include "sfm/reconstruction_stats.h"
+#include "sfm/sequence_reconstruction.h"
+#include "sfm/sfm_report.h"
+#include "sfm/trajectory_evaluation.h"
+#include "sfm/trajectory_plot.h"
+
+namespace {
+
+using comic::Error;
+using comic::ErrorKind;
+namespace io = comic::io;
+namespace frontend = comic::frontend;
+namespace sfm = comic::sfm;
+
+// Every flag, with its default.
+struct Flags {
+  std::string frames;
+  std::string detector = "harris";
+  bool compare = false;
+  std::string detectors;
+  std::string intrinsics;
+  std::string gt;
+  std::string gt_format = "auto";
+  std::string out = "out/sfm";
+  io::ImageSequenceOptions sequence;
+  int max_features = 2000;
+  double search_radius = 20.0;
+  double unpredicted_radius = 60.0;
+  std::string prediction = "velocity";
+  double coarse_radius = 80.0;
+  double max_cost = 400.0;
+  bool refine_focal = false;
+  int local_ba_images = 8;
+  double init_angle = 4.0;
+  int init_max_gap = 20;
+  int threads = 1;
+  std::string regions;
+  std::string masks;
+  double boundary_band = 11.0;
+  std::string plot_plane = "auto";
+  bool quiet = false;
+};
+
+// What every run shares, resolved and validated before any heavy work.
+struct Inputs {
+  std::unique_ptr<io::ImageSequence> sequence;
+  std::vector<int> source_indices;
+  sfm::Camera camera;
+  std::string intrinsics_source;
+  std::optional<sfm::FrameGroundTruth> ground_truth;
+  io::GroundTruthFormat gt_format = io::GroundTruthFormat::kAuto;
+  std::vector<cv::Mat> region_labels;  // per frame, empty without --regions / --masks
+  sfm::PlotPlane plot_plane;
+  bool plot_plane_from_estimate = false;  // auto without ground truth: PCA of our centres
+};
+
+sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
+  sfm::SequenceReconstructionOptions options;
+  options.tracker.max_features = flags.max_features;
+  options.tracker.matcher.radius = flags.search_radius;
+  options.tracker.unpredicted_radius = flags.unpredicted_radius;
+  options.tracker.prediction = frontend::ParseMotionPrediction(flags.prediction);
+  options.tracker.coarse_radius = flags.coarse_radius;
+  options.tracker.matcher.max_cost = flags.max_cost;
+  options.mapper.global_ba.refine_focal_length = flags.refine_focal;
+  options.mapper.local_ba_num_images = flags.local_ba_images;
+  options.mapper.mapper.init_tri_angle_deg = flags.init_angle;
+  options.mapper.mapper.init_max_frame_gap = flags.init_max_gap;
+  options.mapper.local_ba.num_threads = flags.threads;
+  options.mapper.global_ba.num_threads = flags.threads;
+  options.Check();
+  return options;
+}
+
+nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
+  const sfm::Camera& c = inputs.camera;
+  return {{"frames", flags.frames},
+          {"first", flags.sequence.first_frame},
+          {"last", flags.sequence.last_frame},
+          {"stride", flags.sequence.stride},
+          {"resize_height", flags.sequence.resize_height},
+          {"frame_size", {inputs.sequence->FrameSize().width, inputs.sequence->FrameSize().height}},
+          {"intrinsics",
+           {{"source", inputs.intrinsics_source},
+            {"fx", c.fx},
+            {"fy", c.fy},
+            {"cx", c.cx},
+            {"cy", c.cy},
+            {"pixel_convention", "OpenCV (top-left pixel centre at 0,0)"}}},
+          {"gt", flags.gt.empty() ? nlohmann::json(nullptr) : nlohmann::json(flags.gt)},
+          {"gt_format", io::GroundTruthFormatName(inputs.gt_format)},
+          {"max_features", flags.max_features},
+          {"search_radius_px", flags.search_radius},
+          {"unpredicted_radius_px", flags.unpredicted_radius},
+          {"prediction", flags.prediction},
+          {"coarse_radius_px", flags.coarse_radius},
+          {"max_cost", flags.max_cost},
+          {"refine_focal", flags.refine_focal},
+          {"local_ba_images", flags.local_ba_images},
+          {"init_angle_deg", flags.init_angle},
+          {"init_max_gap", flags.init_max_gap},
+          {"threads", flags.threads},
+          {"regions", flags.regions},
+          {"masks", flags.masks},
+          {"boundary_band_px", flags.boundary_band}};
+}
+
+sfm::PlotPlane ParsePlotPlane(const std::string& name) {
+  if (name == "xz") return sfm::PlotPlaneFromAxes(0, 2);
+  if (name == "xy") return sfm::PlotPlaneFromAxes(0, 1);
+  if (name == "yz") return sfm::PlotPlaneFromAxes(1, 2);
+  throw Error(ErrorKind::kInvalidArgument,
+              "--plot-plane: expected auto, xz, xy or yz, got '" + name + "'");
+}
+
+Inputs ResolveInputs(const Flags& flags) {
+  COMIC_CHECK(flags.regions.empty() || flags.masks.empty(), kInvalidArgument,
+              "--regions and --masks exclude each other");
+  COMIC_CHECK(flags.boundary_band > 0, kInvalidArgument, "--boundary-band must be > 0");
+  if (flags.plot_plane != "auto") ParsePlotPlane(flags.plot_plane);
+  const io::GroundTruthFormat gt_format = io::ParseGroundTruthFormat(flags.gt_format);
+
+  Inputs inputs;
+  inputs.sequence =
+      std::make_unique<io::ImageSequence>(io::ImageSequence::Open(flags.frames, flags.sequence));
+  const io::ImageSequence& sequence = *inputs.sequence;
+  for (size_t k = 0; k < sequence.NumFrames(); ++k) {
+    inputs.source_indices.push_back(flags.sequence.first_frame +
+                                    static_cast<int>(k) * flags.sequence.stride);
+  }
+  const cv::Size source_size = sequence.SourceFrameSize();
+  const cv::Size frame_size = sequence.FrameSize();
+  const double scale = static_cast<double>(frame_size.height) / source_size.height;
+
+  if (!flags.gt.empty()) {
+    const io::GroundTruthCameras truth = io::ReadGroundTruthCameras(flags.gt, gt_format);
+    inputs.gt_format = truth.format;
+    inputs.ground_truth = sfm::MatchGroundTruthToFrames(
+        truth, sequence.FrameNames(), inputs.source_indices, source_size, frame_size);
+  }
+  if (!flags.intrinsics.empty()) {
+    const sfm::Camera source_camera = sfm::CameraFromK(io::ReadIntrinsicsFile(flags.intrinsics),
+                                                       source_size.width, source_size.height);
+    inputs.camera = scale == 1.0 ? source_camera : source_camera.Scaled(scale);
+    inputs.intrinsics_source = "file " + flags.intrinsics;
+  } else if (inputs.ground_truth && inputs.ground_truth->camera) {
+    inputs.camera = *inputs.ground_truth->camera;
+    inputs.intrinsics_source = "ground truth " + flags.gt;
+  } else {
+    inputs.camera = sfm::Camera::FromImageSize(frame_size.width, frame_size.height);
+    inputs.intrinsics_source = "default: f = 1.2 max(w, h), principal point at the centre";
+  }
+  inputs.camera.width = frame_size.width;
+  inputs.camera.height = frame_size.height;
+
+  if (!flags.regions.empty() || !flags.masks.empty()) {
+    std::optional<io::RegionAnnotations> regions;
+    std::optional<io::MaskFolder> masks;
+    if (!flags.regions.empty()) {
+      regions = io::ReadRegionFile(flags.regions);
+    } else {
+      masks = io::MaskFolder::Open(flags.masks);
+    }
+    for (int source_index : inputs.source_indices) {
+      cv::Mat mask;
+      if (regions) {
+        COMIC_CHECK(source_index < static_cast<int>(regions->polygons.size()), kInvalidData,
+                    flags.regions << ": no region for frame " << source_index);
+        mask = io::RasterizeRegion(regions->polygons[source_index], source_size, frame_size);
+      } else {
+        COMIC_CHECK(source_index < static_cast<int>(masks->NumMasks()), kInvalidData,
+                    flags.masks << ": no mask for frame " << source_index);
+        mask = masks->Read(source_index, source_size);
+        if (mask.size() != frame_size) {
+          cv::resize(mask, mask, frame_size, 0, 0, cv::INTER_NEAREST);
+        }
+      }
+      inputs.region_labels.push_back(frontend::LabelRegion(mask, flags.boundary_band));
+    }
+  }
+
+  if (flags.plot_plane != "auto") {
+    inputs.plot_plane = ParsePlotPlane(flags.plot_plane);
+  } else if (inputs.gt_format == io::GroundTruthFormat::kKitti) {
+    inputs.plot_plane = sfm::PlotPlaneFromAxes(0, 2);  // KITTI: y points down, x–z is the ground
+  } else if (inputs.ground_truth) {
+    std::vector<Eigen::Vector3d> centers;
+    for (const auto& pose : inputs.ground_truth->cams_from_world) {
+      if (pose) centers.push_back(sfm::ProjectionCenter(*pose));
+    }
+    inputs.plot_plane = sfm::PlotPlaneFromCenters(centers);
+  } else {
+    inputs.plot_plane_from_estimate = true;
+  }
+  return inputs;
+}
+
+sfm::RegionLabelFn RegionLabels(const Inputs& inputs) {
+  if (inputs.region_labels.empty()) return {};
+  return [&inputs](const sfm::Image& image, const Eigen::Vector2d& xy) {
+    const cv::Mat& labels = inputs.region_labels.at(image.image_id - 1);
+    const int x = static_cast<int>(std::lround(xy.x()));
+    const int y = static_cast<int>(std::lround(xy.y()));
+    if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) {
+      return frontend::RegionLabel::kOutside;
+    }
+    return static_cast<frontend::RegionLabel>(labels.at<uint8_t>(y, x));
+  };
+}
+
+cv::Mat RenderPlot(const Inputs& inputs, const sfm::Reconstruction& reconstruction,
+                   const std::optional<sfm::TrajectoryEvaluation>& evaluation,
+                   const std::string& title) {
+  const io::ImageSequence& sequence = *inputs.sequence;
+  const auto estimated = sfm::RegisteredPosesByName(reconstruction, sequence.FrameNames());
+  std::vector<std::optional<Eigen::Vector3d>> estimated_centers(estimated.size());
+  std::vector<std::optional<Eigen::Vector3d>> true_centers(estimated.size());
+  std::vector<Eigen::Vector3d> all_estimated;
+  for (size_t i = 0; i < estimated.size(); ++i) {
+    if (estimated[i]) {
+      Eigen::Vector3d center = sfm::ProjectionCenter(*estimated[i]);
+      if (evaluation) center = evaluation->gt_from_estimated * center;
+      estimated_centers[i] = center;
+      all_estimated.push_back(center);
+    }
+    if (inputs.ground_truth && inputs.ground_truth->cams_from_world[i]) {
+      true_centers[i] = sfm::ProjectionCenter(*inputs.ground_truth->cams_from_world[i]);
+    }
+  }
+  // Without an alignment the estimate lives in its own frame: draw it alone.
+  if (!evaluation) std::fill(true_centers.begin(), true_centers.end(), std::nullopt);
+  const sfm::PlotPlane plane = inputs.plot_plane_from_estimate
+                                   ? sfm::PlotPlaneFromCenters(all_estimated)
+                                   : inputs.plot_plane;
+  sfm::TrajectoryPlotOptions options;
+  options.title = title;
+  return sfm::RenderTrajectoryPlot(estimated_centers, true_centers, plane, options);
+}
+
+struct DetectorRun {
+  sfm::SequenceReconstruction run;
+  sfm::SfmRunReport report;
+};
+
+// Reconstructs with one detector and writes its outputs into `out_dir`.
+DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, const Inputs& inputs,
+                        const std::string& out_dir) {
+  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_name);
+  const sfm::SequenceReconstructionOptions options = MakeOptions(flags);
+  const std::string tag = "[" + detector_name + "] ";
+  DetectorRun result;
+  result.run = sfm::ReconstructSequence(
+      *inputs.sequence, *detector, inputs.camera, options, {}, [&](const sfm::MapperProgress& p) {
+        if (flags.quiet) return;
+        std::cout << tag << (p.attempt > 0 ? "model " + std::to_string(p.attempt + 1) + ": " : "")
+                  << "registered " << p.frame_name << (p.initial_pair ? " (initial pair)" : "")
+                  << ": " << p.num_registered << "/" << p.num_frames << " frames, "
+                  << p.num_points3D << " points";
+        if (!p.initial_pair) std::cout << ", " << p.num_pose_inliers << " PnP inliers";
+        std::cout << std::endl;
+      });
+  const sfm::Reconstruction& reconstruction = result.run.mapping.reconstruction;
+  const sfm::ReconstructionStats stats =
+      sfm::ComputeReconstructionStats(reconstruction, RegionLabels(inputs));
+  std::optional<sfm::TrajectoryEvaluation> evaluation;
+  if (inputs.ground_truth) {
+    evaluation = sfm::EvaluateTrajectory(
+        sfm::RegisteredPosesByName(reconstruction, inputs.sequence->FrameNames()),
+        inputs.ground_truth->cams_from_world);
+  }
+  result.report = sfm::MakeRunReport(result.run, stats, evaluation);
+
+  io::EnsureWritableDirectory(out_dir);
+  nlohmann::json json = sfm::RunReportToJson(result.report);
+  json["options"] = OptionsToJson(flags, inputs);
+  if (result.run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
+    io::WriteColmapTextModel(sfm::ToColmapTextModel(reconstruction), out_dir);
+    std::vector<io::PlyPoint> cloud;
+    for (const auto& [point3D_id, point] : reconstruction.points3D()) {
+      cloud.push_back({point.xyz, point.color});
+    }
+    io::WritePly(io::JoinPaths(out_dir, "points.ply"), cloud);
+    io::WriteImageAtomically(
+        io::JoinPaths(out_dir, "trajectory.png"),
+        RenderPlot(inputs, reconstruction, evaluation,
+                   "comic_sfm --detector " + detector_name + "  " + flags.frames));
+    json["outputs"] = {"cameras.txt", "images.txt", "points3D.txt", "points.ply", "trajectory.png"};
+  }
+  io::WriteFileAtomically(io::JoinPaths(out_dir, "report.json"), json.dump(2) + "\n");
+  return result;
+}
+
+void PrintSummary(const sfm::SfmRunReport& report) {
+  std::cout << "[" << report.detector << "] " << report.status << ": "
+            << report.stats.num_registered << "/" << report.num_frames << " frames registered, "
+            << report.stats.all.num_points << " points, mean track length "
+            << report.stats.all.mean_track_length << ", mean reprojection error "
+            << report.stats.all.mean_reprojection_error_px << " px";
+  if (report.trajectory) {
+    std::cout << ", ATE " << report.trajectory->ate_rmse << " ("
+              << 100.0 * report.trajectory->ate_fraction_of_path << " % of "
+              << report.trajectory->path_length << "), rotation error "
+              << report.trajectory->mean_rotation_error_deg << " deg";
+  }
+  std::cout << ", " << report.wall_time_s << " s" << std::endl;
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_sfm", "FRAMES [options]",
+      "Structure from motion on a frame sequence (folder of images or video): tracks features\n"
+      "with the chosen detector, reconstructs cameras and points incrementally with Ceres bundle\n"
+      "adjustment, and writes into --out: cameras.txt, images.txt, points3D.txt (a COLMAP text\n"
+      "model), points.ply (coloured point cloud), report.json (every number and the options),\n"
+      "trajectory.png (top view; with --gt, ours Sim(3)-aligned against the ground truth).");
+  parser.AddPositional("FRAMES", "folder of images, or video file", &flags.frames);
+  parser.AddOption("detector", "NAME", "detector: comic, harris, hessian, mser or fast",
+                   &flags.detector);
+  parser.AddFlag("compare",
+                 "run every detector of --detectors on the same frames; writes --out/<detector>/ "
+                 "and the table compare.md, compare.csv, compare.json",
+                 &flags.compare);
+  parser.AddOption("detectors", "LIST",
+                   "comma-separated detectors for --compare (default: all five)", &flags.detectors);
+  parser.AddOption("intrinsics", "FILE",
+                   "intrinsics of the frames as stored: 'fx fy cx cy', a 3x3 K or a 3x4 P (e.g. "
+                   "KITTI calib.txt); default: from --gt if it has them, else f = 1.2 max(w, h) "
+                   "at the image centre",
+                   &flags.intrinsics);
+  parser.AddOption("gt", "PATH",
+                   "ground-truth cameras: KITTI poses.txt (calib.txt beside it gives the "
+                   "intrinsics; matched by frame index), Middlebury *_par.txt, or a folder of "
+                   "Strecha *.camera files (matched by image name)",
+                   &flags.gt);
+  parser.AddOption("gt-format", "F", "format of --gt: auto, kitti, middlebury or strecha",
+                   &flags.gt_format);
+  parser.AddOption("out", "DIR", "output folder (created if needed)", &flags.out);
+  parser.AddOption("resize-height", "H", "resize frames to height H (0 = original)",
+                   &flags.sequence.resize_height);
+  parser.AddOption("first", "N", "first frame index", &flags.sequence.first_frame);
+  parser.AddOption("last", "N", "last frame index, inclusive (-1 = end)",
+                   &flags.sequence.last_frame);
+  parser.AddOption("stride", "N", "use every N-th frame", &flags.sequence.stride);
+  parser.AddOption("max-features", "N", "strongest features tracked per frame (0 = all)",
+                   &flags.max_features);
+  parser.AddOption("search-radius", "PX", "tracker search radius around the predicted position",
+                   &flags.search_radius);
+  parser.AddOption("unpredicted-radius", "PX",
+                   "tracker search radius where no motion predicts a feature (0 = "
+                   "--search-radius)",
+                   &flags.unpredicted_radius);
+  parser.AddOption("prediction", "P", "tracker motion prediction: none, velocity, coarse-to-fine",
+                   &flags.prediction);
+  parser.AddOption("coarse-radius", "PX",
+                   "coarse-to-fine prediction: search radius of the coarse pass (pixels of the "
+                   "frames as used)",
+                   &flags.coarse_radius);
+  parser.AddOption("max-cost", "T", "tracker SSD threshold (mean squared grey difference)",
+                   &flags.max_cost);
+  parser.AddFlag("refine-focal", "refine the focal length in the global bundle adjustments",
+                 &flags.refine_focal);
+  parser.AddOption("local-ba-images", "N", "images in each local bundle adjustment",
+                   &flags.local_ba_images);
+  parser.AddOption("init-angle", "DEG",
+                   "initial pair: a point's triangulation angle that counts fully towards the "
+                   "pair's parallax score",
+                   &flags.init_angle);
+  parser.AddOption("init-max-gap", "N", "initial pair: frames at most this far apart",
+                   &flags.init_max_gap);
+  parser.AddOption("threads", "N",
+                   "Ceres threads (1 = bit-for-bit deterministic; more may change the last bits)",
+                   &flags.threads);
+  parser.AddOption("regions", "FILE",
+                   "object region per frame (VOT polygons / OTB boxes): adds boundary and "
+                   "interior point statistics",
+                   &flags.regions);
+  parser.AddOption("masks", "DIR",
+                   "object mask per frame (e.g. DAVIS annotations): adds boundary and interior "
+                   "point statistics",
+                   &flags.masks);
+  parser.AddOption("boundary-band", "PX", "width of the boundary band on each side of the edge",
+                   &flags.boundary_band);
+  parser.AddOption("plot-plane", "P",
+                   "trajectory plot plane: auto (x-z for KITTI, else the plane of largest "
+                   "spread), xz, xy or yz",
+                   &flags.plot_plane);
+  parser.AddFlag("quiet", "no progress line per registered frame", &flags.quiet);
+  parser.AddEpilog(
+      "Example (the bundled KITTI clip, calibrated from its calib.txt, measured against\n"
+      "its poses.txt):\n"
+      "  comic_sfm examples/data/kitti06_000-011/image_l \\\n"
+      "      --gt examples/data/kitti06_000-011/poses.txt --out out/example --compare\n"
+      "Exit codes: 0 success, 2 usage error, 1 anything else (including a sequence that cannot\n"
+      "be reconstructed without --compare).");
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+
+  std::vector<std::string> detectors;
+  if (flags.compare) {
+    COMIC_CHECK(!parser.WasSet("detector"), kInvalidArgument,
+                "--detector and --compare exclude each other (use --detectors with --compare)");
+    detectors = flags.detectors.empty() ? frontend::DetectorNames()
+                                        : frontend::ParseDetectorList(flags.detectors);
+  } else {
+    COMIC_CHECK(flags.detectors.empty(), kInvalidArgument, "--detectors needs --compare");
+    COMIC_CHECK(frontend::IsDetectorName(flags.detector), kInvalidArgument,
+                "--detector: unknown detector '" << flags.detector
+                                                 << "' (expected comic, harris, hessian, mser or "
+                                                    "fast)");
+    detectors = {flags.detector};
+  }
+  MakeOptions(flags);  // validates the numeric options before any work
+  io::EnsureWritableDirectory(flags.out);
+  const Inputs inputs = ResolveInputs(flags);
+  if (!flags.quiet) {
+    std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames "
+              << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
+              << ", fx=" << inputs.camera.fx << " fy=" << inputs.camera.fy
+              << " cx=" << inputs.camera.cx << " cy=" << inputs.camera.cy << " ("
+              << inputs.intrinsics_source << ")"
+              << (inputs.ground_truth
+                      ? ", ground truth for " + std::to_string(inputs.ground_truth->num_matched) +
+                            " frames"
+                      : std::string())
+              << std::endl;
+  }
+
+  if (!flags.compare) {
+    const DetectorRun result = RunDetector(flags.detector, flags, inputs, flags.out);
+    PrintSummary(result.report);
+    COMIC_CHECK(result.run.mapping.status == sfm::ReconstructionStatus::kSuccess, kInvalidData,
+                sfm::ReconstructionStatusMessage(result.run.mapping.status)
+                    << " (report: " << io::JoinPaths(flags.out, "report.json") << ")");
+    return 0;
+  }
+
+  std::vector<sfm::SfmRunReport> reports;
+  for (const std::string& name : detectors) {
+    const DetectorRun result = RunDetector(name, flags, inputs, io::JoinPaths(flags.out, name));
+    PrintSummary(result.report);
+    reports.push_back(result.report);
+  }
+  const io::ReportTable table = sfm::MakeComparisonTable(reports);
+  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.csv"), table.ToCsv());
+  nlohmann::json json = {{"table", table.ToJson()}, {"runs", nlohmann::json::array()}};
+  for (const sfm::SfmRunReport& report : reports)
+    json["runs"].push_back(sfm::RunReportToJson(report));
+  json["options"] = OptionsToJson(flags, inputs);
+  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.json"), json.dump(2) + "\n");
+  std::cout << table.ToMarkdown();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return comic::apps::RunMain("comic_sfm", [&] { return Run(argc, argv); });
+}

@@ -1,0 +1,102 @@
+#include "sfm/sequence_reconstruction.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "io/error.h"
+
+namespace comic::sfm {
+
+SequenceReconstructionOptions::SequenceReconstructionOptions() {
+  tracker.prediction = frontend::MotionPrediction::kConstantVelocity;
+  tracker.unpredicted_radius = 60.0;
+  tracker.max_features = 2000;
+}
+
+void SequenceReconstructionOptions::Check() const {
+  tracker.Check();
+  mapper.Check();
+}
+
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
+SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
+                                           const frontend::Detector& detector, const Camera& camera,
+                                           const SequenceReconstructionOptions& options,
+                                           const frontend::TrackingProgress& tracking_progress,
+                                           const MapperProgressCallback& mapper_progress) {
+  options.Check();
+  camera.Check();
+  COMIC_CHECK(
+      camera.width == sequence.FrameSize().width && camera.height == sequence.FrameSize().height,
+      kInvalidArgument,
+      "camera is for " << camera.width << "x" << camera.height << " images, the frames are "
+                       << sequence.FrameSize().width << "x" << sequence.FrameSize().height);
+  const auto start = std::chrono::steady_clock::now();
+  SequenceReconstruction run;
+  run.detector_name = detector.Name();
+  frontend::TrackingResult tracking =
+      frontend::TrackSequence(sequence, detector, options.tracker, tracking_progress);
+  run.tracks = std::move(tracking.tracks);
+  run.tracking_time_s = Seconds(start);
+
+  const auto mapping_start = std::chrono::steady_clock::now();
+  run.mapping = ReconstructIncrementally(run.tracks, camera, options.mapper, mapper_progress);
+  run.mapping_time_s = Seconds(mapping_start);
+
+  const auto coloring_start = std::chrono::steady_clock::now();
+  if (run.mapping.reconstruction.NumPoints3D() > 0) {
+    ColorizeReconstruction(sequence, &run.mapping.reconstruction);
+  }
+  run.coloring_time_s = Seconds(coloring_start);
+  run.wall_time_s = Seconds(start);
+  return run;
+}
+
+void ColorizeReconstruction(const io::ImageSequence& sequence, Reconstruction* reconstruction) {
+  COMIC_CHECK(reconstruction != nullptr, kInvalidArgument, "colorize: no reconstruction");
+  std::map<point3D_t, std::array<double, 4>> sums;  // r, g, b, count
+  for (const auto& [image_id, image] : reconstruction->images()) {
+    if (!image.registered || image.NumPoints3D() == 0) continue;
+    const size_t frame = static_cast<size_t>(image_id) - 1;
+    COMIC_CHECK(frame < sequence.NumFrames(), kInvalidArgument,
+                "colorize: image " << image_id << " has no frame in the sequence");
+    const cv::Mat color = sequence.ReadFrame(frame).color;
+    for (const Point2D& point2D : image.points2D) {
+      if (!point2D.HasPoint3D()) continue;
+      const double x = std::clamp(point2D.xy.x(), 0.0, color.cols - 1.0);
+      const double y = std::clamp(point2D.xy.y(), 0.0, color.rows - 1.0);
+      const int x0 = std::min(static_cast<int>(x), std::max(color.cols - 2, 0));
+      const int y0 = std::min(static_cast<int>(y), std::max(color.rows - 2, 0));
+      const int x1 = std::min(x0 + 1, color.cols - 1);
+      const int y1 = std::min(y0 + 1, color.rows - 1);
+      const double ax = x - x0, ay = y - y0;
+      std::array<double, 4>& sum = sums[point2D.point3D_id];
+      for (int c = 0; c < 3; ++c) {
+        const double value = (1 - ax) * (1 - ay) * color.at<cv::Vec3b>(y0, x0)[c] +
+                             ax * (1 - ay) * color.at<cv::Vec3b>(y0, x1)[c] +
+                             (1 - ax) * ay * color.at<cv::Vec3b>(y1, x0)[c] +
+                             ax * ay * color.at<cv::Vec3b>(y1, x1)[c];
+        sum[2 - c] += value;  // BGR -> RGB
+      }
+      sum[3] += 1.0;
+    }
+  }
+  for (const auto& [point3D_id, sum] : sums) {
+    Point3D& point = reconstruction->point3D(point3D_id);
+    for (int c = 0; c < 3; ++c) {
+      point.color[c] = static_cast<uint8_t>(std::clamp(std::lround(sum[c] / sum[3]), 0L, 255L));
+    }
+  }
+}
+
+}  // namespace comic::sfm

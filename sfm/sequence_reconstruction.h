@@ -1,0 +1,58 @@
+// Structure from motion on a frame sequence, end to end: detect and track features
+// (frontend::TrackSequence with any Detector), reconstruct incrementally, colour the points. The
+// SfM itself only sees the tracks, so every detector is treated alike.
+//
+//   SequenceReconstructionOptions options;          // tracker set up for video SfM
+//   auto detector = frontend::MakeDetector("harris");
+//   SequenceReconstruction run = ReconstructSequence(sequence, *detector, camera, options);
+//   if (run.mapping.status == ReconstructionStatus::kSuccess) { ... run.mapping.reconstruction }
+#pragma once
+
+#include "frontend/detector.h"
+#include "frontend/track.h"
+#include "frontend/tracker.h"
+#include "io/image_sequence.h"
+#include "sfm/camera.h"
+#include "sfm/incremental_pipeline.h"
+
+namespace comic::sfm {
+
+struct SequenceReconstructionOptions {
+  // Feature tracking. The defaults differ from the paper's matching protocol where video SfM
+  // needs it: constant-velocity motion prediction (near points move tens of pixels per frame in
+  // driving video), a 60 px radius where nothing predicts a feature, and the 2000 strongest
+  // features per frame.
+  frontend::TrackerOptions tracker;
+  // Incremental mapping.
+  IncrementalPipelineOptions mapper;
+
+  SequenceReconstructionOptions();
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+struct SequenceReconstruction {
+  std::string detector_name;
+  frontend::FeatureTracks tracks;  // what the mapper consumed
+  IncrementalReconstruction mapping;
+  double tracking_time_s = 0.0;  // detection and tracking
+  double mapping_time_s = 0.0;   // incremental reconstruction
+  double coloring_time_s = 0.0;  // reading frames again for point colours
+  double wall_time_s = 0.0;      // everything
+};
+
+// Tracks `sequence` with `detector`, reconstructs it with `camera` (intrinsics at the size of the
+// sequence's frames), and colours the points. Throws comic::Error for invalid input (camera size
+// different from the frames, bad options, unreadable frames); a reconstruction that cannot start
+// comes back as mapping.status.
+SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
+                                           const frontend::Detector& detector, const Camera& camera,
+                                           const SequenceReconstructionOptions& options,
+                                           const frontend::TrackingProgress& tracking_progress = {},
+                                           const MapperProgressCallback& mapper_progress = {});
+
+// Sets each point's colour to the mean colour (bilinear) of its observations in the frames of
+// `sequence`; image i + 1 of the reconstruction is frame i (as the mapper numbers them).
+void ColorizeReconstruction(const io::ImageSequence& sequence, Reconstruction* reconstruction);
+
+}  // namespace comic::sfm
