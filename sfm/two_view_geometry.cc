@@ -17,6 +17,7 @@ void TwoViewGeometryOptions::Check() const {
   COMIC_CHECK(min_num_inliers >= 5, kInvalidArgument, "two-view min_num_inliers must be >= 5");
   COMIC_CHECK(max_homography_inlier_ratio > 0, kInvalidArgument,
               "two-view max_homography_inlier_ratio must be > 0");
+  COMIC_CHECK(random_seed <= 0x7fffffffu, kInvalidArgument, "two-view random_seed must be < 2^31");
 }
 
 const char* TwoViewConfigurationName(TwoViewConfiguration configuration) {
@@ -56,20 +57,45 @@ TwoViewGeometry EstimateCalibratedTwoViewGeometry(const Camera& camera1, const C
   const double mean_focal = (camera1.fx + camera1.fy + camera2.fx + camera2.fy) / 4.0;
   const double threshold = options.max_error_px / mean_focal;
 
+  // OpenCV's USAC framework: RANSAC with MSAC scoring and inner local optimisation, so the model
+  // and its inlier mask come from a least-squares fit to the inliers rather than from a minimal
+  // sample (whose noise would make the homography check and the initial pose needlessly poor).
+  // Single-threaded and seeded, hence deterministic.
+  cv::UsacParams params;
+  params.confidence = options.confidence;
+  params.isParallel = false;
+  params.loIterations = 10;
+  params.loMethod = cv::LOCAL_OPTIM_INNER_LO;
+  params.loSampleSize = 14;
+  params.maxIterations = options.max_num_iterations;
+  params.neighborsSearch = cv::NEIGH_GRID;
+  params.randomGeneratorState = static_cast<int>(options.random_seed);
+  params.sampler = cv::SAMPLING_UNIFORM;
+  params.score = cv::SCORE_METHOD_MSAC;
+  params.threshold = threshold;
+  const cv::Mat unit_camera = cv::Mat::eye(3, 3, CV_64F);
   cv::Mat essential_mask;
-  const cv::Mat essential = cv::findEssentialMat(normalized1, normalized2, 1.0, cv::Point2d(0, 0),
-                                                 cv::RANSAC, options.confidence, threshold,
-                                                 options.max_num_iterations, essential_mask);
-  // Several solutions may come back stacked; the first is RANSAC's best.
-  if (essential.rows < 3 || essential.cols != 3) return geometry;
+  cv::Mat essential;
+  try {
+    essential = cv::findEssentialMat(normalized1, normalized2, unit_camera, unit_camera,
+                                     cv::noArray(), cv::noArray(), essential_mask, params);
+  } catch (const cv::Exception&) {
+    return geometry;  // USAC throws when it finds no model at all
+  }
+  // Several solutions may come back stacked; the first is the best.
+  if (essential.rows < 3 || essential.cols != 3 || essential_mask.empty()) return geometry;
   geometry.num_essential_inliers = cv::countNonZero(essential_mask);
   if (geometry.num_essential_inliers < options.min_num_inliers) return geometry;
 
   cv::Mat homography_mask;
-  const cv::Mat homography =
-      cv::findHomography(normalized1, normalized2, cv::RANSAC, threshold, homography_mask,
-                         options.max_num_iterations, options.confidence);
-  geometry.num_homography_inliers = homography.empty() ? 0 : cv::countNonZero(homography_mask);
+  cv::Mat homography;
+  try {
+    homography = cv::findHomography(normalized1, normalized2, homography_mask, params);
+  } catch (const cv::Exception&) {
+    homography.release();
+  }
+  geometry.num_homography_inliers =
+      homography.empty() || homography_mask.empty() ? 0 : cv::countNonZero(homography_mask);
 
   cv::Mat rotation_cv, translation_cv;
   cv::Mat pose_mask = essential_mask.clone();

@@ -1,11 +1,12 @@
 // Relative pose of two calibrated views from point correspondences: essential matrix RANSAC
-// (OpenCV's five-point solver), cheirality, and a homography check that flags planar scenes and
-// rotation-only motion, both of which make the essential matrix unreliable for initialisation.
-// Stateless; OpenCV's RANSAC seeds its generator with a fixed value, so results are
-// deterministic for the same input.
+// (OpenCV's USAC with the five-point solver and local optimisation), cheirality, and a homography
+// check that flags planar scenes and rotation-only motion, both of which make the essential
+// matrix unreliable for initialisation. Stateless; the RANSAC generator is seeded from the
+// options, so results are deterministic for the same input.
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "sfm/camera.h"
@@ -15,7 +16,7 @@ namespace comic::sfm {
 
 struct TwoViewGeometryOptions {
   // RANSAC inlier threshold for the essential matrix and the homography, pixels.
-  double max_error_px = 1.0;
+  double max_error_px = 2.0;
   // RANSAC confidence (0..1).
   double confidence = 0.999;
   // Maximum number of RANSAC iterations.
@@ -24,6 +25,8 @@ struct TwoViewGeometryOptions {
   int min_num_inliers = 15;
   // Homography inliers / essential inliers above this: kPlanarOrPanoramic.
   double max_homography_inlier_ratio = 0.8;
+  // Seed of the RANSAC random generator (< 2^31).
+  uint32_t random_seed = 1;
 
   void Check() const;
 };
