@@ -417,8 +417,10 @@ size_t IncrementalMapper::FilterPoints(const std::set<point3D_t>& point3D_ids) {
       if (!reconstruction_.ExistsPoint3D(point3D_id)) break;
       if (reconstruction_.ReprojectionError(element.image_id, element.point2D_idx) >
           options_.filter_max_reprojection_error_px) {
+        // Deleting one of the last two observations deletes the point with both.
+        const size_t track_length = reconstruction_.point3D(point3D_id).track.size();
         reconstruction_.DeleteObservation(element.image_id, element.point2D_idx);
-        ++num_removed;
+        num_removed += reconstruction_.ExistsPoint3D(point3D_id) ? 1 : track_length;
       }
     }
     if (!reconstruction_.ExistsPoint3D(point3D_id)) continue;

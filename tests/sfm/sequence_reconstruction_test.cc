@@ -1,0 +1,89 @@
+// End to end on real video: the bundled KITTI example (always) and the 51-frame KITTI clip of
+// ../shared/data (the acceptance case: forward motion, every frame in one model, ATE < 1 % of
+// the path).
+#include "sfm/sequence_reconstruction.h"
+
+#include <gtest/gtest.h>
+
+#include "frontend/detector_factory.h"
+#include "io/error.h"
+#include "io/ground_truth_cameras.h"
+#include "sfm/ground_truth.h"
+#include "sfm/trajectory_evaluation.h"
+#include "tests/test_support.h"
+
+namespace comic::sfm {
+namespace {
+
+struct KittiRun {
+  SequenceReconstruction run;
+  std::optional<TrajectoryEvaluation> evaluation;
+};
+
+KittiRun ReconstructKitti(const std::string& folder) {
+  const io::ImageSequence sequence = io::ImageSequence::Open(folder + "/image_l");
+  std::vector<int> indices(sequence.NumFrames());
+  for (size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<int>(i);
+  const FrameGroundTruth truth = MatchGroundTruthToFrames(
+      io::ReadGroundTruthCameras(folder + "/poses.txt"), sequence.FrameNames(), indices,
+      sequence.SourceFrameSize(), sequence.FrameSize());
+  EXPECT_TRUE(truth.camera.has_value());  // from calib.txt beside poses.txt
+  const auto detector = frontend::MakeDetector("harris");
+  KittiRun result;
+  result.run =
+      ReconstructSequence(sequence, *detector, *truth.camera, SequenceReconstructionOptions());
+  result.evaluation = EvaluateTrajectory(
+      RegisteredPosesByName(result.run.mapping.reconstruction, sequence.FrameNames()),
+      truth.cams_from_world);
+  return result;
+}
+
+TEST(SequenceReconstruction, BundledExampleRegistersEveryFrame) {
+  const KittiRun kitti = ReconstructKitti(test::ExampleDir());
+  const IncrementalReconstruction& mapping = kitti.run.mapping;
+  ASSERT_EQ(mapping.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(mapping.reconstruction.NumRegisteredImages(), 12u);
+  EXPECT_EQ(kitti.run.tracks.NumFrames(), 12u);
+  EXPECT_EQ(kitti.run.detector_name, "harris");
+  EXPECT_GT(mapping.reconstruction.NumPoints3D(), 500u);
+  EXPECT_LT(mapping.reconstruction.ComputeMeanReprojectionError(), 1.0);
+  ASSERT_TRUE(kitti.evaluation.has_value());
+  EXPECT_EQ(kitti.evaluation->frames.size(), 12u);
+  EXPECT_LT(kitti.evaluation->ate_fraction_of_path, 0.01);
+  EXPECT_LT(kitti.evaluation->mean_rotation_error_deg, 1.0);
+  // Colours come from the (grey) frames: equal channels, not all black.
+  int lit = 0;
+  for (const auto& [id, point] : mapping.reconstruction.points3D()) {
+    EXPECT_EQ(point.color[0], point.color[1]);
+    EXPECT_EQ(point.color[1], point.color[2]);
+    lit += point.color[0] > 0;
+  }
+  EXPECT_GT(lit, static_cast<int>(mapping.reconstruction.NumPoints3D()) / 2);
+  EXPECT_GT(kitti.run.tracking_time_s, 0.0);
+  EXPECT_GE(kitti.run.wall_time_s, kitti.run.tracking_time_s + kitti.run.mapping_time_s);
+}
+
+TEST(SequenceReconstruction, KittiClipForwardMotionAcceptance) {
+  COMIC_REQUIRE_SHARED_DATA();
+  const KittiRun kitti = ReconstructKitti(test::SharedDataDir() + "/kitti_odometry_seq06_000-050");
+  const IncrementalReconstruction& mapping = kitti.run.mapping;
+  ASSERT_EQ(mapping.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(mapping.reconstruction.NumRegisteredImages(), 51u);
+  EXPECT_TRUE(mapping.unregistered_frames.empty());
+  EXPECT_EQ(mapping.num_models, 1);
+  ASSERT_TRUE(kitti.evaluation.has_value());
+  EXPECT_NEAR(kitti.evaluation->path_length, 59.9, 0.1);
+  EXPECT_LT(kitti.evaluation->ate_fraction_of_path, 0.01);
+  EXPECT_LT(mapping.reconstruction.ComputeMeanReprojectionError(), 1.0);
+}
+
+TEST(SequenceReconstruction, CameraMustMatchTheFrames) {
+  const io::ImageSequence sequence = io::ImageSequence::Open(test::ExampleDir() + "/image_l");
+  const auto detector = frontend::MakeDetector("harris");
+  EXPECT_THROW(ReconstructSequence(sequence, *detector, Camera::FromImageSize(640, 480),
+                                   SequenceReconstructionOptions()),
+               Error);
+}
+
+}  // namespace
+}  // namespace comic::sfm
