@@ -29,7 +29,10 @@
 #include "io/region_annotations.h"
 #include "io/report_table.h"
 #include "sfm/camera.h"
+#include "sfm/colmap_comparison.h"
+#include "sfm/colmap_export.h"
 #include "sfm/colmap_model_conversion.h"
+#include "sfm/colmap_runner.h"
 #include "sfm/ground_truth.h"
 #include "sfm/reconstruction_stats.h"
 #include "sfm/sequence_reconstruction.h"
@@ -72,6 +75,10 @@ struct Flags {
   double boundary_band = 11.0;
   std::string plot_plane = "auto";
   bool quiet = false;
+  std::string colmap_db;
+  bool overwrite = false;
+  bool compare_colmap = false;
+  int colmap_threads = -1;
 };
 
 // What every run shares, resolved and validated before any heavy work.
@@ -338,6 +345,88 @@ void PrintSummary(const sfm::SfmRunReport& report) {
   std::cout << ", " << report.wall_time_s << " s" << std::endl;
 }
 
+// --colmap-db / --compare-colmap: checks that can fail before any work.
+void CheckColmapFlags(const Flags& flags) {
+  COMIC_CHECK(!flags.overwrite || !flags.colmap_db.empty(), kInvalidArgument,
+              "--overwrite needs --colmap-db");
+  if (flags.colmap_db.empty() && !flags.compare_colmap) return;
+  COMIC_CHECK(!flags.compare, kInvalidArgument,
+              "--colmap-db and --compare-colmap work on one detector's run, not with --compare");
+  COMIC_CHECK(flags.sequence.resize_height == 0, kInvalidArgument,
+              "--colmap-db and --compare-colmap need --resize-height 0 (COLMAP reads the image "
+              "files at their stored size)");
+  COMIC_CHECK(io::IsDirectory(flags.frames), kInvalidArgument,
+              "--colmap-db and --compare-colmap need FRAMES to be a folder of images (COLMAP reads "
+              "the image files)");
+  COMIC_CHECK(flags.colmap_threads == -1 || flags.colmap_threads >= 1, kInvalidArgument,
+              "--colmap-threads must be -1 or >= 1");
+  if (!flags.colmap_db.empty()) io::CheckWritableFile(flags.colmap_db, flags.overwrite);
+  if (flags.compare_colmap) {
+    COMIC_CHECK(sfm::IsColmapAvailable(), kNotFound,
+                "--compare-colmap: colmap is not installed (apt-get install colmap)");
+    const std::string work = io::JoinPaths(flags.out, "colmap");
+    COMIC_CHECK(
+        !io::PathExists(work), kIo,
+        work << ": exists from an earlier --compare-colmap; remove it or use another --out");
+  }
+}
+
+// The frames' intrinsics are known (not the default guess): COLMAP holds them fixed.
+bool IntrinsicsKnown(const Flags& flags, const Inputs& inputs) {
+  return !flags.intrinsics.empty() || (inputs.ground_truth && inputs.ground_truth->camera);
+}
+
+// --colmap-db: the tracks of this run as a COLMAP database, and the command to run on it.
+void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
+                         const sfm::SequenceReconstruction& run) {
+  const sfm::ColmapExportSummary summary = sfm::ExportTracksToColmapDatabase(
+      run.tracks,
+      IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
+      sfm::ColmapExportOptions(), flags.colmap_db, flags.overwrite);
+  sfm::ColmapMapperOptions mapper = sfm::RecommendedColmapMapperOptions(summary);
+  mapper.num_threads = flags.colmap_threads;
+  std::cout << "wrote " << flags.colmap_db << " (" << summary.num_images << " images, "
+            << summary.num_verified_pairs << " of " << summary.num_matched_pairs
+            << " pairs verified); run COLMAP on it with:\n  "
+            << sfm::ColmapMapperCommandLine(
+                   flags.colmap_db, flags.frames,
+                   io::JoinPaths(io::ParentPath(flags.colmap_db), "sparse"), mapper)
+            << std::endl;
+}
+
+// --compare-colmap: COLMAP's mapper on the same tracks, side by side with this run.
+void CompareWithColmap(const Flags& flags, const Inputs& inputs,
+                       const sfm::SequenceReconstruction& run) {
+  sfm::ColmapComparisonOptions options;
+  options.colmap_threads = flags.colmap_threads;
+  const std::vector<std::optional<sfm::Rigid3d>> truth =
+      inputs.ground_truth ? inputs.ground_truth->cams_from_world
+                          : std::vector<std::optional<sfm::Rigid3d>>();
+  const sfm::ColmapComparison comparison = sfm::CompareWithColmap(
+      run.tracks, inputs.camera, IntrinsicsKnown(flags, inputs), truth, flags.frames,
+      io::JoinPaths(flags.out, "colmap"), options, &run.mapping);
+  const io::ReportTable table = comparison.Table();
+  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.csv"), table.ToCsv());
+  const nlohmann::json json = {
+      {"table", table.ToJson()},
+      {"colmap_mapper_command", comparison.colmap_mapper_command},
+      {"colmap_model", comparison.colmap_model_path ? nlohmann::json(*comparison.colmap_model_path)
+                                                    : nlohmann::json(nullptr)},
+      {"colmap_log", comparison.log_path},
+      {"export_time_s", comparison.export_time_s},
+      {"export",
+       {{"images", comparison.export_summary.num_images},
+        {"pairs", comparison.export_summary.num_matched_pairs},
+        {"verified_pairs", comparison.export_summary.num_verified_pairs},
+        {"matches", comparison.export_summary.num_matches},
+        {"inlier_matches", comparison.export_summary.num_inlier_matches},
+        {"known_intrinsics", comparison.export_summary.known_intrinsics}}}};
+  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.json"), json.dump(2) + "\n");
+  std::cout << table.ToMarkdown() << "COLMAP ran: " << comparison.colmap_mapper_command
+            << "\n(log: " << comparison.log_path << ")" << std::endl;
+}
+
 int Run(int argc, char** argv) {
   Flags flags;
   comic::apps::ArgParser parser(
@@ -419,6 +508,18 @@ int Run(int argc, char** argv) {
                    "spread), xz, xy or yz",
                    &flags.plot_plane);
   parser.AddFlag("quiet", "no progress line per registered frame", &flags.quiet);
+  parser.AddOption("colmap-db", "DB",
+                   "also write the tracks as a COLMAP 3.8 database and print the `colmap mapper` "
+                   "command to run on it (FRAMES must be a folder; see docs/colmap.md)",
+                   &flags.colmap_db);
+  parser.AddFlag("overwrite", "replace --colmap-db if it exists (otherwise it is refused)",
+                 &flags.overwrite);
+  parser.AddFlag("compare-colmap",
+                 "also run COLMAP's mapper on the same tracks and write the side-by-side table "
+                 "--out/colmap_compare.md (.csv, .json); COLMAP's files go to --out/colmap/",
+                 &flags.compare_colmap);
+  parser.AddOption("colmap-threads", "N", "threads of COLMAP's mapper (-1 = every core)",
+                   &flags.colmap_threads);
   parser.AddEpilog(
       "Example (the bundled KITTI clip, calibrated from its calib.txt, measured against\n"
       "its poses.txt):\n"
@@ -443,6 +544,7 @@ int Run(int argc, char** argv) {
     detectors = {flags.detector};
   }
   MakeOptions(flags);  // validates the numeric options before any work
+  CheckColmapFlags(flags);
   io::EnsureWritableDirectory(flags.out);
   const Inputs inputs = ResolveInputs(flags);
   if (!flags.quiet) {
@@ -461,6 +563,8 @@ int Run(int argc, char** argv) {
   if (!flags.compare) {
     const DetectorRun result = RunDetector(flags.detector, flags, inputs, flags.out);
     PrintSummary(result.report);
+    if (!flags.colmap_db.empty()) WriteColmapDatabase(flags, inputs, result.run);
+    if (flags.compare_colmap) CompareWithColmap(flags, inputs, result.run);
     COMIC_CHECK(result.run.mapping.status == sfm::ReconstructionStatus::kSuccess, kInvalidData,
                 sfm::ReconstructionStatusMessage(result.run.mapping.status)
                     << " (report: " << io::JoinPaths(flags.out, "report.json") << ")");

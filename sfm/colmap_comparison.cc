@@ -128,8 +128,8 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
   COMIC_CHECK(io::IsDirectory(image_path), kNotFound, image_path << ": no such image folder");
   io::EnsureWritableDirectory(work_folder);
   const auto path = [&](const std::string& name) { return io::JoinPaths(work_folder, name); };
-  COMIC_CHECK(!io::PathExists(path("colmap.db")) && !FindLargestColmapModel(path("colmap/sparse")),
-              kIo, work_folder << ": holds a previous COLMAP comparison (use an empty folder)");
+  COMIC_CHECK(!io::PathExists(path("database.db")) && !FindLargestColmapModel(path("sparse")), kIo,
+              work_folder << ": holds a previous COLMAP comparison (use an empty folder)");
   const int num_frames = static_cast<int>(tracks.NumFrames());
 
   ColmapComparison comparison;
@@ -157,14 +157,14 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
 
   // COLMAP's mapper on the same tracks.
   const auto export_start = Clock::now();
-  const std::string database = path("colmap.db");
+  const std::string database = path("database.db");
   comparison.export_summary = ExportTracksToColmapDatabase(
       tracks, intrinsics_known ? std::optional<Camera>(camera) : std::nullopt,
       options.export_options, database, /*overwrite=*/false);
   comparison.export_time_s = SecondsSince(export_start);
   ColmapMapperOptions mapper_options = RecommendedColmapMapperOptions(comparison.export_summary);
   mapper_options.num_threads = options.colmap_threads;
-  const std::string sparse = path("colmap/sparse");
+  const std::string sparse = path("sparse");
   std::vector<std::string> command = {options.colmap_executable};
   const auto mapper_args = ColmapMapperArguments(database, image_path, sparse, mapper_options);
   command.insert(command.end(), mapper_args.begin(), mapper_args.end());
@@ -183,9 +183,9 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
                                  AnalyzeColmapModel(*comparison.colmap_model_path,
                                                     comparison.log_path, options.colmap_executable),
                                  num_frames);
-    ConvertColmapModel(*comparison.colmap_model_path, path("colmap/text"), "TXT",
+    ConvertColmapModel(*comparison.colmap_model_path, path("sparse_text"), "TXT",
                        comparison.log_path, options.colmap_executable);
-    Evaluate(ModelPoses(path("colmap/text"), colmap_names), ground_truth, &colmap_row);
+    Evaluate(ModelPoses(path("sparse_text"), colmap_names), ground_truth, &colmap_row);
   }
   colmap_row.wall_time_s = mapper_time;
   comparison.rows.push_back(colmap_row);
@@ -193,16 +193,16 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
   // Our model read back through COLMAP: our text model, converted to binary by COLMAP, measured
   // by COLMAP, converted back to text and evaluated like COLMAP's own.
   if (ours->status == ReconstructionStatus::kSuccess) {
-    io::WriteColmapTextModel(ToColmapTextModel(ours->reconstruction), path("ours/text"));
-    ConvertColmapModel(path("ours/text"), path("ours/bin"), "BIN", comparison.log_path,
+    io::WriteColmapTextModel(ToColmapTextModel(ours->reconstruction), path("ours_text"));
+    ConvertColmapModel(path("ours_text"), path("ours_bin"), "BIN", comparison.log_path,
                        options.colmap_executable);
     ColmapComparisonRow read_back = RowFromAnalyzer(
         "comic-sfm read by COLMAP",
-        AnalyzeColmapModel(path("ours/bin"), comparison.log_path, options.colmap_executable),
+        AnalyzeColmapModel(path("ours_bin"), comparison.log_path, options.colmap_executable),
         num_frames);
-    ConvertColmapModel(path("ours/bin"), path("ours/text_from_colmap"), "TXT", comparison.log_path,
+    ConvertColmapModel(path("ours_bin"), path("ours_from_colmap_text"), "TXT", comparison.log_path,
                        options.colmap_executable);
-    Evaluate(ModelPoses(path("ours/text_from_colmap"), tracks.frame_names), ground_truth,
+    Evaluate(ModelPoses(path("ours_from_colmap_text"), tracks.frame_names), ground_truth,
              &read_back);
     comparison.rows.push_back(read_back);
   }

@@ -74,15 +74,16 @@ struct ColmapComparison {
 };
 
 // Runs the comparison in `work_folder` (created if needed; one holding a previous comparison's
-// database or models is refused with comic::Error(kIo)): colmap.db, colmap/sparse/<n> (COLMAP's
-// models), colmap/text (the largest as text), ours/text (our model), ours/bin (converted by
-// COLMAP), colmap.log. `camera` is what our mapper uses; it is exported as known intrinsics when
-// `intrinsics_known`, else COLMAP gets its own guess. `ground_truth` holds a cam_from_world per
-// frame (std::nullopt where unknown) or is empty. `image_path` is COLMAP's --image_path, holding
-// the frames under their names (options.export_options.image_name_prefix + frame name). `ours` is
-// our reconstruction of these tracks if already computed (its wall_time_s is reported), else our
-// mapper runs here. Throws comic::Error(kExternal) if a COLMAP program fails; a COLMAP mapper
-// that finds no initial pair gives a row with 0 registered frames.
+// database or models is refused with comic::Error(kIo)): database.db (the export), sparse/<n>
+// (COLMAP's models), sparse_text (the largest as text), ours_text (our model), ours_bin (converted
+// by COLMAP), ours_from_colmap_text (and back), colmap.log (every COLMAP run). `camera` is what our
+// mapper uses; it is exported as known intrinsics when `intrinsics_known`, else COLMAP gets its own
+// guess. `ground_truth` holds a cam_from_world per frame (std::nullopt where unknown) or is empty.
+// `image_path` is COLMAP's --image_path, holding the frames under their names
+// (options.export_options.image_name_prefix + frame name). `ours` is our reconstruction of these
+// tracks if already computed (its wall_time_s is reported), else our mapper runs here. Throws
+// comic::Error(kExternal) if a COLMAP program fails; a COLMAP mapper that finds no initial pair
+// gives a row with 0 registered frames.
 ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const Camera& camera,
                                    bool intrinsics_known,
                                    const std::vector<std::optional<Rigid3d>>& ground_truth,

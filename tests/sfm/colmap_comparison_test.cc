@@ -106,8 +106,8 @@ TEST(ColmapComparison, RunsBothMappersAndReadsOurModelBackThroughColmap) {
   EXPECT_NE(comparison.colmap_mapper_command.find("--Mapper.ba_refine_focal_length 0"),
             std::string::npos);
   EXPECT_EQ(comparison.export_summary.num_images, 10);
-  EXPECT_TRUE(io::IsRegularFile(dir.File("work/ours/text/points3D.txt")));
-  EXPECT_TRUE(io::IsRegularFile(dir.File("work/ours/bin/points3D.bin")));
+  EXPECT_TRUE(io::IsRegularFile(dir.File("work/ours_text/points3D.txt")));
+  EXPECT_TRUE(io::IsRegularFile(dir.File("work/ours_bin/points3D.bin")));
   EXPECT_EQ(comparison.Table().NumRows(), 3u);
 
   // A folder holding a comparison is not reused.
