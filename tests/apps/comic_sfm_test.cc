@@ -1,0 +1,175 @@
+// comic_sfm end to end on the bundled KITTI example: outputs (COLMAP model, PLY, report, plot),
+// progress lines, bit-for-bit repeatable results, --compare, and bad input failing early with
+// one line.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "io/colmap_text_model.h"
+#include "io/file_utils.h"
+#include "io/ply.h"
+#include "tests/test_support.h"
+
+namespace {
+
+using comic::test::AppPath;
+using comic::test::RunCommand;
+using comic::test::ScopedTempDir;
+
+std::string Example() { return comic::test::ExampleDir(); }
+
+int CountOccurrences(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
+TEST(ComicSfm, HelpDocumentsEveryOption) {
+  const auto result = RunCommand(AppPath("comic_sfm") + " --help");
+  EXPECT_EQ(result.exit_code, 0);
+  for (const char* option : {"--detector",
+                             "--compare",
+                             "--detectors",
+                             "--intrinsics",
+                             "--gt",
+                             "--gt-format",
+                             "--out",
+                             "--resize-height",
+                             "--first",
+                             "--last",
+                             "--stride",
+                             "--max-features",
+                             "--search-radius",
+                             "--unpredicted-radius",
+                             "--prediction",
+                             "--coarse-radius",
+                             "--max-cost",
+                             "--refine-focal",
+                             "--local-ba-images",
+                             "--init-angle",
+                             "--init-max-gap",
+                             "--threads",
+                             "--regions",
+                             "--masks",
+                             "--boundary-band",
+                             "--plot-plane",
+                             "--quiet"}) {
+    EXPECT_NE(result.output.find(option), std::string::npos) << option;
+  }
+}
+
+TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {
+  ScopedTempDir dir;
+  const std::string command =
+      AppPath("comic_sfm") + " " + Example() + "/image_l --gt " + Example() + "/poses.txt --out ";
+  const auto result = RunCommand(command + dir.File("a"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // One progress line per registered frame (the initial pair's two included).
+  EXPECT_EQ(CountOccurrences(result.output, "[harris] registered "), 12) << result.output;
+  EXPECT_NE(result.output.find("12/12 frames registered"), std::string::npos) << result.output;
+
+  const comic::io::ColmapTextModel model = comic::io::ReadColmapTextModel(dir.File("a"));
+  ASSERT_EQ(model.cameras.size(), 1u);
+  EXPECT_EQ(model.cameras[0].model, "PINHOLE");
+  // calib.txt beside poses.txt: fx = 707.0912, cx = 601.8873 (+ 0.5 in COLMAP's convention).
+  EXPECT_DOUBLE_EQ(model.cameras[0].params[0], 707.0912);
+  EXPECT_DOUBLE_EQ(model.cameras[0].params[2], 601.8873 + 0.5);
+  EXPECT_EQ(model.images.size(), 12u);
+  EXPECT_GT(model.points3D.size(), 500u);
+  const std::vector<comic::io::PlyPoint> cloud = comic::io::ReadPly(dir.File("a/points.ply"));
+  EXPECT_EQ(cloud.size(), model.points3D.size());
+  const cv::Mat plot = cv::imread(dir.File("a/trajectory.png"));
+  EXPECT_EQ(plot.cols, 900);
+
+  const nlohmann::json report =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("a/report.json")));
+  EXPECT_EQ(report["status"], "success");
+  EXPECT_EQ(report["registered_frames"], 12);
+  EXPECT_EQ(report["points3D"]["points"], model.points3D.size());
+  EXPECT_LT(report["ground_truth"]["ate_fraction_of_path"].get<double>(), 0.01);
+  EXPECT_EQ(report["detector"], "harris");
+  EXPECT_EQ(report["options"]["max_features"], 2000);
+
+  // Same input and options: the same model, bit for bit.
+  ASSERT_EQ(RunCommand(command + dir.File("b") + " --quiet").exit_code, 0);
+  for (const char* file : {"cameras.txt", "images.txt", "points3D.txt", "points.ply"}) {
+    EXPECT_EQ(comic::io::ReadFileToString(dir.File(std::string("a/") + file)),
+              comic::io::ReadFileToString(dir.File(std::string("b/") + file)))
+        << file;
+  }
+}
+
+TEST(ComicSfm, CompareWritesOneTable) {
+  ScopedTempDir dir;
+  const auto result =
+      RunCommand(AppPath("comic_sfm") + " " + Example() + "/image_l --last 5 --gt " + Example() +
+                 "/poses.txt --compare --detectors harris,fast --quiet --out " + dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const std::string markdown = comic::io::ReadFileToString(dir.File("compare.md"));
+  EXPECT_NE(markdown.find("| harris"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("| fast"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("ATE % of path"), std::string::npos) << markdown;
+  EXPECT_EQ(comic::test::CountLines(comic::io::ReadFileToString(dir.File("compare.csv"))), 3);
+  const nlohmann::json json =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("compare.json")));
+  EXPECT_EQ(json["table"].size(), 2u);
+  EXPECT_EQ(json["runs"].size(), 2u);
+  EXPECT_TRUE(comic::io::IsRegularFile(dir.File("harris/report.json")));
+  EXPECT_TRUE(comic::io::IsRegularFile(dir.File("fast/report.json")));
+}
+
+TEST(ComicSfm, UnreconstructableInputIsReportedNotCrashed) {
+  ScopedTempDir dir;
+  // One frame: nothing to reconstruct. Exit 1, a clear message, and the report still written.
+  const auto result = RunCommand(AppPath("comic_sfm") + " " + Example() +
+                                 "/image_l --last 0 --quiet --out " + dir.path());
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("too few frames"), std::string::npos) << result.output;
+  const nlohmann::json report =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("report.json")));
+  EXPECT_EQ(report["status"], "too_few_frames");
+  EXPECT_FALSE(comic::io::PathExists(dir.File("points3D.txt")));
+}
+
+TEST(ComicSfm, BadInputGivesOneLineErrorAndNonZeroExit) {
+  ScopedTempDir dir;
+  comic::io::WriteFileAtomically(dir.File("bad_intrinsics.txt"), "700 700 600\n");
+  comic::io::WriteFileAtomically(dir.File("a_file"), "x");
+  const std::string frames = Example() + "/image_l";
+  const std::string out = " --out " + dir.File("out");
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"", 2, "missing argument FRAMES"},
+      {"/nonexistent/frames" + out, 1, "no such file or folder"},
+      {frames + out + " --detector sift", 2, "unknown detector"},
+      {frames + out + " --compare --detector harris", 2, "exclude each other"},
+      {frames + out + " --detectors harris", 2, "--detectors needs --compare"},
+      {frames + out + " --compare --detectors harris,bogus", 2, "bogus"},
+      {frames + out + " --gt /nonexistent/poses.txt", 1, "no such file or folder"},
+      {frames + out + " --gt " + Example() + "/poses.txt --gt-format colmap", 2,
+       "unknown ground-truth format"},
+      {frames + out + " --intrinsics " + dir.File("bad_intrinsics.txt"), 1, "expected intrinsics"},
+      {frames + " --out " + dir.File("a_file"), 1, "a_file"},
+      {frames + out + " --plot-plane up", 2, "--plot-plane"},
+      {frames + out + " --prediction psychic", 2, "psychic"},
+      {frames + out + " --local-ba-images 1", 2, "local_ba_num_images"},
+      {frames + out + " --threads 0", 2, "num_threads"},
+      {frames + out + " --regions a --masks b", 2, "exclude each other"},
+      {frames + out + " --max-features x", 2, "expected an integer"},
+  };
+  for (const Case& c : cases) {
+    const auto result = RunCommand(AppPath("comic_sfm") + " " + c.args + " --quiet");
+    EXPECT_EQ(result.exit_code, c.exit_code) << c.args << "\n" << result.output;
+    EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n" << result.output;
+    EXPECT_EQ(comic::test::CountLines(result.output), 1) << c.args << "\n" << result.output;
+  }
+}
+
+}  // namespace
