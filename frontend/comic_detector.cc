@@ -134,7 +134,9 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
     }
   }
   per_item.clear();
-  // The same corner comes from overlapping blocks and neighbouring levels: keep the most stable.
+  // The same corner comes from overlapping blocks at neighbouring levels: keep the most stable.
+  // (Seeds of levels further apart are kept even at the same place: a weak curve at the foot of
+  // an edge must not stand in for the edge's own.)
   std::sort(initial.begin(), initial.end(), [](const InitialCorner& a, const InitialCorner& b) {
     if (a.stability != b.stability) return a.stability > b.stability;
     if (a.cornerness != b.cornerness) return a.cornerness > b.cornerness;
@@ -184,13 +186,13 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
         InitialCorner seed;
         seed.position = apex;
         seed.level = corner.level;
+        seed.polarity = corner.polarity;
         seed.curve = corner.curve;
         neighbours.push_back(std::move(seed));
       }
     }
     std::vector<InitialCorner> found(corners.size());
     for (size_t i = 0; i < corners.size(); ++i) found[i].position = corners[i].position;
-    const size_t num_found = found.size();
     for (InitialCorner& seed : neighbours) found.push_back(std::move(seed));
     // Suppression in this order drops the seeds near a corner already found, and duplicates.
     found = SuppressNeighbours(
@@ -201,13 +203,15 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
     for (InitialCorner& seed : found) {
       if (!seed.curve.empty()) new_seeds.push_back(std::move(seed));
     }
-    (void)num_found;
     converge(new_seeds);
   }
-  corners.erase(
-      std::remove_if(corners.begin(), corners.end(),
-                     [&](const ConvergedCorner& c) { return c.stability < o.min_stability; }),
-      corners.end());
+  corners.erase(std::remove_if(corners.begin(), corners.end(),
+                               [&](const ConvergedCorner& c) {
+                                 // On the response as stored (float), so that a threshold equals a
+                                 // cut of the unthresholded output.
+                                 return static_cast<float>(c.stability) < o.min_stability;
+                               }),
+                corners.end());
   // Seeds converging to the same corner: keep the most stable (ties broken by position, level).
   std::sort(corners.begin(), corners.end(), [](const ConvergedCorner& a, const ConvergedCorner& b) {
     if (a.stability != b.stability) return a.stability > b.stability;

@@ -62,24 +62,15 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   int centre = 0;
   const std::vector<cv::Point2f> segment =
       ResamplePolyline(reference, false, 1.0, s_p, k + 1, k + 1, &centre);
-  // The MSICS nearest in level to the previous one: search a window of ±3 levels first, then
-  // ±2δ, then all levels, stopping at the first window whose answer cannot depend on the levels
-  // outside it (see StableLevel::isolated): the same answer as searching all levels at once.
-  const WeightedStabilityOptions stability_options = options.StabilityOptions();
-  const int centre_level = static_cast<int>(std::lround(previous_level));
+  // The MSICS nearest in level to the previous one.
   StabilityProfile& profile = workspace->profile;
+  const WeightedStabilityOptions stability_options = options.StabilityOptions();
   StableLevel stable;
-  bool found = false;
-  for (const int window : {3, static_cast<int>(std::ceil(2 * options.delta)), 256}) {
-    found = ComputeWeightedStabilityProfile(gray, segment, centre, stability_options, &profile,
-                                            centre_level - window, centre_level + window) &&
-            SelectMaximallyStableLevel(profile, previous_level, stability_options.run_tolerance,
-                                       stability_options.ripple_tolerance, &stable) &&
-            (window == 256 ||
-             (std::abs(stable.nearest_maximum - previous_level) < window && stable.isolated));
-    if (found) break;
+  if (!ComputeWeightedStabilityProfile(gray, segment, centre, stability_options, &profile) ||
+      !SelectMaximallyStableLevel(profile, previous_level, stability_options.run_tolerance,
+                                  stability_options.ripple_tolerance, &stable)) {
+    return false;
   }
-  if (!found) return false;
 
   // Trace the MSICS at its refined threshold in the B/2 block centred on the corner.
   const int half = options.block_size / 2;
@@ -161,6 +152,9 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
   cv::Point2f current = position;
   std::vector<cv::Point2f> current_reference = reference;
   double current_level = level;
+  ConvergedCorner last;         // the result of the last iteration
+  ConvergedCorner before_last;  // and of the one before it
+  int done = 0;
   for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
     ConvergedCorner next;
     if (!RedetectCorner(gray, current, current_reference, current_level, options, &next,
@@ -171,15 +165,34 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
     // A fixed point keeps its MSICS too: a corner that barely moved while its curve jumped to
     // another level (typical of the first iteration, from the initialisation's level) goes on.
     const bool same_curve = std::abs(next.threshold - 0.5 - current_level) <= 1.0;
-    current = next.position;
-    current_level = next.threshold - 0.5;
-    if ((moved <= options.stop_tolerance && same_curve) || iteration == options.max_iterations) {
+    if (moved <= options.stop_tolerance && same_curve) {
+      *result = std::move(next);
+      result->iterations = iteration;
+      return true;
+    }
+    // Back where it was two iterations ago (within a quarter of the settle tolerance): the
+    // iteration alternates between two MSICSs near the corner. It has stopped moving in the sense
+    // of Algorithm 1; keep the more stable of the two.
+    if (done >= 2 &&
+        Distance(next.position, before_last.position) <=
+            std::max(options.stop_tolerance, 0.25 * options.tolerance) &&
+        std::abs(next.threshold - before_last.threshold) <= 1.0) {
+      *result = next.stability >= last.stability ? std::move(next) : std::move(last);
+      result->iterations = iteration;
+      return true;
+    }
+    if (iteration == options.max_iterations) {
       if (moved > options.tolerance) return false;  // still moving: not settled
       *result = std::move(next);
       result->iterations = iteration;
       return true;
     }
+    current = next.position;
+    current_level = next.threshold - 0.5;
     current_reference = next.curve;
+    before_last = std::move(last);
+    last = std::move(next);
+    ++done;
   }
   return false;
 }

@@ -85,9 +85,10 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
                     ConvergenceWorkspace* workspace = nullptr);
 
 // Iterates RedetectCorner from an initial corner until it stops moving (a move of at most
-// stop_tolerance, its MSICS's level changing by at most one grey level) or max_iterations are
-// done. False if it is lost, or if its last move was farther than `tolerance` (it has not
-// settled).
+// stop_tolerance, its MSICS's level changing by at most one grey level), or returns to the state
+// of two iterations before (a 2-cycle between two MSICSs: the more stable one is kept), or
+// max_iterations are done. False if it is lost, or if its last move was farther than
+// `tolerance` (it has not settled).
 bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
                     const std::vector<cv::Point2f>& reference, double level,
                     const ConvergenceOptions& options, ConvergedCorner* result,

@@ -75,19 +75,22 @@ std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& 
 
 namespace {
 
-// Cubic convolution (Catmull-Rom, Keys a = -0.5) interpolation of an 8-bit image, the border
-// replicated. Unlike bilinear interpolation, whose profile across a sharp edge is linear between
-// the two pixels straddling it (a flat gradient, hence a flat ρ over many levels), it has a
-// continuous gradient with a maximum near the edge, so the most stable level is well defined.
-class CubicSampler {
+// Interpolation of an 8-bit image (border replicated) for the normal profiles: cubic convolution
+// (Catmull-Rom, Keys a = -0.5) near the curve, bilinear beyond. Bilinear interpolation across a
+// sharp edge is linear between the two pixels straddling it (a flat gradient, hence a flat ρ over
+// many levels); the cubic has a continuous gradient with a maximum near the edge, so the most
+// stable level is well defined. Far from the curve only the toes of the edge are sampled, which
+// decide the weak levels only, and the cheaper bilinear interpolation is enough there.
+class ProfileSampler {
  public:
-  explicit CubicSampler(const cv::Mat& gray) : gray_(gray) {}
-  float operator()(double x, double y) const {
+  explicit ProfileSampler(const cv::Mat& gray) : gray_(gray) {}
+
+  float Cubic(double x, double y) const {
     const int x0 = static_cast<int>(std::floor(x));
     const int y0 = static_cast<int>(std::floor(y));
     float wx[4], wy[4];
-    Weights(static_cast<float>(x - x0), wx);
-    Weights(static_cast<float>(y - y0), wy);
+    CubicWeights(static_cast<float>(x - x0), wx);
+    CubicWeights(static_cast<float>(y - y0), wy);
     float sum = 0.0f;
     if (x0 >= 1 && y0 >= 1 && x0 + 2 < gray_.cols && y0 + 2 < gray_.rows) {
       const uint8_t* row = gray_.ptr<uint8_t>(y0 - 1) + (x0 - 1);
@@ -105,8 +108,24 @@ class CubicSampler {
     return sum;
   }
 
+  float Bilinear(double x, double y) const {
+    x = std::clamp(x, 0.0, gray_.cols - 1.0);
+    y = std::clamp(y, 0.0, gray_.rows - 1.0);
+    const int x0 = std::min(static_cast<int>(x), std::max(0, gray_.cols - 2));
+    const int y0 = std::min(static_cast<int>(y), std::max(0, gray_.rows - 2));
+    const int x1 = std::min(x0 + 1, gray_.cols - 1);
+    const int y1 = std::min(y0 + 1, gray_.rows - 1);
+    const float tx = static_cast<float>(x - x0);
+    const float ty = static_cast<float>(y - y0);
+    const uint8_t* r0 = gray_.ptr<uint8_t>(y0);
+    const uint8_t* r1 = gray_.ptr<uint8_t>(y1);
+    const float top = r0[x0] + tx * (r0[x1] - r0[x0]);
+    const float bottom = r1[x0] + tx * (r1[x1] - r1[x0]);
+    return top + ty * (bottom - top);
+  }
+
  private:
-  static void Weights(float t, float* w) {
+  static void CubicWeights(float t, float* w) {
     const float t2 = t * t, t3 = t2 * t;
     w[0] = -0.5f * t3 + t2 - 0.5f * t;
     w[1] = 1.5f * t3 - 2.5f * t2 + 1.0f;
@@ -166,115 +185,77 @@ void ProfileCrossings(float* f, int size, int m, double step, double first_thres
 
 bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::Point2f>& reference,
                                      int centre_index, const WeightedStabilityOptions& options,
-                                     StabilityProfile* profile, int min_level, int max_level) {
+                                     StabilityProfile* profile) {
   const int n = static_cast<int>(reference.size());
   if (centre_index < 1 || centre_index > n - 2) return false;
-  const int first = std::max(0, centre_index - options.half_length);
-  const int last = std::min(n - 1, centre_index + options.half_length);
-  const int num_normals = last - first + 1;
+  // Normals every normal_step samples within half_length of the centre, the centre included.
+  const int normal_step = std::max(1, options.normal_step);
+  const int reach_before = std::min(centre_index, options.half_length) / normal_step;
+  const int reach_after = std::min(n - 1 - centre_index, options.half_length) / normal_step;
+  const int num_normals = reach_before + reach_after + 1;
+  const int centre_row = reach_before;
   const int m =
       std::max(1, static_cast<int>(std::lround(options.max_distance / options.sample_step)));
   const double step = options.sample_step;
-  const CubicSampler interpolate(gray);
+  const int cubic_reach = static_cast<int>(std::floor(options.cubic_distance / step + 1e-9));
+  const ProfileSampler interpolate(gray);
 
-  // Unit normals towards the bright side (the right of the direction of travel).
+  // Unit normals towards the bright side (the right of the direction of travel), and weights.
+  std::vector<cv::Point2d>& points = profile->points;
   std::vector<cv::Point2d>& normals = profile->normals;
   std::vector<double>& weights = profile->weights;
+  points.resize(num_normals);
   normals.resize(num_normals);
   weights.resize(num_normals);
-  for (int i = first; i <= last; ++i) {
+  double weight_sum = 0;
+  for (int r = 0; r < num_normals; ++r) {
+    const int i = centre_index + (r - centre_row) * normal_step;
     const cv::Point2d tangent =
         cv::Point2d(reference[std::min(n - 1, i + 1)]) - cv::Point2d(reference[std::max(0, i - 1)]);
     const double norm = std::sqrt(tangent.x * tangent.x + tangent.y * tangent.y);
-    normals[i - first] =
-        norm > 0 ? cv::Point2d(-tangent.y / norm, tangent.x / norm) : cv::Point2d(0, 0);
+    points[r] = reference[i];
+    normals[r] = norm > 0 ? cv::Point2d(-tangent.y / norm, tangent.x / norm) : cv::Point2d(0, 0);
     const double d = i - centre_index;
-    weights[i - first] = std::exp(-d * d / (2.0 * options.sigma * options.sigma));
+    weights[r] = std::exp(-d * d / (2.0 * options.sigma * options.sigma));
+    weight_sum += weights[r];
   }
 
-  // Intensity profiles along the normals (row i: samples k = 0..2m at u = (k - m) * step), read
+  // Intensity profiles along the normals (row r: samples k = 0..2m at u = (k - m) * step), read
   // on demand.
   const int samples = 2 * m + 1;
   std::vector<float>& profiles = profile->samples;
   profiles.assign(static_cast<size_t>(num_normals) * samples, kNotSampled);
-  auto sampler = [&](int i) {
-    const cv::Point2d p = reference[first + i];
-    const cv::Point2d normal = normals[i];
-    return [&interpolate, p, normal, m, step](int k) {
+  auto sampler = [&](int r) {
+    const cv::Point2d p = points[r];
+    const cv::Point2d normal = normals[r];
+    return [&interpolate, p, normal, m, step, cubic_reach](int k) {
       const double u = (k - m) * step;
-      return interpolate(p.x + u * normal.x, p.y + u * normal.y);
+      const double x = p.x + u * normal.x, y = p.y + u * normal.y;
+      return std::abs(k - m) <= cubic_reach ? interpolate.Cubic(x, y) : interpolate.Bilinear(x, y);
     };
   };
+  auto row_of = [&](int r) { return &profiles[static_cast<size_t>(r) * samples]; };
 
-  // Levels whose curve crosses the central normal within the search radius.
-  const int centre_row = centre_index - first;
-  float* centre_profile = &profiles[static_cast<size_t>(centre_row) * samples];
-  const auto centre_sample = sampler(centre_row);
-  double low = std::numeric_limits<double>::infinity();
-  double high = -low;
-  const int reach = static_cast<int>(std::floor(options.search_radius / step + 1e-9));
-  for (int k = std::max(0, m - reach); k <= std::min(2 * m, m + reach); ++k) {
-    centre_profile[k] = centre_sample(k);
-    low = std::min(low, static_cast<double>(centre_profile[k]));
-    high = std::max(high, static_cast<double>(centre_profile[k]));
-  }
-  // Level J is crossed if low < J + 0.5 <= high.
-  const int level_lo = std::max(min_level, static_cast<int>(std::ceil(low - 0.5 + 1e-9)));
-  const int level_hi = std::min(max_level, static_cast<int>(std::ceil(high - 0.5)) - 1);
-  if (level_hi < level_lo) return false;
-  const int first_level = level_lo - 1;
-  const int num_levels = level_hi - level_lo + 3;
-  const int delta_steps = static_cast<int>(std::ceil(options.delta));
-  // Thresholds J + 0.5 + e for e in [-delta, delta]; delta is whole in practice (an int option),
-  // fractional values are rounded up for the table and interpolated below.
-  const int first_threshold_level = first_level - delta_steps;
-  const int num_thresholds = num_levels + 2 * delta_steps;
-  std::vector<double>& crossing = profile->crossings;
-  std::vector<uint8_t>& clipped = profile->clipped;
-  crossing.resize(static_cast<size_t>(num_normals) * num_thresholds);
-  clipped.resize(crossing.size());
-  for (int i = 0; i < num_normals; ++i) {
-    ProfileCrossings(&profiles[static_cast<size_t>(i) * samples], samples, m, step,
-                     first_threshold_level + 0.5, num_thresholds, sampler(i),
-                     &crossing[static_cast<size_t>(i) * num_thresholds],
-                     &clipped[static_cast<size_t>(i) * num_thresholds]);
-  }
-  auto u_at = [&](int i, double j) {  // crossing of threshold index j (may be fractional)
-    const double* row = &crossing[static_cast<size_t>(i) * num_thresholds];
-    const int j0 = std::clamp(static_cast<int>(std::floor(j)), 0, num_thresholds - 1);
-    const int j1 = std::min(j0 + 1, num_thresholds - 1);
-    const double t = std::clamp(j - j0, 0.0, 1.0);
-    return row[j0] + t * (row[j1] - row[j0]);
-  };
-
-  profile->first_level = first_level;
-  profile->stability.assign(num_levels, 0.0);
-  profile->length.assign(num_levels, 0.0);
-  profile->band_area.assign(num_levels, 0.0);
-  profile->centre_offset.assign(num_levels, 0.0);
-  profile->centre = reference[centre_index];
-  profile->normal = normals[centre_row];
-  double weight_sum = 0;
-  for (double w : weights) weight_sum += w;
   // The intensities on the two sides of the curve: per normal, the darkest value on the dark
   // half and the brightest on the bright half within side_distance (extremes reach the flat sides
   // of a blurred edge whatever the reference curve's level), and across normals the weighted
   // median of their mid-points, robust to texture and to the few normals that cross to the far
-  // side of a sharp tip.
+  // side of a sharp tip. The central normal's values also give the candidate levels.
   const int side_reach = std::min(m, static_cast<int>(std::lround(options.side_distance / step)));
+  const int search_reach =
+      std::min(m, static_cast<int>(std::floor(options.search_radius / step + 1e-9)));
+  const int read_reach = std::max(side_reach, search_reach);
   std::vector<std::pair<double, double>>& mids = profile->mids;
   mids.clear();
-  for (int i = 0; i < num_normals; ++i) {
-    float* row = &profiles[static_cast<size_t>(i) * samples];
-    const auto sample = sampler(i);
+  for (int r = 0; r < num_normals; ++r) {
+    float* row = row_of(r);
+    const auto sample = sampler(r);
+    for (int k = m - read_reach; k <= m + read_reach; ++k) row[k] = sample(k);
     float dark = std::numeric_limits<float>::infinity();
     float bright = -dark;
-    for (int k = m - side_reach; k <= m + side_reach; ++k) {
-      if (row[k] == kNotSampled) row[k] = sample(k);
-      if (k <= m) dark = std::min(dark, row[k]);
-      if (k >= m) bright = std::max(bright, row[k]);
-    }
-    mids.emplace_back(0.5 * (dark + bright), weights[i]);
+    for (int k = m - side_reach; k <= m; ++k) dark = std::min(dark, row[k]);
+    for (int k = m; k <= m + side_reach; ++k) bright = std::max(bright, row[k]);
+    mids.emplace_back(0.5 * (dark + bright), weights[r]);
   }
   std::sort(mids.begin(), mids.end());
   double cumulative = 0;
@@ -287,6 +268,52 @@ bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::
     }
   }
   profile->middle_level = median - 0.5;
+
+  // Levels whose curve crosses the central normal within the search radius: J with
+  // low < J + 0.5 <= high.
+  const float* centre_profile = row_of(centre_row);
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (int k = m - search_reach; k <= m + search_reach; ++k) {
+    low = std::min(low, static_cast<double>(centre_profile[k]));
+    high = std::max(high, static_cast<double>(centre_profile[k]));
+  }
+  const int level_lo = static_cast<int>(std::ceil(low - 0.5 + 1e-9));
+  const int level_hi = static_cast<int>(std::ceil(high - 0.5)) - 1;
+  if (level_hi < level_lo) return false;
+  const int first_level = level_lo - 1;
+  const int num_levels = level_hi - level_lo + 3;
+  // Crossings of the thresholds J + 0.5 + e, e in [-δ, δ] (δ rounded up; a fractional δ is
+  // interpolated below).
+  const int delta_steps = static_cast<int>(std::ceil(options.delta));
+  const int first_threshold_level = first_level - delta_steps;
+  const int num_thresholds = num_levels + 2 * delta_steps;
+  std::vector<double>& crossing = profile->crossings;
+  std::vector<uint8_t>& clipped = profile->clipped;
+  crossing.resize(static_cast<size_t>(num_normals) * num_thresholds);
+  clipped.resize(crossing.size());
+  for (int r = 0; r < num_normals; ++r) {
+    ProfileCrossings(row_of(r), samples, m, step, first_threshold_level + 0.5, num_thresholds,
+                     sampler(r), &crossing[static_cast<size_t>(r) * num_thresholds],
+                     &clipped[static_cast<size_t>(r) * num_thresholds]);
+  }
+  const bool whole_delta = options.delta == delta_steps;
+  auto u_at = [&](int r, double j) {  // crossing of threshold index j (may be fractional)
+    const double* row = &crossing[static_cast<size_t>(r) * num_thresholds];
+    if (whole_delta) return row[static_cast<int>(j)];
+    const int j0 = std::clamp(static_cast<int>(std::floor(j)), 0, num_thresholds - 1);
+    const int j1 = std::min(j0 + 1, num_thresholds - 1);
+    const double t = std::clamp(j - j0, 0.0, 1.0);
+    return row[j0] + t * (row[j1] - row[j0]);
+  };
+
+  profile->first_level = first_level;
+  profile->stability.assign(num_levels, 0.0);
+  profile->length.assign(num_levels, 0.0);
+  profile->band_area.assign(num_levels, 0.0);
+  profile->centre_offset.assign(num_levels, 0.0);
+  profile->centre = points[centre_row];
+  profile->normal = normals[centre_row];
   std::vector<double>& element = profile->elements;
   element.resize(num_normals);
   for (int l = 0; l < num_levels; ++l) {
@@ -296,27 +323,27 @@ bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::
     std::fill(element.begin(), element.end(), 0.0);
     cv::Point2d previous;
     bool previous_valid = false;
-    for (int i = 0; i < num_normals; ++i) {
-      const size_t index = static_cast<size_t>(i) * num_thresholds + j;
+    for (int r = 0; r < num_normals; ++r) {
+      const size_t index = static_cast<size_t>(r) * num_thresholds + j;
       const bool valid = !clipped[index];
-      const cv::Point2d q = cv::Point2d(reference[first + i]) + crossing[index] * normals[i];
+      const cv::Point2d q = points[r] + crossing[index] * normals[r];
       if (valid && previous_valid) {
         const double dx = q.x - previous.x;
         const double dy = q.y - previous.y;
         const double chord = std::sqrt(dx * dx + dy * dy);
-        element[i - 1] += 0.5 * chord;
-        element[i] += 0.5 * chord;
+        element[r - 1] += 0.5 * chord;
+        element[r] += 0.5 * chord;
       }
       previous = q;
       previous_valid = valid;
     }
-    // The strip of normal i has the band's width there times the curve's length element: the
+    // The strip of normal r has the band's width there times the curve's length element: the
     // area between Up and Down in that strip.
     double length = 0;
     double band = 0;
-    for (int i = 0; i < num_normals; ++i) {
-      length += weights[i] * element[i];
-      band += weights[i] * element[i] * (u_at(i, j + options.delta) - u_at(i, j - options.delta));
+    for (int r = 0; r < num_normals; ++r) {
+      length += weights[r] * element[r];
+      band += weights[r] * element[r] * (u_at(r, j + options.delta) - u_at(r, j - options.delta));
     }
     band = std::max(band, 1e-6 * weight_sum);
     profile->band_area[l] = band;
@@ -344,8 +371,6 @@ bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous
     const double d_best = std::abs(profile.first_level + maxima[current] - previous_level);
     if (d < d_best || (d == d_best && rho[maxima[m]] > rho[maxima[current]])) current = m;
   }
-  selected->nearest_maximum = profile.first_level + maxima[current];
-  const double first_peak = rho[maxima[current]];
   // Ripples are not separate curves: climb to a higher neighbouring maximum while the dip between
   // is shallower than ripple_tolerance (relative to the lower of the two), as MSER ignores
   // insignificant extrema. Between two distinct curves ρ drops by most of its value.
@@ -398,9 +423,6 @@ bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous
   selected->threshold = profile.first_level + centre + 0.5;
   selected->level = static_cast<int>(std::ceil(selected->threshold)) - 1;
   selected->stability = peak;
-  // Nothing beyond the profile's ends could have joined the climb or the run.
-  const double beyond = (1.0 - ripple_tolerance) * first_peak;
-  selected->isolated = rho.front() < beyond && rho.back() < beyond;
   return true;
 }
 

@@ -76,9 +76,14 @@ struct WeightedStabilityOptions {
   double sigma = 6.0;
   // δ in grey levels.
   double delta = 5.0;
+  // Normals (strips of the band) every this many samples along the segment.
+  int normal_step = 2;
   // Half-length of each normal profile in px: band widths are measured up to this far from the
   // segment on each side (wider bands are clipped, which only lowers ρ further).
   double max_distance = 6.0;
+  // Profiles are interpolated by cubic convolution up to this far from the segment, px, and
+  // bilinearly beyond.
+  double cubic_distance = 2.0;
   // Step of the profile samples along the normals, in px.
   double sample_step = 0.5;
   // Levels are evaluated whose curve crosses the central normal within this distance of p, px.
@@ -114,6 +119,7 @@ struct StabilityProfile {
   int NumLevels() const { return static_cast<int>(stability.size()); }
 
   // Working buffers of ComputeWeightedStabilityProfile.
+  std::vector<cv::Point2d> points;
   std::vector<cv::Point2d> normals;
   std::vector<double> weights;
   std::vector<float> samples;
@@ -125,14 +131,12 @@ struct StabilityProfile {
 
 // Computes the profile around reference[centre_index]. `reference` is a segment of iso-curve
 // resampled at 1 px, dark side on the left; it must extend at least 1 sample on either side of
-// the centre. Weights cover samples within half_length of the centre. Levels range over those
-// whose curve crosses the central normal within search_radius of p and lie in
-// [min_level, max_level], plus one on each side (for the local-maximum test). Returns false when
-// no level does.
+// the centre. Normals are taken every normal_step samples within half_length of the centre.
+// Levels range over those whose curve crosses the central normal within search_radius of p,
+// plus one on each side (for the local-maximum test). Returns false when no level does.
 bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::Point2f>& reference,
                                      int centre_index, const WeightedStabilityOptions& options,
-                                     StabilityProfile* profile, int min_level = 0,
-                                     int max_level = 255);
+                                     StabilityProfile* profile);
 
 struct StableLevel {
   // The threshold at which the MSICS's curve is traced (fractional: the level refined below one
@@ -142,12 +146,6 @@ struct StableLevel {
   int level = 0;
   // ρ_w of the MSICS.
   double stability = 0.0;
-  // The local maximum nearest to the previous level, where the choice started.
-  int nearest_maximum = 0;
-  // True if ρ_w at both ends of the profile is too low for anything beyond them to have changed
-  // the choice (a profile computed over a window of levels then gives the same answer as over
-  // all levels, provided the nearest maximum is nearer than the window's half-width).
-  bool isolated = false;
 };
 
 // Among the local maxima of the profile (ρ_w(I) > ρ_w(I - 1) and >= ρ_w(I + 1), not at the ends)
