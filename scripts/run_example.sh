@@ -6,5 +6,9 @@ cd "$(dirname "$0")/.."
 scripts/build.sh
 build_dir=${COMIC_BUILD_DIR:-build}
 mkdir -p out/example
-"$build_dir"/bin/comic_inspect examples/data/kitti06_000-011/image_l \
-  --contact-sheet out/example/contact_sheet.png
+# Structure from motion on the 12 KITTI frames with every detector, measured against the clip's
+# ground-truth poses (intrinsics from the calib.txt beside poses.txt): one table in
+# out/example/compare.md (.csv, .json), and per detector a COLMAP text model, a PLY point cloud,
+# report.json and trajectory.png in out/example/<detector>/.
+"$build_dir"/bin/comic_sfm examples/data/kitti06_000-011/image_l \
+  --gt examples/data/kitti06_000-011/poses.txt --compare --out out/example
