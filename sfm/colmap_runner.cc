@@ -169,6 +169,8 @@ void ColmapMapperOptions::Check() const {
   COMIC_CHECK(
       init_min_tri_angle > 0 && init_min_tri_angle < 90, kInvalidArgument,
       "COLMAP mapper init_min_tri_angle must be in (0, 90) degrees, got " << init_min_tri_angle);
+  COMIC_CHECK(min_model_size >= 2, kInvalidArgument,
+              "COLMAP mapper min_model_size must be >= 2, got " << min_model_size);
 }
 
 ColmapMapperOptions RecommendedColmapMapperOptions(const ColmapExportSummary& summary) {
@@ -183,6 +185,8 @@ ColmapMapperOptions RecommendedColmapMapperOptions(const ColmapExportSummary& su
     options.ba_refine_principal_point = false;
     options.ba_refine_extra_params = false;
   }
+  options.min_model_size =
+      std::min(options.min_model_size, std::max(3, (summary.num_images + 3) / 4));
   return options;
 }
 
@@ -201,7 +205,8 @@ std::vector<std::string> ColmapMapperArguments(const std::string& database_path,
                "--Mapper.init_min_tri_angle", FormatNumber(options.init_min_tri_angle),
                "--Mapper.ba_refine_focal_length", options.ba_refine_focal_length ? "1" : "0",
                "--Mapper.ba_refine_principal_point", options.ba_refine_principal_point ? "1" : "0",
-               "--Mapper.ba_refine_extra_params", options.ba_refine_extra_params ? "1" : "0"});
+               "--Mapper.ba_refine_extra_params", options.ba_refine_extra_params ? "1" : "0",
+               "--Mapper.min_model_size", std::to_string(options.min_model_size)});
   return args;
 }
 

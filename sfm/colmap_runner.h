@@ -51,6 +51,9 @@ struct ColmapMapperOptions {
   bool ba_refine_focal_length = true;
   bool ba_refine_principal_point = false;
   bool ba_refine_extra_params = true;
+  // --Mapper.min_model_size: COLMAP discards models with fewer registered images (default 10,
+  // which is most of a short sequence).
+  int min_model_size = 10;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -60,8 +63,9 @@ struct ColmapMapperOptions {
 // allows COLMAP's default initialisation (summary.num_pairs_allowing_default_init == 0);
 // init_min_tri_angle half the largest median triangulation angle of a pair with 100 inliers
 // (rounded down to 0.1 degree, at least 0.1) when that is below COLMAP's default; and the
-// intrinsics held fixed (no focal length, principal point or distortion refinement) when known.
-// num_threads stays -1.
+// intrinsics held fixed (no focal length, principal point or distortion refinement) when known;
+// min_model_size a quarter of the frames (at least 3) when that is below COLMAP's default 10, so a
+// partial model of a short sequence is kept rather than silently dropped. num_threads stays -1.
 ColmapMapperOptions RecommendedColmapMapperOptions(const ColmapExportSummary& summary);
 
 // The arguments of `colmap mapper` (without the program name): the three paths, then

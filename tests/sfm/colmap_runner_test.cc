@@ -47,6 +47,14 @@ TEST(ColmapMapperOptions, RecommendationsFollowTheExport) {
   EXPECT_FALSE(forward.ba_refine_principal_point);
   EXPECT_FALSE(forward.ba_refine_extra_params);
   EXPECT_EQ(forward.num_threads, -1);
+  EXPECT_EQ(forward.min_model_size, 3);  // summary.num_images == 0
+
+  summary.num_images = 12;
+  EXPECT_EQ(RecommendedColmapMapperOptions(summary).min_model_size, 3);
+  summary.num_images = 30;
+  EXPECT_EQ(RecommendedColmapMapperOptions(summary).min_model_size, 8);
+  summary.num_images = 51;
+  EXPECT_EQ(RecommendedColmapMapperOptions(summary).min_model_size, 10);
 
   summary.known_intrinsics = false;
   summary.num_pairs_allowing_default_init = 4;
@@ -66,6 +74,9 @@ TEST(ColmapMapperOptions, RecommendationsFollowTheExport) {
   bad = ColmapMapperOptions();
   bad.num_threads = 0;
   EXPECT_THROW(bad.Check(), Error);
+  bad = ColmapMapperOptions();
+  bad.min_model_size = 1;
+  EXPECT_THROW(bad.Check(), Error);
 }
 
 TEST(ColmapMapperArguments, ListEveryOptionExplicitly) {
@@ -79,12 +90,14 @@ TEST(ColmapMapperArguments, ListEveryOptionExplicitly) {
             "mapper --database_path a.db --image_path images --output_path sparse "
             "--Mapper.num_threads 2 --Mapper.init_max_forward_motion 1 "
             "--Mapper.init_min_tri_angle 1.5 --Mapper.ba_refine_focal_length 0 "
-            "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0");
+            "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0 "
+            "--Mapper.min_model_size 10");
   EXPECT_EQ(ColmapMapperCommandLine("my db.db", "images", "out/sparse", ColmapMapperOptions()),
             "mkdir -p out/sparse && colmap mapper --database_path 'my db.db' --image_path images "
             "--output_path out/sparse --Mapper.init_max_forward_motion 0.95 "
             "--Mapper.init_min_tri_angle 16 --Mapper.ba_refine_focal_length 1 "
-            "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 1");
+            "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 1 "
+            "--Mapper.min_model_size 10");
 }
 
 TEST(ParseColmapModelAnalyzerOutput, ReadsEveryFieldWithOrWithoutGlogPrefixes) {
