@@ -101,14 +101,14 @@ std::optional<TriangulatedPoint> TriangulateMultiView(const std::vector<Triangul
   for (const TriangulationView& view : views)
     centers.push_back(ProjectionCenter(view.cam_from_world));
 
-  // Candidate pairs: all of them for short tracks; for long ones those involving the ends and the
-  // last view (the newest registered one in the mapper), which keeps the cost linear.
+  // Candidate pairs: all of them for short tracks; for long ones the pairs with the first or the
+  // last view (the newest registered one in the mapper) and those half the track apart, which
+  // keeps the cost linear in the track length while every view is in some wide pair.
   std::vector<std::pair<int, int>> pairs;
   constexpr int kExhaustiveViews = 12;
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
-      const bool keep =
-          n <= kExhaustiveViews || i == 0 || j == n - 1 || i == n - 2 || (j - i) == n / 2;
+      const bool keep = n <= kExhaustiveViews || i == 0 || j == n - 1 || (j - i) == n / 2;
       if (keep) pairs.emplace_back(i, j);
     }
   }

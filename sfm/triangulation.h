@@ -50,11 +50,12 @@ struct TriangulatedPoint {
   double max_angle_deg = 0.0;     // largest triangulation angle among the inlier views
 };
 
-// Triangulates a point seen in `views` that may contain wrong observations: every pair of views
-// (all pairs up to 12 views, else the pairs involving the first, last or newest-listed views) is
-// triangulated, the hypothesis agreed on by the most views (reprojection and positive depth) wins,
-// and it is re-estimated from its inliers. Returns std::nullopt if no hypothesis passes the
-// options' angle, depth, reprojection and view-count checks. Deterministic.
+// Triangulates a point seen in `views` that may contain wrong observations: candidate pairs of
+// views (all pairs up to 12 views, else the pairs with the first or last view and those half the
+// track apart) are triangulated, the hypothesis agreed on by the most views (reprojection and
+// positive depth) wins, and it is re-estimated from its inliers. Returns std::nullopt if no
+// hypothesis passes the options' angle, depth, reprojection and view-count checks.
+// Deterministic.
 std::optional<TriangulatedPoint> TriangulateMultiView(const std::vector<TriangulationView>& views,
                                                       const TriangulationOptions& options);
 
