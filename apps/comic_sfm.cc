@@ -28,6 +28,7 @@
 #include "io/ply.h"
 #include "io/region_annotations.h"
 #include "io/report_table.h"
+#include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"
 #include "sfm/colmap_comparison.h"
 #include "sfm/colmap_export.h"
@@ -592,5 +593,7 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Errors go to stderr as one line; Ceres' recoverable-trouble warnings would add noise there.
+  comic::sfm::ShowOnlySolverErrors();
   return comic::apps::RunMain("comic_sfm", [&] { return Run(argc, argv); });
 }

@@ -1,6 +1,7 @@
 #include "sfm/bundle_adjuster.h"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <Eigen/Geometry>
 #include <array>
@@ -294,5 +295,7 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
+
+void ShowOnlySolverErrors() { FLAGS_minloglevel = google::GLOG_ERROR; }
 
 }  // namespace comic::sfm

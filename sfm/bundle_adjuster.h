@@ -79,4 +79,10 @@ class BundleAdjuster {
   BundleAdjustmentConfig config_;
 };
 
+// Ceres reports solver trouble it recovers from (e.g. "Linear solver failure", after which
+// Levenberg–Marquardt simply raises its damping) as glog warnings on stderr. That logger is
+// process-wide, so the library leaves it alone; an app that owns the process and wants stderr for
+// its own messages calls this once at start-up to show only glog errors.
+void ShowOnlySolverErrors();
+
 }  // namespace comic::sfm
