@@ -13,7 +13,6 @@ void ComponentTree::Build(const cv::Mat& block, bool upper_sets) {
   width_ = block.cols;
   height_ = block.rows;
   upper_sets_ = upper_sets;
-  own_lists_built_ = false;
   const int stride = Stride();
   const int padded_size = stride * (height_ + 2);
   const int num_pixels = width_ * height_;
@@ -141,24 +140,6 @@ int ComponentTree::MainDescendantAtLevel(int node, int level) const {
 int ComponentTree::MainDescendantArea(int node, int level) const {
   const int descendant = MainDescendantAtLevel(node, level);
   return descendant < 0 ? 0 : area_[descendant];
-}
-
-const std::vector<int>& ComponentTree::OwnPixels(int node) {
-  if (!own_lists_built_) {
-    own_head_.assign(values_.size(), -1);
-    own_next_.assign(values_.size(), -1);
-    // Reverse order so that each list comes out in processing order.
-    for (int i = static_cast<int>(order_.size()) - 1; i >= 0; --i) {
-      const int p = order_[i];
-      const int owner = NodeOfPixel(p);
-      own_next_[p] = own_head_[owner];
-      own_head_[owner] = p;
-    }
-    own_lists_built_ = true;
-  }
-  own_pixels_.clear();
-  for (int p = own_head_[node]; p >= 0; p = own_next_[p]) own_pixels_.push_back(p);
-  return own_pixels_;
 }
 
 }  // namespace comic::frontend

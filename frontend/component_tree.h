@@ -74,10 +74,6 @@ class ComponentTree {
   // Area of MainDescendantAtLevel (0 when it does not exist).
   int MainDescendantArea(int node, int level) const;
 
-  // Pixels whose grey value equals the node's level and that belong to it (the pixels that
-  // created or grew the component at its level). Valid after Build(); filled on first use.
-  const std::vector<int>& OwnPixels(int node);
-
  private:
   static constexpr int32_t kOutside = -2;
   static constexpr int32_t kUnprocessed = -1;
@@ -102,11 +98,6 @@ class ComponentTree {
   std::vector<int32_t> perimeter_;   // valid on canonical pixels
   std::vector<int32_t> main_child_;  // valid on canonical pixels
   std::vector<int> nodes_;
-  // OwnPixels as linked lists, built lazily.
-  bool own_lists_built_ = false;
-  std::vector<int32_t> own_head_;
-  std::vector<int32_t> own_next_;
-  std::vector<int> own_pixels_;
 };
 
 }  // namespace comic::frontend

@@ -147,6 +147,7 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
                     const std::vector<cv::Point2f>& reference, double level,
                     const ConvergenceOptions& options, ConvergedCorner* result,
                     ConvergenceWorkspace* workspace) {
+  options.Check();
   ConvergenceWorkspace local_workspace;
   if (workspace == nullptr) workspace = &local_workspace;
   cv::Point2f current = position;

@@ -38,6 +38,7 @@ void InitialCornerDetector::DetectInBlock(const cv::Mat& image, const cv::Rect& 
                                           const cv::Rect& owned, bool upper_sets,
                                           const InitialCornerOptions& options,
                                           std::vector<InitialCorner>* corners) {
+  options.Check();
   tree_.Build(image(block), upper_sets);
   const int k = options.half_length;
   // A segment of 2k + 1 samples needs a boundary at least that long. Along a lineage, maxima
@@ -60,8 +61,8 @@ void InitialCornerDetector::DetectInBlock(const cv::Mat& image, const cv::Rect& 
     // curve is at 254.5 - level for upper sets (the component is {v >= 255 - level}).
     const int level = component.level;
     const IsoCurveTracer tracer(image, block, upper_sets ? 254.5 - level : level + 0.5);
-    const CornerContext context{
-        &image, &block, &owned, upper_sets ? 254 - level : level, component.stability, &options};
+    const CornerContext context{&owned, upper_sets ? 254 - level : level, component.stability,
+                                &options};
     // Seeds: the crossings of the component's level in the owned part whose inside pixel belongs
     // to the component; each curve is traced once.
     for (int y = owned.y; y < owned.y + owned.height; ++y) {

@@ -71,8 +71,6 @@ class InitialCornerDetector {
 
  private:
   struct CornerContext {
-    const cv::Mat* image;
-    const cv::Rect* block;
     const cv::Rect* owned;
     int grey_level;
     double stability;

@@ -171,17 +171,6 @@ double ArcLengthAt(const std::vector<cv::Point2f>& points, int index) {
   return s;
 }
 
-cv::Point2f PointAtArcLength(const std::vector<cv::Point2f>& points, bool closed, double s) {
-  if (points.size() < 2) return points.empty() ? cv::Point2f() : points[0];
-  const std::vector<double> cumulative = CumulativeLengths(points, closed);
-  const double length = cumulative.back();
-  if (closed && length > 0) {
-    s = std::fmod(s, length);
-    if (s < 0) s += length;
-  }
-  return Interpolate(points, cumulative, closed, std::clamp(s, 0.0, length));
-}
-
 std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points, bool closed,
                                           double spacing, double origin, int max_before,
                                           int max_after, int* origin_index) {

@@ -93,7 +93,4 @@ double ProjectOntoPolyline(const std::vector<cv::Point2f>& points, bool closed,
 // Arc length of vertex `index` along the polyline.
 double ArcLengthAt(const std::vector<cv::Point2f>& points, int index);
 
-// The point at arc length `s` (clamped for open polylines, wrapped for closed ones).
-cv::Point2f PointAtArcLength(const std::vector<cv::Point2f>& points, bool closed, double s);
-
 }  // namespace comic::frontend

@@ -46,7 +46,6 @@ TEST(ComponentTree, AreasPerimetersAndParentsOfASmallBlock) {
   EXPECT_EQ(tree.MainChild(square), -1);
   EXPECT_EQ(tree.Nodes().size(), 3u);
   EXPECT_EQ(tree.Nodes().back(), root);
-  EXPECT_EQ(tree.OwnPixels(square).size(), 4u);
 }
 
 TEST(ComponentTree, EdgesAgainstTheBlockBorderAreNotBoundary) {
