@@ -68,6 +68,7 @@ struct Flags {
   double max_cost = 400.0;
   bool refine_focal = false;
   int local_ba_images = 8;
+  double global_ba_growth = 1.5;
   double init_angle = 4.0;
   int init_max_gap = 20;
   int threads = 1;
@@ -105,6 +106,7 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   options.tracker.matcher.max_cost = flags.max_cost;
   options.mapper.global_ba.refine_focal_length = flags.refine_focal;
   options.mapper.local_ba_num_images = flags.local_ba_images;
+  options.mapper.global_ba_growth_ratio = flags.global_ba_growth;
   options.mapper.mapper.init_tri_angle_deg = flags.init_angle;
   options.mapper.mapper.init_max_frame_gap = flags.init_max_gap;
   options.mapper.local_ba.num_threads = flags.threads;
@@ -138,6 +140,7 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"max_cost", flags.max_cost},
           {"refine_focal", flags.refine_focal},
           {"local_ba_images", flags.local_ba_images},
+          {"global_ba_growth", flags.global_ba_growth},
           {"init_angle_deg", flags.init_angle},
           {"init_max_gap", flags.init_max_gap},
           {"threads", flags.threads},
@@ -485,6 +488,9 @@ int Run(int argc, char** argv) {
                  &flags.refine_focal);
   parser.AddOption("local-ba-images", "N", "images in each local bundle adjustment",
                    &flags.local_ba_images);
+  parser.AddOption("global-ba-growth", "R",
+                   "adjust the whole model whenever it has grown by this factor (and at the end)",
+                   &flags.global_ba_growth);
   parser.AddOption("init-angle", "DEG",
                    "initial pair: a point's triangulation angle that counts fully towards the "
                    "pair's parallax score",

@@ -1,6 +1,7 @@
 #include "sfm/bundle_adjuster.h"
 
 #include <ceres/ceres.h>
+#include <ceres/product_manifold.h>
 #include <glog/logging.h>
 
 #include <Eigen/Geometry>
@@ -28,24 +29,24 @@ void BundleAdjustmentOptions::Check() const {
 namespace {
 
 // Reprojection residual of one observation, in pixels. Parameter blocks: the image's
-// cam_from_world rotation (Eigen quaternion storage x, y, z, w), its translation (3), the point
-// in world coordinates (3) and the camera intrinsics (fx, fy, cx, cy).
+// cam_from_world pose (7: the rotation as an Eigen quaternion x, y, z, w, then the translation),
+// the point in world coordinates (3) and the camera intrinsics (fx, fy, cx, cy). One pose block
+// with 6 degrees of freedom lets Ceres use its Schur eliminator specialised for 2x3 point and 2x6
+// camera Jacobian blocks.
 class ReprojectionCost {
  public:
   explicit ReprojectionCost(const Eigen::Vector2d& observed) : observed_(observed) {}
 
   template <typename T>
-  bool operator()(const T* rotation_coeffs, const T* translation_data, const T* point_data,
-                  const T* intrinsics, T* residuals) const {
-    return Residuals(rotation_coeffs, translation_data, point_data, intrinsics, observed_,
-                     residuals);
+  bool operator()(const T* pose, const T* point_data, const T* intrinsics, T* residuals) const {
+    return Residuals(pose, point_data, intrinsics, observed_, residuals);
   }
 
   template <typename T, typename I>
-  static bool Residuals(const T* rotation_coeffs, const T* translation_data, const T* point_data,
-                        const I* intrinsics, const Eigen::Vector2d& observed, T* residuals) {
-    const Eigen::Map<const Eigen::Quaternion<T>> rotation(rotation_coeffs);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(translation_data);
+  static bool Residuals(const T* pose, const T* point_data, const I* intrinsics,
+                        const Eigen::Vector2d& observed, T* residuals) {
+    const Eigen::Map<const Eigen::Quaternion<T>> rotation(pose);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(pose + 4);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> point(point_data);
     const Eigen::Matrix<T, 3, 1> point_in_cam = rotation * point + translation;
     residuals[0] =
@@ -56,7 +57,7 @@ class ReprojectionCost {
   }
 
   static ceres::CostFunction* Create(const Eigen::Vector2d& observed) {
-    return new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 3, 3, 4>(
+    return new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 7, 3, 4>(
         new ReprojectionCost(observed));
   }
 
@@ -74,14 +75,12 @@ class FixedIntrinsicsReprojectionCost {
         intrinsics_{intrinsics[0], intrinsics[1], intrinsics[2], intrinsics[3]} {}
 
   template <typename T>
-  bool operator()(const T* rotation_coeffs, const T* translation_data, const T* point_data,
-                  T* residuals) const {
-    return ReprojectionCost::Residuals(rotation_coeffs, translation_data, point_data,
-                                       intrinsics_.data(), observed_, residuals);
+  bool operator()(const T* pose, const T* point_data, T* residuals) const {
+    return ReprojectionCost::Residuals(pose, point_data, intrinsics_.data(), observed_, residuals);
   }
 
   static ceres::CostFunction* Create(const Eigen::Vector2d& observed, const double* intrinsics) {
-    return new ceres::AutoDiffCostFunction<FixedIntrinsicsReprojectionCost, 2, 4, 3, 3>(
+    return new ceres::AutoDiffCostFunction<FixedIntrinsicsReprojectionCost, 2, 7, 3>(
         new FixedIntrinsicsReprojectionCost(observed, intrinsics));
   }
 
@@ -90,14 +89,18 @@ class FixedIntrinsicsReprojectionCost {
   std::array<double, 4> intrinsics_;
 };
 
+// RMS reprojection error over the observations of `point_ids` in `image_ids`.
 double RmsReprojectionError(const Reconstruction& reconstruction,
-                            const std::set<image_t>& image_ids) {
+                            const std::vector<image_t>& image_ids,
+                            const std::set<point3D_t>& point_ids) {
   double sum = 0.0;
   size_t count = 0;
   for (image_t image_id : image_ids) {
     const Image& image = reconstruction.image(image_id);
     for (point2D_t idx = 0; idx < image.points2D.size(); ++idx) {
-      if (!image.points2D[idx].HasPoint3D()) continue;
+      if (!image.points2D[idx].HasPoint3D() || !point_ids.count(image.points2D[idx].point3D_id)) {
+        continue;
+      }
       const double error = reconstruction.ReprojectionError(image_id, idx);
       sum += error * error;
       ++count;
@@ -124,20 +127,35 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
                 "bundle adjustment: image " << image_id << " is unknown or not registered");
   }
 
-  // Gather what enters the problem, in id order.
-  std::vector<image_t> image_ids;  // images with at least one observation
+  // Gather what enters the problem, in id order: every observation of the config's images, and
+  // the observations of their points in other registered images, whose poses stay constant.
   std::set<point3D_t> point_id_set;
-  std::set<camera_t> camera_id_set;
   for (image_t image_id : config_.image_ids) {
-    const Image& image = reconstruction->image(image_id);
-    bool observed = false;
-    for (const Point2D& point2D : image.points2D) {
-      if (!point2D.HasPoint3D()) continue;
-      point_id_set.insert(point2D.point3D_id);
-      observed = true;
-      ++summary.num_residuals;
+    for (const Point2D& point2D : reconstruction->image(image_id).points2D) {
+      if (point2D.HasPoint3D()) point_id_set.insert(point2D.point3D_id);
     }
-    if (!observed) continue;
+  }
+  std::set<image_t> observing_ids(config_.image_ids.begin(), config_.image_ids.end());
+  std::set<image_t> neighbour_ids;  // registered images outside the config seeing its points
+  for (point3D_t point3D_id : point_id_set) {
+    for (const TrackElement& element : reconstruction->point3D(point3D_id).track) {
+      if (!config_.image_ids.count(element.image_id) &&
+          reconstruction->image(element.image_id).registered) {
+        neighbour_ids.insert(element.image_id);
+      }
+    }
+  }
+  observing_ids.insert(neighbour_ids.begin(), neighbour_ids.end());
+  std::vector<image_t> image_ids;  // images with at least one observation in the problem
+  std::set<camera_t> camera_id_set;
+  for (image_t image_id : observing_ids) {
+    const Image& image = reconstruction->image(image_id);
+    int num_observations = 0;
+    for (const Point2D& point2D : image.points2D) {
+      num_observations += point2D.HasPoint3D() && point_id_set.count(point2D.point3D_id);
+    }
+    if (num_observations == 0) continue;
+    summary.num_residuals += num_observations;
     image_ids.push_back(image_id);
     camera_id_set.insert(image.camera_id);
   }
@@ -189,31 +207,32 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   ceres::LossFunction* loss = new ceres::HuberLoss(options_.huber_loss_scale_px);
   for (image_t image_id : image_ids) {
     const Image& image = reconstruction->image(image_id);
-    double* rotation = pose_params.at(image_id);
-    double* translation = rotation + 4;
+    double* pose = pose_params.at(image_id);
     for (const Point2D& point2D : image.points2D) {
-      if (!point2D.HasPoint3D()) continue;
+      if (!point2D.HasPoint3D() || !point_params.count(point2D.point3D_id)) continue;
       if (options_.refine_focal_length) {
-        problem.AddResidualBlock(ReprojectionCost::Create(point2D.xy), loss, rotation, translation,
+        problem.AddResidualBlock(ReprojectionCost::Create(point2D.xy), loss, pose,
                                  point_params.at(point2D.point3D_id),
                                  camera_params.at(image.camera_id));
       } else {
         problem.AddResidualBlock(
             FixedIntrinsicsReprojectionCost::Create(point2D.xy, camera_params.at(image.camera_id)),
-            loss, rotation, translation, point_params.at(point2D.point3D_id));
+            loss, pose, point_params.at(point2D.point3D_id));
       }
     }
-    problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
-    if (config_.constant_pose_ids.count(image_id)) {
-      problem.SetParameterBlockConstant(rotation);
-      problem.SetParameterBlockConstant(translation);
+    if (config_.constant_pose_ids.count(image_id) || neighbour_ids.count(image_id)) {
+      problem.SetParameterBlockConstant(pose);
+    } else if (config_.fixed_scale_image_ids.count(image_id)) {
+      ++summary.num_variable_images;
+      int largest = 0;
+      image.cam_from_world.translation.cwiseAbs().maxCoeff(&largest);
+      problem.SetManifold(
+          pose, new ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::SubsetManifold>(
+                    ceres::EigenQuaternionManifold(), ceres::SubsetManifold(3, {largest})));
     } else {
       ++summary.num_variable_images;
-      if (config_.fixed_scale_image_ids.count(image_id)) {
-        int largest = 0;
-        image.cam_from_world.translation.cwiseAbs().maxCoeff(&largest);
-        problem.SetManifold(translation, new ceres::SubsetManifold(3, {largest}));
-      }
+      problem.SetManifold(pose, new ceres::ProductManifold<ceres::EigenQuaternionManifold,
+                                                           ceres::EuclideanManifold<3>>());
     }
   }
   for (point3D_t point3D_id : config_.constant_point_ids) {
@@ -230,10 +249,7 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
   for (point3D_t point3D_id : point_ids)
     ordering->AddElementToGroup(point_params.at(point3D_id), 0);
-  for (image_t image_id : image_ids) {
-    ordering->AddElementToGroup(pose_params.at(image_id), 1);
-    ordering->AddElementToGroup(pose_params.at(image_id) + 4, 1);
-  }
+  for (image_t image_id : image_ids) ordering->AddElementToGroup(pose_params.at(image_id), 1);
   if (options_.refine_focal_length) {
     for (camera_t camera_id : camera_ids) {
       ordering->AddElementToGroup(camera_params.at(camera_id), 1);
@@ -260,7 +276,7 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   solver_options.logging_type = ceres::SILENT;
   solver_options.minimizer_progress_to_stdout = false;
 
-  summary.initial_rmse_px = RmsReprojectionError(*reconstruction, config_.image_ids);
+  summary.initial_rmse_px = RmsReprojectionError(*reconstruction, image_ids, point_id_set);
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(solver_options, &problem, &ceres_summary);
 
@@ -290,7 +306,7 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
       }
     }
   }
-  summary.final_rmse_px = RmsReprojectionError(*reconstruction, config_.image_ids);
+  summary.final_rmse_px = RmsReprojectionError(*reconstruction, image_ids, point_id_set);
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

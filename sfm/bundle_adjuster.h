@@ -38,7 +38,9 @@ struct BundleAdjustmentOptions {
 };
 
 struct BundleAdjustmentConfig {
-  // Images whose observations enter the problem (must be registered).
+  // Images whose observations enter the problem (must be registered). The points they see are
+  // refined; those points' observations in other registered images enter too, with those images'
+  // poses held constant, so a local window stays anchored to the rest of the model.
   std::set<image_t> image_ids;
   // Images among image_ids whose pose stays fixed.
   std::set<image_t> constant_pose_ids;
@@ -51,7 +53,7 @@ struct BundleAdjustmentConfig {
 
 struct BundleAdjustmentSummary {
   bool usable = false;  // Ceres returned a usable solution (the reconstruction was updated)
-  int num_images = 0;   // images in the problem (variable and constant)
+  int num_images = 0;   // images in the problem (variable and constant, neighbours included)
   int num_variable_images = 0;
   int num_points = 0;
   int num_residuals = 0;  // observations

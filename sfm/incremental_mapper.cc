@@ -363,21 +363,24 @@ BundleAdjustmentSummary IncrementalMapper::AdjustLocalBundle(
       if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
     }
   }
-  BundleAdjustmentConfig config;
-  config.image_ids = variable;
+  // Registered images outside the window that see its points: the adjuster holds them constant.
+  std::set<image_t> constant_neighbours;
   for (point3D_t point3D_id : point_ids) {
     for (const TrackElement& element : reconstruction_.point3D(point3D_id).track) {
-      if (!variable.count(element.image_id)) {
-        config.image_ids.insert(element.image_id);
-        config.constant_pose_ids.insert(element.image_id);
-      }
+      if (!variable.count(element.image_id)) constant_neighbours.insert(element.image_id);
     }
   }
+  BundleAdjustmentConfig config;
+  config.image_ids = variable;
   FixGauge(&config);
   // Without the initial pair and with fewer than two constant neighbours the window would float
   // freely: hold its earliest-registered images fixed until two poses anchor it.
   for (image_t id : registration_order_) {
-    if (config.constant_pose_ids.size() + config.fixed_scale_image_ids.size() >= 2) break;
+    if (constant_neighbours.size() + config.constant_pose_ids.size() +
+            config.fixed_scale_image_ids.size() >=
+        2) {
+      break;
+    }
     if (id != image_id && variable.count(id) && !config.constant_pose_ids.count(id)) {
       config.fixed_scale_image_ids.erase(id);
       config.constant_pose_ids.insert(id);

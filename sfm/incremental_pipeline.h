@@ -43,7 +43,7 @@ struct IncrementalPipelineOptions {
   int local_ba_num_images = 8;
   // A global bundle adjustment runs whenever the number of registered images has grown by this
   // factor since the last one.
-  double global_ba_growth_ratio = 1.25;
+  double global_ba_growth_ratio = 1.5;
   // Attempts to register a frame before it is given up.
   int max_registration_trials = 3;
   // The initial pair must triangulate at least this many points.
