@@ -93,6 +93,12 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
   const auto finish = [&](ReconstructionStatus status) {
     result.status = status;
     result.reconstruction = mapper.TakeReconstruction();
+    if (status != ReconstructionStatus::kSuccess) {
+      // A model that failed to start is no model: nothing registered, no points.
+      for (image_t image_id : result.reconstruction.RegisteredImageIds()) {
+        result.reconstruction.DeRegisterImage(image_id);
+      }
+    }
     for (const auto& [image_id, image] : result.reconstruction.images()) {
       (image.registered ? result.registered_frames : result.unregistered_frames)
           .push_back(IncrementalMapper::FrameOfImageId(image_id));

@@ -100,6 +100,24 @@ TEST(IncrementalPipeline, TwoFramesGiveAClearStatus) {
             ReconstructionStatus::kTooFewFrames);
 }
 
+TEST(IncrementalPipeline, TooFewInitialPointsLeavesNoModel) {
+  SyntheticSceneOptions scene_options;
+  scene_options.num_frames = 6;
+  scene_options.num_points = 200;
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  IncrementalPipelineOptions options;
+  options.min_num_initial_points = 100000;
+  options.max_num_models = 2;
+  const IncrementalReconstruction result =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  EXPECT_EQ(result.status, ReconstructionStatus::kTooFewPoints);
+  EXPECT_EQ(result.reconstruction.NumRegisteredImages(), 0u);
+  EXPECT_EQ(result.reconstruction.NumPoints3D(), 0u);
+  EXPECT_TRUE(result.registered_frames.empty());
+  EXPECT_EQ(result.num_models, 2);
+  EXPECT_NE(ReconstructionStatusMessage(result.status).find("too few points"), std::string::npos);
+}
+
 TEST(IncrementalPipeline, SameInputGivesIdenticalOutput) {
   SyntheticSceneOptions scene_options;
   scene_options.num_frames = 10;
