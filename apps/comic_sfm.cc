@@ -346,7 +346,20 @@ void PrintSummary(const sfm::SfmRunReport& report) {
               << report.trajectory->path_length << "), rotation error "
               << report.trajectory->mean_rotation_error_deg << " deg";
   }
-  std::cout << ", " << report.wall_time_s << " s" << std::endl;
+  std::cout << ", " << report.wall_time_s << " s";
+  // Frames the model could not take are reported, by index, in runs (e.g. "40-47").
+  if (report.stats.num_registered > 0 && !report.unregistered_frames.empty()) {
+    std::cout << "; unregistered frames:";
+    const std::vector<int>& frames = report.unregistered_frames;
+    for (size_t i = 0; i < frames.size();) {
+      size_t j = i;
+      while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+      std::cout << " " << frames[i];
+      if (j > i) std::cout << "-" << frames[j];
+      i = j + 1;
+    }
+  }
+  std::cout << std::endl;
 }
 
 // --colmap-db / --compare-colmap: checks that can fail before any work.
