@@ -18,6 +18,11 @@ void ConvergenceOptions::Check() const {
   COMIC_CHECK(max_iterations >= 1, kInvalidArgument, "convergence: max_iterations must be >= 1");
   COMIC_CHECK(tolerance >= 0, kInvalidArgument, "convergence: tolerance must be >= 0");
   COMIC_CHECK(stop_tolerance >= 0, kInvalidArgument, "convergence: stop_tolerance must be >= 0");
+  COMIC_CHECK(
+      corner.straight_arms_rms_begin >= 0 &&
+          corner.straight_arms_rms_end > corner.straight_arms_rms_begin,
+      kInvalidArgument,
+      "convergence: need 0 <= corner.straight_arms_rms_begin < corner.straight_arms_rms_end");
 }
 
 WeightedStabilityOptions ConvergenceOptions::StabilityOptions() const {
@@ -162,7 +167,9 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
                         workspace)) {
       return false;
     }
-    const double moved = Distance(next.position, current);
+    // The iteration runs on the apex, the κ maximum on the curve (the paper's corner): the vertex
+    // correction is an output refinement and would move the weights' centre off the curve.
+    const double moved = Distance(next.apex, current);
     // A fixed point keeps its MSICS too: a corner that barely moved while its curve jumped to
     // another level (typical of the first iteration, from the initialisation's level) goes on.
     const bool same_curve = std::abs(next.threshold - 0.5 - current_level) <= 1.0;
@@ -175,7 +182,7 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
     // iteration alternates between two MSICSs near the corner. It has stopped moving in the sense
     // of Algorithm 1; keep the more stable of the two.
     if (done >= 2 &&
-        Distance(next.position, before_last.position) <=
+        Distance(next.apex, before_last.apex) <=
             std::max(options.stop_tolerance, 0.25 * options.tolerance) &&
         std::abs(next.threshold - before_last.threshold) <= 1.0) {
       *result = next.stability >= last.stability ? std::move(next) : std::move(last);
@@ -188,7 +195,7 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
       result->iterations = iteration;
       return true;
     }
-    current = next.position;
+    current = next.apex;
     current_level = next.threshold - 0.5;
     current_reference = next.curve;
     before_last = std::move(last);

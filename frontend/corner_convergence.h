@@ -84,8 +84,9 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
                     const ConvergenceOptions& options, ConvergedCorner* result,
                     ConvergenceWorkspace* workspace = nullptr);
 
-// Iterates RedetectCorner from an initial corner until it stops moving (a move of at most
-// stop_tolerance, its MSICS's level changing by at most one grey level), or returns to the state
+// Iterates RedetectCorner from an initial corner (`position`: a point on the curve, e.g. an
+// initial apex) until it stops moving (the apex moves at most stop_tolerance, its MSICS's level
+// changing by at most one grey level), or returns to the state
 // of two iterations before (a 2-cycle between two MSICSs: the more stable one is kept), or
 // max_iterations are done. False if it is lost, or if its last move was farther than
 // `tolerance` (it has not settled).

@@ -53,6 +53,7 @@ cv::Point2d SampleAt(const std::vector<cv::Point2f>& points, bool closed, double
 struct Line {
   cv::Point2d centroid;
   cv::Point2d direction;
+  double rms = 0.0;  // RMS distance of the samples from the line
 };
 
 // Total-least-squares line through the samples with index in [from, to] (wrapped if closed).
@@ -78,6 +79,11 @@ bool FitLine(const std::vector<cv::Point2f>& points, bool closed, double from, d
   const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
   line->centroid = mean;
   line->direction = {std::cos(angle), std::sin(angle)};
+  // The smaller eigenvalue of the scatter matrix is the sum of squared distances from the line.
+  const double half_trace = 0.5 * (sxx + syy);
+  const double across =
+      half_trace - std::sqrt(std::max(0.0, half_trace * half_trace - (sxx * syy - sxy * sxy)));
+  line->rms = std::sqrt(std::max(0.0, across) / samples.size());
   return true;
 }
 
@@ -215,11 +221,17 @@ CurveCorner RefineCurveCorner(const std::vector<cv::Point2f>& points, bool close
   corner.polarity = towards_dark ? Polarity::kDark : Polarity::kBright;
   if (!arms_fit) return corner;
 
+  corner.arm_rms = std::max(before.rms, after.rms);
   const double turn_degrees = turn * 180.0 / kPi;
-  const double blend =
+  const double clear_turn =
       std::clamp((turn_degrees - options.blend_begin_degrees) /
                      std::max(1e-9, options.blend_end_degrees - options.blend_begin_degrees),
                  0.0, 1.0);
+  const double straight_arms = std::clamp(
+      (options.straight_arms_rms_end - corner.arm_rms) /
+          std::max(1e-9, options.straight_arms_rms_end - options.straight_arms_rms_begin),
+      0.0, 1.0);
+  const double blend = clear_turn * straight_arms;
   const double det = Cross(before.direction, after.direction);
   if (blend <= 0 || std::abs(det) < 1e-6) return corner;
   // before.centroid + a * before.direction = after.centroid + b * after.direction.

@@ -15,7 +15,10 @@
 // intersects straight lines fitted to the two arms of the curve beyond the rounded part; on the
 // level of steepest gradient (the one the stability measure selects) the arms are the object's
 // edges and the intersection is the vertex. This is an addition to the paper (see
-// docs/comic_detector.md), blended in only for clear corners and bounded in length.
+// docs/comic_detector.md), blended in only for clear corners, only where both arms are straight
+// (the model it rests on: a polygon corner seen through a blur), and bounded in length. On
+// curved or textured arms the intersection lies far out along the bisector and moves with every
+// wiggle of the arms, so the corner stays at the apex, the paper's κ maximum.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -54,6 +57,13 @@ struct CurveCornerOptions {
   double blend_end_degrees = 60.0;
   // Longest correction from the apex to the vertex, in px.
   double max_vertex_shift = 3.0;
+  // Straightness of the arms (the larger of their RMS distances from their fitted lines, px)
+  // between which the correction is faded out linearly: all of it up to the first, none from the
+  // second on. Iso-curves of blurred polygon edges are straight to ~0.02 px; the arms of corners
+  // of real texture are not (median ~0.4 px on the Middlebury cones), and there the intersection
+  // is an extrapolation that amplifies the arms' noise.
+  double straight_arms_rms_begin = 0.03;
+  double straight_arms_rms_end = 0.1;
 };
 
 struct CurveCorner {
@@ -63,6 +73,8 @@ struct CurveCorner {
   cv::Point2f apex;
   // The apex moved towards the intersection of the arms (equal to apex when not applied).
   cv::Point2f vertex;
+  // The larger of the two arms' RMS distances from their fitted lines, px (-1: no lines fitted).
+  double arm_rms = -1.0;
   // κ at the parabola's peak.
   double cornerness = 0.0;
   // Signed turning angle of the curve at the corner in radians: > 0 when it turns towards its

@@ -166,5 +166,45 @@ TEST(CurveCornerness, NoVertexCorrectionForNearlyStraightCurves) {
   EXPECT_EQ(c.vertex, c.apex);
 }
 
+TEST(CurveCornerness, NoVertexCorrectionWhenTheArmsAreNotStraight) {
+  // A right-angle corner at the origin whose arms bend away from each other, (t, -c t²) and
+  // (-c t², t), as the arms of texture corners bend. Lines fitted to such arms meet far out on
+  // the bisector, and where they meet depends on every wiggle of the arms, so the corner stays at
+  // the apex. The same turn with straight arms is corrected (RefinementFindsASharpVertex...).
+  constexpr double c = 0.03;
+  std::vector<cv::Point2f> vertices;
+  for (int i = 300; i >= 0; --i) {
+    const double t = 0.1 * i;
+    vertices.emplace_back(static_cast<float>(t), static_cast<float>(-c * t * t));
+  }
+  for (int i = 1; i <= 300; ++i) {
+    const double t = 0.1 * i;
+    vertices.emplace_back(static_cast<float>(-c * t * t), static_cast<float>(t));
+  }
+  const auto curve = Sampled(vertices);
+  const auto kappa = CurveCornerness(curve, false, 5.94, 12);
+  const auto maxima = CornernessMaxima(kappa, false, 6, 0.03);
+  ASSERT_EQ(maxima.size(), 1u);
+  const CurveCorner corner =
+      RefineCurveCorner(curve, false, kappa, maxima[0], CurveCornerOptions());
+  EXPECT_LT(cv::norm(corner.apex), 0.4);
+  EXPECT_GT(corner.arm_rms, CurveCornerOptions().straight_arms_rms_end);
+  EXPECT_EQ(corner.vertex, corner.apex);
+  // Without the straightness gate the fitted lines would move it off the curve by more than the
+  // 0.3 px the detector localises corners to.
+  CurveCornerOptions ungated;
+  ungated.straight_arms_rms_end = 1e6;
+  const CurveCorner extrapolated = RefineCurveCorner(curve, false, kappa, maxima[0], ungated);
+  EXPECT_GT(cv::norm(extrapolated.vertex - extrapolated.apex), 0.3);
+}
+
+TEST(CurveCornerness, ArmStraightnessIsReported) {
+  const auto corner = Sampled({{40, 0}, {0, 0}, {0, 40}});
+  const auto kappa = CurveCornerness(corner, false, 6.0, 12);
+  const CurveCorner c = RefineCurveCorner(corner, false, kappa, 40, CurveCornerOptions());
+  EXPECT_GE(c.arm_rms, 0.0);
+  EXPECT_LT(c.arm_rms, 0.01);
+}
+
 }  // namespace
 }  // namespace comic::frontend
