@@ -42,14 +42,15 @@ double Distance(const cv::Point2f& a, const cv::Point2f& b) {
 }
 
 // Where the selected level's curve crosses the central normal, interpolated between levels.
-cv::Point2f CurvePointOnCentralNormal(const StabilityProfile& profile, const StableLevel& level) {
-  const double index = level.threshold - 0.5 - profile.first_level;
-  const int i0 = std::clamp(static_cast<int>(std::floor(index)), 0, profile.NumLevels() - 1);
-  const int i1 = std::min(i0 + 1, profile.NumLevels() - 1);
+cv::Point2f CurvePointOnCentralNormal(WeightedStabilityEvaluator* profile,
+                                      const StableLevel& level) {
+  const double index = level.threshold - 0.5 - profile->first_level();
+  const int i0 = std::clamp(static_cast<int>(std::floor(index)), 0, profile->NumLevels() - 1);
+  const int i1 = std::min(i0 + 1, profile->NumLevels() - 1);
   const double t = std::clamp(index - i0, 0.0, 1.0);
-  const double u =
-      profile.centre_offset[i0] + t * (profile.centre_offset[i1] - profile.centre_offset[i0]);
-  const cv::Point2d q = profile.centre + u * profile.normal;
+  const double u0 = profile->CentreOffset(i0);
+  const double u = u0 + t * (profile->CentreOffset(i1) - u0);
+  const cv::Point2d q = profile->centre() + u * profile->normal();
   return cv::Point2f(q);
 }
 
@@ -67,12 +68,13 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   int centre = 0;
   const std::vector<cv::Point2f> segment =
       ResamplePolyline(reference, false, 1.0, s_p, k + 1, k + 1, &centre);
-  // The MSICS nearest in level to the previous one.
-  StabilityProfile& profile = workspace->profile;
+  // The MSICS nearest in level to the previous one (ρ_w evaluated only at the levels the choice
+  // looks at).
+  WeightedStabilityEvaluator& profile = workspace->profile;
   const WeightedStabilityOptions stability_options = options.StabilityOptions();
   StableLevel stable;
-  if (!ComputeWeightedStabilityProfile(gray, segment, centre, stability_options, &profile) ||
-      !SelectMaximallyStableLevel(profile, previous_level, stability_options.run_tolerance,
+  if (!profile.Prepare(gray, segment, centre, stability_options) ||
+      !SelectMaximallyStableLevel(&profile, previous_level, stability_options.run_tolerance,
                                   stability_options.ripple_tolerance, &stable)) {
     return false;
   }
@@ -84,7 +86,7 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
                        options.block_size);
   const IsoCurveTracer tracer(gray, block, stable.threshold);
   CurveEdge seed;
-  if (!tracer.FindNearestCrossing(CurvePointOnCentralNormal(profile, stable), 2, &seed)) {
+  if (!tracer.FindNearestCrossing(CurvePointOnCentralNormal(&profile, stable), 2, &seed)) {
     return false;
   }
   // The new corner may lie up to k px along the curve from p; κ there needs the filter's support

@@ -72,7 +72,7 @@ struct ConvergedCorner {
 
 // Buffers reused across calls (one per thread).
 struct ConvergenceWorkspace {
-  StabilityProfile profile;
+  WeightedStabilityEvaluator profile;
 };
 
 // One convergence iteration: weights centred on the point of `reference` (a polyline along the

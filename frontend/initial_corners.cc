@@ -53,9 +53,50 @@ void InitialCornerDetector::DetectInBlock(const cv::Mat& image, const cv::Rect& 
   const int padded_size = tree_.Stride() * (tree_.height() + 2);
   if (static_cast<int>(edge_stamp_.size()) < 2 * padded_size) edge_stamp_.resize(2 * padded_size);
   std::fill(edge_stamp_.begin(), edge_stamp_.begin() + 2 * padded_size, 0);
+  if (static_cast<int>(stable_index_.size()) < padded_size) stable_index_.resize(padded_size, -1);
+  for (int i = 0; i < static_cast<int>(stable.size()); ++i) stable_index_[stable[i].node] = i;
+
+  // Seeds: the crossings of each component's level in the owned part whose inside pixel belongs
+  // to the component. One pass over the owned 4-neighbour pairs: a pair with values a < b is
+  // crossed by the curves of the levels a..b-1, and at level L its inside pixel belongs to the
+  // ancestor of the inside pixel's node that spans L; so the components it seeds are the stable
+  // ancestors whose chosen level is below b. Listed per component in raster order (the order a
+  // scan of the owned part per component would visit them).
+  seeds_.clear();
+  for (int y = owned.y; y < owned.y + owned.height; ++y) {
+    for (int x = owned.x; x < owned.x + owned.width; ++x) {
+      const int p = tree_.PixelIndex(x - block.x, y - block.y);
+      for (int direction = 0; direction < 2; ++direction) {
+        const int q = p + (direction == 0 ? 1 : tree_.Stride());
+        if (!tree_.InBlock(q) || tree_.Value(p) == tree_.Value(q)) continue;
+        const int in = tree_.Value(p) < tree_.Value(q) ? p : q;
+        const int out_value = tree_.Value(p) < tree_.Value(q) ? tree_.Value(q) : tree_.Value(p);
+        for (int node = tree_.NodeOfPixel(in); node >= 0 && tree_.Level(node) < out_value;
+             node = tree_.Parent(node)) {
+          const int index = stable_index_[node];
+          if (index >= 0 && stable[index].level < out_value) {
+            seeds_.push_back({index, 2 * p + direction});
+          }
+        }
+      }
+    }
+  }
+  for (const StableComponent& component : stable) stable_index_[component.node] = -1;
+  // Stable sort by component (counting sort), keeping the raster order within each.
+  seed_start_.assign(stable.size() + 1, 0);
+  for (const auto& [index, edge] : seeds_) ++seed_start_[index + 1];
+  for (size_t i = 0; i < stable.size(); ++i) seed_start_[i + 1] += seed_start_[i];
+  sorted_seeds_.resize(seeds_.size());
+  {
+    std::vector<int>& fill = seed_fill_;
+    fill.assign(seed_start_.begin(), seed_start_.end() - 1);
+    for (const auto& [index, edge] : seeds_) sorted_seeds_[fill[index]++] = edge;
+  }
+
   int stamp = 0;
   const int max_points = 8 * (block.width + block.height);
-  for (const StableComponent& component : stable) {
+  for (int c = 0; c < static_cast<int>(stable.size()); ++c) {
+    const StableComponent& component = stable[c];
     ++stamp;  // visited marks per (pixel, right/down) edge, per traced component
     // In the tree's values the component is {value <= level}. In the image's grey values its
     // curve is at 254.5 - level for upper sets (the component is {v >= 255 - level}).
@@ -63,36 +104,27 @@ void InitialCornerDetector::DetectInBlock(const cv::Mat& image, const cv::Rect& 
     const IsoCurveTracer tracer(image, block, upper_sets ? 254.5 - level : level + 0.5);
     const CornerContext context{&owned, upper_sets ? 254 - level : level, component.stability,
                                 &options};
-    // Seeds: the crossings of the component's level in the owned part whose inside pixel belongs
-    // to the component; each curve is traced once.
-    for (int y = owned.y; y < owned.y + owned.height; ++y) {
-      for (int x = owned.x; x < owned.x + owned.width; ++x) {
-        const int p = tree_.PixelIndex(x - block.x, y - block.y);
-        for (int offset : {1, tree_.Stride()}) {
-          const int q = p + offset;
-          if (!tree_.InBlock(q)) continue;
-          const bool p_in = tree_.Value(p) <= level;
-          if (p_in == (tree_.Value(q) <= level)) continue;
-          const int in = p_in ? p : q;
-          const int out = p_in ? q : p;
-          const int slot = 2 * std::min(p, q) + (offset == 1 ? 0 : 1);
-          if (edge_stamp_[slot] == stamp) continue;
-          if (tree_.AncestorAtLevel(tree_.NodeOfPixel(in), level) != component.node) continue;
-          const cv::Point in_pixel(tree_.PixelX(in) + block.x, tree_.PixelY(in) + block.y);
-          const cv::Point out_pixel(tree_.PixelX(out) + block.x, tree_.PixelY(out) + block.y);
-          // The tracer's inside is the dark side: the component for lower sets, its complement
-          // for upper sets.
-          tracer.Trace(upper_sets ? CurveEdge{out_pixel, in_pixel} : CurveEdge{in_pixel, out_pixel},
-                       max_points, &curve_);
-          for (const CurveEdge& edge : curve_.edges) {
-            const cv::Point a = edge.inside - block.tl();
-            const cv::Point b = edge.outside - block.tl();
-            edge_stamp_[2 * tree_.PixelIndex(std::min(a.x, b.x), std::min(a.y, b.y)) +
-                        (a.y == b.y ? 0 : 1)] = stamp;
-          }
-          AddCornersOfCurve(context, corners);
-        }
+    // Each curve is traced once, from the first of its crossings in the list.
+    for (int i = seed_start_[c]; i < seed_start_[c + 1]; ++i) {
+      const int p = sorted_seeds_[i] / 2;
+      const int q = p + (sorted_seeds_[i] % 2 == 0 ? 1 : tree_.Stride());
+      if (edge_stamp_[sorted_seeds_[i]] == stamp) continue;
+      const bool p_in = tree_.Value(p) <= level;
+      const int in = p_in ? p : q;
+      const int out = p_in ? q : p;
+      const cv::Point in_pixel(tree_.PixelX(in) + block.x, tree_.PixelY(in) + block.y);
+      const cv::Point out_pixel(tree_.PixelX(out) + block.x, tree_.PixelY(out) + block.y);
+      // The tracer's inside is the dark side: the component for lower sets, its complement for
+      // upper sets.
+      tracer.Trace(upper_sets ? CurveEdge{out_pixel, in_pixel} : CurveEdge{in_pixel, out_pixel},
+                   max_points, &curve_);
+      for (const CurveEdge& edge : curve_.edges) {
+        const cv::Point a = edge.inside - block.tl();
+        const cv::Point b = edge.outside - block.tl();
+        edge_stamp_[2 * tree_.PixelIndex(std::min(a.x, b.x), std::min(a.y, b.y)) +
+                    (a.y == b.y ? 0 : 1)] = stamp;
       }
+      AddCornersOfCurve(context, corners);
     }
   }
 }

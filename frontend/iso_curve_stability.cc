@@ -181,238 +181,86 @@ void ProfileCrossings(float* f, int size, int m, double step, double first_thres
   }
 }
 
-}  // namespace
-
-bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::Point2f>& reference,
-                                     int centre_index, const WeightedStabilityOptions& options,
-                                     StabilityProfile* profile) {
-  const int n = static_cast<int>(reference.size());
-  if (centre_index < 1 || centre_index > n - 2) return false;
-  // Normals every normal_step samples within half_length of the centre, the centre included.
-  const int normal_step = std::max(1, options.normal_step);
-  const int reach_before = std::min(centre_index, options.half_length) / normal_step;
-  const int reach_after = std::min(n - 1 - centre_index, options.half_length) / normal_step;
-  const int num_normals = reach_before + reach_after + 1;
-  const int centre_row = reach_before;
-  const int m =
-      std::max(1, static_cast<int>(std::lround(options.max_distance / options.sample_step)));
-  const double step = options.sample_step;
-  const int cubic_reach = static_cast<int>(std::floor(options.cubic_distance / step + 1e-9));
-  const ProfileSampler interpolate(gray);
-
-  // Unit normals towards the bright side (the right of the direction of travel), and weights.
-  std::vector<cv::Point2d>& points = profile->points;
-  std::vector<cv::Point2d>& normals = profile->normals;
-  std::vector<double>& weights = profile->weights;
-  points.resize(num_normals);
-  normals.resize(num_normals);
-  weights.resize(num_normals);
-  double weight_sum = 0;
-  for (int r = 0; r < num_normals; ++r) {
-    const int i = centre_index + (r - centre_row) * normal_step;
-    const cv::Point2d tangent =
-        cv::Point2d(reference[std::min(n - 1, i + 1)]) - cv::Point2d(reference[std::max(0, i - 1)]);
-    const double norm = std::sqrt(tangent.x * tangent.x + tangent.y * tangent.y);
-    points[r] = reference[i];
-    normals[r] = norm > 0 ? cv::Point2d(-tangent.y / norm, tangent.x / norm) : cv::Point2d(0, 0);
-    const double d = i - centre_index;
-    weights[r] = std::exp(-d * d / (2.0 * options.sigma * options.sigma));
-    weight_sum += weights[r];
-  }
-
-  // Intensity profiles along the normals (row r: samples k = 0..2m at u = (k - m) * step), read
-  // on demand.
-  const int samples = 2 * m + 1;
-  std::vector<float>& profiles = profile->samples;
-  profiles.assign(static_cast<size_t>(num_normals) * samples, kNotSampled);
-  auto sampler = [&](int r) {
-    const cv::Point2d p = points[r];
-    const cv::Point2d normal = normals[r];
-    return [&interpolate, p, normal, m, step, cubic_reach](int k) {
-      const double u = (k - m) * step;
-      const double x = p.x + u * normal.x, y = p.y + u * normal.y;
-      return std::abs(k - m) <= cubic_reach ? interpolate.Cubic(x, y) : interpolate.Bilinear(x, y);
-    };
+// The selection rule of SelectMaximallyStableLevel on ρ_w given level by level: rho(l) for
+// l in [0, count). Reads only the levels it needs, in an order that does not change the result.
+template <class Rho>
+bool SelectLevel(int first_level, int count, double middle_level, double previous_level,
+                 double run_tolerance, double ripple_tolerance, Rho&& rho, StableLevel* selected) {
+  auto is_max = [&](int l) {
+    return l >= 1 && l + 1 < count && rho(l) > rho(l - 1) && rho(l) >= rho(l + 1);
   };
-  auto row_of = [&](int r) { return &profiles[static_cast<size_t>(r) * samples]; };
-
-  // The intensities on the two sides of the curve: per normal, the darkest value on the dark
-  // half and the brightest on the bright half within side_distance (extremes reach the flat sides
-  // of a blurred edge whatever the reference curve's level), and across normals the weighted
-  // median of their mid-points, robust to texture and to the few normals that cross to the far
-  // side of a sharp tip. The central normal's values also give the candidate levels.
-  const int side_reach = std::min(m, static_cast<int>(std::lround(options.side_distance / step)));
-  const int search_reach =
-      std::min(m, static_cast<int>(std::floor(options.search_radius / step + 1e-9)));
-  const int read_reach = std::max(side_reach, search_reach);
-  std::vector<std::pair<double, double>>& mids = profile->mids;
-  mids.clear();
-  for (int r = 0; r < num_normals; ++r) {
-    float* row = row_of(r);
-    const auto sample = sampler(r);
-    for (int k = m - read_reach; k <= m + read_reach; ++k) row[k] = sample(k);
-    float dark = std::numeric_limits<float>::infinity();
-    float bright = -dark;
-    for (int k = m - side_reach; k <= m; ++k) dark = std::min(dark, row[k]);
-    for (int k = m; k <= m + side_reach; ++k) bright = std::max(bright, row[k]);
-    mids.emplace_back(0.5 * (dark + bright), weights[r]);
-  }
-  std::sort(mids.begin(), mids.end());
-  double cumulative = 0;
-  double median = mids.back().first;
-  for (const auto& [mid, weight] : mids) {
-    cumulative += weight;
-    if (cumulative >= 0.5 * weight_sum) {
-      median = mid;
-      break;
+  // The maximum nearest in level to the previous MSICS (ties: larger ρ, then lower level),
+  // searched outwards from previous_level.
+  auto distance = [&](int l) { return std::abs(first_level + l - previous_level); };
+  const double x0 = previous_level - first_level;
+  const int start = static_cast<int>(std::floor(std::clamp(x0, -1.0, count + 1.0)));
+  int below = std::min(start, count - 2);  // candidates below, walking down
+  int above = std::max(start + 1, 1);      // candidates above, walking up
+  int current = -1;
+  while (current < 0 && (below >= 1 || above <= count - 2)) {
+    const bool has_below = below >= 1;
+    const bool has_above = above <= count - 2;
+    const double d_below = has_below ? distance(below) : std::numeric_limits<double>::infinity();
+    const double d_above = has_above ? distance(above) : std::numeric_limits<double>::infinity();
+    const bool try_below = has_below && d_below <= d_above;
+    const bool try_above = has_above && d_above <= d_below;
+    const bool max_below = try_below && is_max(below);
+    const bool max_above = try_above && is_max(above);
+    if (max_below && max_above) {
+      current = rho(above) > rho(below) ? above : below;
+    } else if (max_below) {
+      current = below;
+    } else if (max_above) {
+      current = above;
     }
+    if (try_below) --below;
+    if (try_above) ++above;
   }
-  profile->middle_level = median - 0.5;
-
-  // Levels whose curve crosses the central normal within the search radius: J with
-  // low < J + 0.5 <= high.
-  const float* centre_profile = row_of(centre_row);
-  double low = std::numeric_limits<double>::infinity();
-  double high = -low;
-  for (int k = m - search_reach; k <= m + search_reach; ++k) {
-    low = std::min(low, static_cast<double>(centre_profile[k]));
-    high = std::max(high, static_cast<double>(centre_profile[k]));
-  }
-  const int level_lo = static_cast<int>(std::ceil(low - 0.5 + 1e-9));
-  const int level_hi = static_cast<int>(std::ceil(high - 0.5)) - 1;
-  if (level_hi < level_lo) return false;
-  const int first_level = level_lo - 1;
-  const int num_levels = level_hi - level_lo + 3;
-  // Crossings of the thresholds J + 0.5 + e, e in [-δ, δ] (δ rounded up; a fractional δ is
-  // interpolated below).
-  const int delta_steps = static_cast<int>(std::ceil(options.delta));
-  const int first_threshold_level = first_level - delta_steps;
-  const int num_thresholds = num_levels + 2 * delta_steps;
-  std::vector<double>& crossing = profile->crossings;
-  std::vector<uint8_t>& clipped = profile->clipped;
-  crossing.resize(static_cast<size_t>(num_normals) * num_thresholds);
-  clipped.resize(crossing.size());
-  for (int r = 0; r < num_normals; ++r) {
-    ProfileCrossings(row_of(r), samples, m, step, first_threshold_level + 0.5, num_thresholds,
-                     sampler(r), &crossing[static_cast<size_t>(r) * num_thresholds],
-                     &clipped[static_cast<size_t>(r) * num_thresholds]);
-  }
-  const bool whole_delta = options.delta == delta_steps;
-  auto u_at = [&](int r, double j) {  // crossing of threshold index j (may be fractional)
-    const double* row = &crossing[static_cast<size_t>(r) * num_thresholds];
-    if (whole_delta) return row[static_cast<int>(j)];
-    const int j0 = std::clamp(static_cast<int>(std::floor(j)), 0, num_thresholds - 1);
-    const int j1 = std::min(j0 + 1, num_thresholds - 1);
-    const double t = std::clamp(j - j0, 0.0, 1.0);
-    return row[j0] + t * (row[j1] - row[j0]);
-  };
-
-  profile->first_level = first_level;
-  profile->stability.assign(num_levels, 0.0);
-  profile->length.assign(num_levels, 0.0);
-  profile->band_area.assign(num_levels, 0.0);
-  profile->centre_offset.assign(num_levels, 0.0);
-  profile->centre = points[centre_row];
-  profile->normal = normals[centre_row];
-  std::vector<double>& element = profile->elements;
-  element.resize(num_normals);
-  for (int l = 0; l < num_levels; ++l) {
-    const int j = l + delta_steps;  // threshold index of the level itself
-    // Length element of the level's curve at each normal: half of each adjoining chord between
-    // the points where the curve crosses consecutive normals (0 where it does not cross).
-    std::fill(element.begin(), element.end(), 0.0);
-    cv::Point2d previous;
-    bool previous_valid = false;
-    for (int r = 0; r < num_normals; ++r) {
-      const size_t index = static_cast<size_t>(r) * num_thresholds + j;
-      const bool valid = !clipped[index];
-      const cv::Point2d q = points[r] + crossing[index] * normals[r];
-      if (valid && previous_valid) {
-        const double dx = q.x - previous.x;
-        const double dy = q.y - previous.y;
-        const double chord = std::sqrt(dx * dx + dy * dy);
-        element[r - 1] += 0.5 * chord;
-        element[r] += 0.5 * chord;
-      }
-      previous = q;
-      previous_valid = valid;
-    }
-    // The strip of normal r has the band's width there times the curve's length element: the
-    // area between Up and Down in that strip.
-    double length = 0;
-    double band = 0;
-    for (int r = 0; r < num_normals; ++r) {
-      length += weights[r] * element[r];
-      band += weights[r] * element[r] * (u_at(r, j + options.delta) - u_at(r, j - options.delta));
-    }
-    band = std::max(band, 1e-6 * weight_sum);
-    profile->band_area[l] = band;
-    profile->length[l] = length;
-    profile->stability[l] = length / band;
-    profile->centre_offset[l] = crossing[static_cast<size_t>(centre_row) * num_thresholds + j];
-  }
-  return true;
-}
-
-bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous_level,
-                                double run_tolerance, double ripple_tolerance,
-                                StableLevel* selected) {
-  const std::vector<double>& rho = profile.stability;
-  const int count = profile.NumLevels();
-  std::vector<int> maxima;
-  for (int l = 1; l + 1 < count; ++l) {
-    if (rho[l] > rho[l - 1] && rho[l] >= rho[l + 1]) maxima.push_back(l);
-  }
-  if (maxima.empty()) return false;
-  // The maximum nearest in level to the previous MSICS (ties: larger ρ, then lower level).
-  int current = 0;
-  for (int m = 1; m < static_cast<int>(maxima.size()); ++m) {
-    const double d = std::abs(profile.first_level + maxima[m] - previous_level);
-    const double d_best = std::abs(profile.first_level + maxima[current] - previous_level);
-    if (d < d_best || (d == d_best && rho[maxima[m]] > rho[maxima[current]])) current = m;
-  }
+  if (current < 0) return false;
   // Ripples are not separate curves: climb to a higher neighbouring maximum while the dip between
   // is shallower than ripple_tolerance (relative to the lower of the two), as MSER ignores
-  // insignificant extrema. Between two distinct curves ρ drops by most of its value.
-  auto dip_between = [&](int a, int b) {  // minimum of ρ strictly between levels a < b
-    double low = std::numeric_limits<double>::infinity();
-    for (int l = a + 1; l < b; ++l) low = std::min(low, rho[l]);
-    return low;
-  };
+  // insignificant extrema. Between two distinct curves ρ drops by most of its value. Towards each
+  // side, the walk to the neighbouring maximum stops as soon as the dip is too deep to climb.
   for (;;) {
-    const int l = maxima[current];
-    const double floor = (1.0 - ripple_tolerance) * rho[l];
+    const double floor = (1.0 - ripple_tolerance) * rho(current);
     int next = -1;
-    for (int m : {current - 1, current + 1}) {
-      if (m < 0 || m >= static_cast<int>(maxima.size())) continue;
-      const int other = maxima[m];
-      if (rho[other] <= rho[l]) continue;
-      if (dip_between(std::min(l, other), std::max(l, other)) < floor) continue;
-      if (next < 0 || rho[other] > rho[maxima[next]]) next = m;
+    for (int direction : {-1, 1}) {
+      double dip = std::numeric_limits<double>::infinity();
+      int other = -1;
+      for (int j = current + direction; j >= 1 && j + 1 < count; j += direction) {
+        if (is_max(j)) {
+          other = j;
+          break;
+        }
+        dip = std::min(dip, rho(j));
+        if (dip < floor) break;
+      }
+      if (other < 0 || rho(other) <= rho(current) || dip < floor) continue;
+      if (next < 0 || rho(other) > rho(next)) next = other;
     }
     if (next < 0) break;
     current = next;
   }
-  const int best = maxima[current];
+  const int best = current;
   // The run of levels around the peak whose ρ is within the tolerance of it. On a sharp edge ρ is
   // nearly flat over most of the edge's range (the band keeps its width while it moves across the
   // edge), so the exact maximum would be decided by ripples and by the corner's geometry.
-  const double floor = (1.0 - run_tolerance) * rho[best];
+  const double floor = (1.0 - run_tolerance) * rho(best);
   int run_begin = best;
   int run_end = best;
-  while (run_begin > 0 && rho[run_begin - 1] >= floor) --run_begin;
-  while (run_end + 1 < count && rho[run_end + 1] >= floor) ++run_end;
+  while (run_begin > 0 && rho(run_begin - 1) >= floor) --run_begin;
+  while (run_end + 1 < count && rho(run_end + 1) >= floor) ++run_end;
   // Every level of the run is as stable as the peak within the tolerance: take the one in the
   // middle of the intensities on the two sides of the curve (for a blurred step edge, the level
   // line through the edge itself), which depends only on the image.
-  double centre = std::clamp(profile.middle_level - profile.first_level,
-                             static_cast<double>(run_begin), static_cast<double>(run_end));
-  double peak = rho[best];
+  double centre = std::clamp(middle_level - first_level, static_cast<double>(run_begin),
+                             static_cast<double>(run_end));
+  double peak = rho(best);
   if (run_begin == run_end) {
     // A sharp maximum: refine it below one level with a parabola through its neighbours.
-    const double a = rho[best - 1];
-    const double b = rho[best];
-    const double c = rho[best + 1];
+    const double a = rho(best - 1);
+    const double b = rho(best);
+    const double c = rho(best + 1);
     const double curvature = a - 2.0 * b + c;
     if (curvature < 0) {
       const double offset = std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
@@ -420,10 +268,235 @@ bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous
       peak = b - 0.25 * (a - c) * offset;
     }
   }
-  selected->threshold = profile.first_level + centre + 0.5;
+  selected->threshold = first_level + centre + 0.5;
   selected->level = static_cast<int>(std::ceil(selected->threshold)) - 1;
   selected->stability = peak;
   return true;
+}
+
+}  // namespace
+
+inline float WeightedStabilityEvaluator::Sample(int r, int k) {
+  const float value = samples_[static_cast<size_t>(r) * (2 * m_ + 1) + k];
+  return value == kNotSampled ? ReadSample(r, k) : value;
+}
+
+float WeightedStabilityEvaluator::ReadSample(int r, int k) {
+  // Interpolation of the 8-bit image: cubic near the curve, bilinear beyond (ProfileSampler).
+  const ProfileSampler interpolate(*gray_);
+  const double u = (k - m_) * options_.sample_step;
+  const double x = points_[r].x + u * normals_[r].x, y = points_[r].y + u * normals_[r].y;
+  const float value =
+      std::abs(k - m_) <= cubic_reach_ ? interpolate.Cubic(x, y) : interpolate.Bilinear(x, y);
+  samples_[static_cast<size_t>(r) * (2 * m_ + 1) + k] = value;
+  return value;
+}
+
+bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
+                                         const std::vector<cv::Point2f>& reference,
+                                         int centre_index,
+                                         const WeightedStabilityOptions& options) {
+  gray_ = &gray;
+  options_ = options;
+  num_evaluated_ = 0;
+  const int n = static_cast<int>(reference.size());
+  if (centre_index < 1 || centre_index > n - 2) return false;
+  // Normals every normal_step samples within half_length of the centre, the centre included.
+  const int normal_step = std::max(1, options.normal_step);
+  const int reach_before = std::min(centre_index, options.half_length) / normal_step;
+  const int reach_after = std::min(n - 1 - centre_index, options.half_length) / normal_step;
+  num_normals_ = reach_before + reach_after + 1;
+  centre_row_ = reach_before;
+  m_ = std::max(1, static_cast<int>(std::lround(options.max_distance / options.sample_step)));
+  const double step = options.sample_step;
+  cubic_reach_ = static_cast<int>(std::floor(options.cubic_distance / step + 1e-9));
+
+  // Unit normals towards the bright side (the right of the direction of travel), and weights.
+  points_.resize(num_normals_);
+  normals_.resize(num_normals_);
+  weights_.resize(num_normals_);
+  weight_sum_ = 0;
+  for (int r = 0; r < num_normals_; ++r) {
+    const int i = centre_index + (r - centre_row_) * normal_step;
+    const cv::Point2d tangent =
+        cv::Point2d(reference[std::min(n - 1, i + 1)]) - cv::Point2d(reference[std::max(0, i - 1)]);
+    const double norm = std::sqrt(tangent.x * tangent.x + tangent.y * tangent.y);
+    points_[r] = reference[i];
+    normals_[r] = norm > 0 ? cv::Point2d(-tangent.y / norm, tangent.x / norm) : cv::Point2d(0, 0);
+    const double d = i - centre_index;
+    weights_[r] = std::exp(-d * d / (2.0 * options.sigma * options.sigma));
+    weight_sum_ += weights_[r];
+  }
+
+  // Intensity profiles along the normals (row r: samples k = 0..2m at u = (k - m) * step), read
+  // on demand.
+  const int samples = 2 * m_ + 1;
+  samples_.assign(static_cast<size_t>(num_normals_) * samples, kNotSampled);
+
+  // The intensities on the two sides of the curve: per normal, the darkest value on the dark
+  // half and the brightest on the bright half within side_distance (extremes reach the flat sides
+  // of a blurred edge whatever the reference curve's level), and across normals the weighted
+  // median of their mid-points, robust to texture and to the few normals that cross to the far
+  // side of a sharp tip. The central normal's values also give the candidate levels.
+  const int side_reach = std::min(m_, static_cast<int>(std::lround(options.side_distance / step)));
+  const int search_reach =
+      std::min(m_, static_cast<int>(std::floor(options.search_radius / step + 1e-9)));
+  const int read_reach = std::max(side_reach, search_reach);
+  mids_.clear();
+  for (int r = 0; r < num_normals_; ++r) {
+    float dark = std::numeric_limits<float>::infinity();
+    float bright = -dark;
+    for (int k = m_ - read_reach; k <= m_ + read_reach; ++k) {
+      const float v = Sample(r, k);
+      if (k >= m_ - side_reach && k <= m_) dark = std::min(dark, v);
+      if (k >= m_ && k <= m_ + side_reach) bright = std::max(bright, v);
+    }
+    mids_.emplace_back(0.5 * (dark + bright), weights_[r]);
+  }
+  std::sort(mids_.begin(), mids_.end());
+  double cumulative = 0;
+  double median = mids_.back().first;
+  for (const auto& [mid, weight] : mids_) {
+    cumulative += weight;
+    if (cumulative >= 0.5 * weight_sum_) {
+      median = mid;
+      break;
+    }
+  }
+  middle_level_ = median - 0.5;
+
+  // Levels whose curve crosses the central normal within the search radius: J with
+  // low < J + 0.5 <= high.
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (int k = m_ - search_reach; k <= m_ + search_reach; ++k) {
+    low = std::min(low, static_cast<double>(Sample(centre_row_, k)));
+    high = std::max(high, static_cast<double>(Sample(centre_row_, k)));
+  }
+  const int level_lo = static_cast<int>(std::ceil(low - 0.5 + 1e-9));
+  const int level_hi = static_cast<int>(std::ceil(high - 0.5)) - 1;
+  if (level_hi < level_lo) return false;
+  first_level_ = level_lo - 1;
+  num_levels_ = level_hi - level_lo + 3;
+  // Crossings of the thresholds J + 0.5 + e, e in [-δ, δ] (δ rounded up; a fractional δ is
+  // interpolated between them).
+  delta_steps_ = static_cast<int>(std::ceil(options.delta));
+  first_threshold_ = first_level_ - delta_steps_ + 0.5;
+  num_thresholds_ = num_levels_ + 2 * delta_steps_;
+  crossings_.resize(static_cast<size_t>(num_normals_) * num_thresholds_);
+  clipped_.resize(crossings_.size());
+  for (int r = 0; r < num_normals_; ++r) {
+    ProfileCrossings(
+        &samples_[static_cast<size_t>(r) * samples], samples, m_, step, first_threshold_,
+        num_thresholds_, [&](int k) { return ReadSample(r, k); },
+        &crossings_[static_cast<size_t>(r) * num_thresholds_],
+        &clipped_[static_cast<size_t>(r) * num_thresholds_]);
+  }
+  levels_.assign(num_levels_, LevelValues());
+  elements_.resize(num_normals_);
+  return true;
+}
+
+double WeightedStabilityEvaluator::CentreOffset(int l) {
+  bool clipped = false;
+  return Crossing(centre_row_, l + delta_steps_, &clipped);
+}
+
+const WeightedStabilityEvaluator::LevelValues& WeightedStabilityEvaluator::Evaluate(int l) {
+  LevelValues& values = levels_[l];
+  if (values.stability >= 0) return values;
+  ++num_evaluated_;
+  const int j = l + delta_steps_;  // threshold index of the level itself
+  const double delta = options_.delta;
+  const bool whole_delta = delta == delta_steps_;
+  auto u_at = [&](int r, double jj) {  // crossing of threshold index jj (may be fractional)
+    bool clipped = false;
+    if (whole_delta) return Crossing(r, static_cast<int>(jj), &clipped);
+    const int j0 = std::clamp(static_cast<int>(std::floor(jj)), 0, num_thresholds_ - 1);
+    const int j1 = std::min(j0 + 1, num_thresholds_ - 1);
+    const double t = std::clamp(jj - j0, 0.0, 1.0);
+    const double u0 = Crossing(r, j0, &clipped);
+    const double u1 = Crossing(r, j1, &clipped);
+    return u0 + t * (u1 - u0);
+  };
+  // Length element of the level's curve at each normal: half of each adjoining chord between
+  // the points where the curve crosses consecutive normals (0 where it does not cross).
+  std::fill(elements_.begin(), elements_.end(), 0.0);
+  cv::Point2d previous;
+  bool previous_valid = false;
+  for (int r = 0; r < num_normals_; ++r) {
+    bool clipped = false;
+    const double u = Crossing(r, j, &clipped);
+    const bool valid = !clipped;
+    const cv::Point2d q = points_[r] + u * normals_[r];
+    if (valid && previous_valid) {
+      const double dx = q.x - previous.x;
+      const double dy = q.y - previous.y;
+      const double chord = std::sqrt(dx * dx + dy * dy);
+      elements_[r - 1] += 0.5 * chord;
+      elements_[r] += 0.5 * chord;
+    }
+    previous = q;
+    previous_valid = valid;
+  }
+  // The strip of normal r has the band's width there times the curve's length element: the
+  // area between Up and Down in that strip.
+  double length = 0;
+  double band = 0;
+  for (int r = 0; r < num_normals_; ++r) {
+    length += weights_[r] * elements_[r];
+    if (elements_[r] == 0.0) continue;  // adds exactly nothing; skips reading its band
+    band += weights_[r] * elements_[r] * (u_at(r, j + delta) - u_at(r, j - delta));
+  }
+  band = std::max(band, 1e-6 * weight_sum_);
+  values.band_area = band;
+  values.length = length;
+  values.stability = length / band;
+  return values;
+}
+
+void WeightedStabilityEvaluator::Fill(StabilityProfile* profile) {
+  profile->first_level = first_level_;
+  profile->stability.assign(num_levels_, 0.0);
+  profile->length.assign(num_levels_, 0.0);
+  profile->band_area.assign(num_levels_, 0.0);
+  profile->centre_offset.assign(num_levels_, 0.0);
+  profile->centre = centre();
+  profile->normal = normal();
+  profile->middle_level = middle_level_;
+  for (int l = 0; l < num_levels_; ++l) {
+    const LevelValues& values = Evaluate(l);
+    profile->stability[l] = values.stability;
+    profile->length[l] = values.length;
+    profile->band_area[l] = values.band_area;
+    profile->centre_offset[l] = CentreOffset(l);
+  }
+}
+
+bool ComputeWeightedStabilityProfile(const cv::Mat& gray, const std::vector<cv::Point2f>& reference,
+                                     int centre_index, const WeightedStabilityOptions& options,
+                                     StabilityProfile* profile) {
+  WeightedStabilityEvaluator evaluator;
+  if (!evaluator.Prepare(gray, reference, centre_index, options)) return false;
+  evaluator.Fill(profile);
+  return true;
+}
+
+bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous_level,
+                                double run_tolerance, double ripple_tolerance,
+                                StableLevel* selected) {
+  const std::vector<double>& rho = profile.stability;
+  return SelectLevel(
+      profile.first_level, profile.NumLevels(), profile.middle_level, previous_level, run_tolerance,
+      ripple_tolerance, [&](int l) { return rho[l]; }, selected);
+}
+
+bool SelectMaximallyStableLevel(WeightedStabilityEvaluator* evaluator, double previous_level,
+                                double run_tolerance, double ripple_tolerance,
+                                StableLevel* selected) {
+  return SelectLevel(
+      evaluator->first_level(), evaluator->NumLevels(), evaluator->middle_level(), previous_level,
+      run_tolerance, ripple_tolerance, [&](int l) { return evaluator->Stability(l); }, selected);
 }
 
 }  // namespace comic::frontend

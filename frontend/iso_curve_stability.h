@@ -99,8 +99,7 @@ struct WeightedStabilityOptions {
   double side_distance = 3.0;
 };
 
-// ρ_w as a function of the level near a point. level(i) = first_level + i. Reuse one object
-// across calls: it keeps its buffers.
+// ρ_w as a function of the level near a point, every level evaluated. level(i) = first_level + i.
 struct StabilityProfile {
   int first_level = 0;
   std::vector<double> stability;  // ρ_w
@@ -117,16 +116,78 @@ struct StabilityProfile {
   // brightest on the bright side within side_distance, fractional.
   double middle_level = 0.0;
   int NumLevels() const { return static_cast<int>(stability.size()); }
+};
 
-  // Working buffers of ComputeWeightedStabilityProfile.
-  std::vector<cv::Point2d> points;
-  std::vector<cv::Point2d> normals;
-  std::vector<double> weights;
-  std::vector<float> samples;
-  std::vector<double> crossings;
-  std::vector<uint8_t> clipped;
-  std::vector<double> elements;
-  std::vector<std::pair<double, double>> mids;
+// The weighted stability around one point of a reference curve, evaluated level by level on
+// demand and memoised: choosing the MSICS (SelectMaximallyStableLevel) needs only the levels
+// around the previous one, not all the 100-200 levels whose curves pass near a corner. Every
+// value is the one ComputeWeightedStabilityProfile gives for that level, bit for bit. Reuse one
+// object per thread: it keeps its buffers.
+class WeightedStabilityEvaluator {
+ public:
+  // Sets up the normals of the reference segment, their intensity profiles (read on demand), the
+  // middle level and the range of levels (see ComputeWeightedStabilityProfile). Returns false when
+  // no level's curve crosses the central normal within search_radius. `gray` must outlive the
+  // evaluation.
+  bool Prepare(const cv::Mat& gray, const std::vector<cv::Point2f>& reference, int centre_index,
+               const WeightedStabilityOptions& options);
+
+  int first_level() const { return first_level_; }
+  int NumLevels() const { return num_levels_; }
+  double middle_level() const { return middle_level_; }
+  cv::Point2d centre() const { return points_[centre_row_]; }
+  cv::Point2d normal() const { return normals_[centre_row_]; }
+  // ρ_w of level first_level() + l, l in [0, NumLevels()).
+  double Stability(int l) { return Evaluate(l).stability; }
+  // Where the curve of level first_level() + l crosses the central normal, px (as
+  // StabilityProfile::centre_offset).
+  double CentreOffset(int l);
+  // Levels evaluated since Prepare.
+  int NumEvaluated() const { return num_evaluated_; }
+  // Evaluates every level into `profile`.
+  void Fill(StabilityProfile* profile);
+
+ private:
+  struct LevelValues {
+    double stability = -1.0;  // < 0: not evaluated yet
+    double length = 0.0;
+    double band_area = 0.0;
+  };
+  const LevelValues& Evaluate(int l);
+  // Signed crossing of threshold index j (threshold first_threshold_ + j) on normal r, and
+  // whether the profile ended first (clipped).
+  double Crossing(int r, int j, bool* clipped) const {
+    const size_t index = static_cast<size_t>(r) * num_thresholds_ + j;
+    *clipped = clipped_[index] != 0;
+    return crossings_[index];
+  }
+  // Sample k of normal r's profile (read on first use).
+  float Sample(int r, int k);
+  float ReadSample(int r, int k);
+
+  const cv::Mat* gray_ = nullptr;
+  WeightedStabilityOptions options_;
+  int num_normals_ = 0;
+  int centre_row_ = 0;
+  int m_ = 0;            // index of the centre sample of a normal profile
+  int cubic_reach_ = 0;  // samples from the centre read by cubic convolution
+  int first_level_ = 0;
+  int num_levels_ = 0;
+  int delta_steps_ = 0;  // ceil(δ)
+  int num_thresholds_ = 0;
+  double first_threshold_ = 0.0;
+  double weight_sum_ = 0.0;
+  double middle_level_ = 0.0;
+  int num_evaluated_ = 0;
+  std::vector<cv::Point2d> points_;
+  std::vector<cv::Point2d> normals_;
+  std::vector<double> weights_;
+  std::vector<float> samples_;     // num_normals_ x (2m + 1), read on demand
+  std::vector<double> crossings_;  // num_normals_ x num_thresholds_
+  std::vector<uint8_t> clipped_;
+  std::vector<LevelValues> levels_;
+  std::vector<double> elements_;
+  std::vector<std::pair<double, double>> mids_;
 };
 
 // Computes the profile around reference[centre_index]. `reference` is a segment of iso-curve
@@ -159,6 +220,11 @@ struct StableLevel {
 // level is refined by the vertex of a parabola through ρ_w at I - 1, I, I + 1. Returns false if
 // there is no maximum.
 bool SelectMaximallyStableLevel(const StabilityProfile& profile, double previous_level,
+                                double run_tolerance, double ripple_tolerance,
+                                StableLevel* selected);
+// The same choice, evaluating only the levels it looks at (the nearest maxima, the dips towards
+// their neighbours while a climb is still possible, the run).
+bool SelectMaximallyStableLevel(WeightedStabilityEvaluator* evaluator, double previous_level,
                                 double run_tolerance, double ripple_tolerance,
                                 StableLevel* selected);
 

@@ -155,5 +155,53 @@ TEST(IsoCurveStability, SelectionKeepsDistinctCurvesApart) {
                                           0.25, &level));
 }
 
+TEST(IsoCurveStability, LazyEvaluationChoosesExactlyWhatTheFullProfileChooses) {
+  // Textured scene: jagged ρ profiles with many maxima. The evaluator reads only the levels the
+  // choice needs, and must agree bit for bit with the profile of every level.
+  const cv::Mat image =
+      test::RenderPolygons(test::TexturedBackground({120, 120}, 11, 20, 200, 5),
+                           {test::MakeSquare({30.4, 35.2}, 50, 230),
+                            test::MakeTriangle({20, 100}, {100, 90}, {70, 20}, 10)},
+                           1.0);
+  WeightedStabilityEvaluator evaluator;
+  int compared = 0, evaluated = 0, levels = 0;
+  for (int y = 20; y < 100; y += 7) {
+    for (double threshold : {60.5, 110.5, 160.5}) {
+      const IsoCurveTracer tracer(image, cv::Rect(0, 0, image.cols, image.rows), threshold);
+      CurveEdge seed;
+      if (!tracer.FindNearestCrossing(cv::Point2f(60.0f, static_cast<float>(y)), 20, &seed)) {
+        continue;
+      }
+      IsoCurve curve;
+      tracer.Trace(seed, 1000, &curve);
+      int centre = 0;
+      const auto reference = ResamplePolyline(
+          curve.points, false, 1.0, ArcLengthAt(curve.points, curve.seed_index), 13, 13, &centre);
+      StabilityProfile profile;
+      const bool full = ComputeWeightedStabilityProfile(image, reference, centre, {}, &profile);
+      ASSERT_EQ(full, evaluator.Prepare(image, reference, centre, {}));
+      if (!full) continue;
+      for (double previous : {threshold - 0.5, threshold - 12.0, threshold + 7.3}) {
+        StableLevel a, b;
+        const bool found = SelectMaximallyStableLevel(profile, previous, 0.10, 0.25, &a);
+        ASSERT_EQ(found, SelectMaximallyStableLevel(&evaluator, previous, 0.10, 0.25, &b));
+        if (!found) continue;
+        EXPECT_EQ(a.threshold, b.threshold);
+        EXPECT_EQ(a.level, b.level);
+        EXPECT_EQ(a.stability, b.stability);
+        ++compared;
+      }
+      evaluated += evaluator.NumEvaluated();
+      levels += evaluator.NumLevels();
+      for (int l = 0; l < profile.NumLevels(); ++l) {
+        EXPECT_EQ(evaluator.Stability(l), profile.stability[l]);
+        EXPECT_EQ(evaluator.CentreOffset(l), profile.centre_offset[l]);
+      }
+    }
+  }
+  EXPECT_GT(compared, 20);
+  EXPECT_LT(evaluated, levels);
+}
+
 }  // namespace
 }  // namespace comic::frontend
