@@ -385,16 +385,38 @@ bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
   num_thresholds_ = num_levels_ + 2 * delta_steps_;
   crossings_.resize(static_cast<size_t>(num_normals_) * num_thresholds_);
   clipped_.resize(crossings_.size());
-  for (int r = 0; r < num_normals_; ++r) {
-    ProfileCrossings(
-        &samples_[static_cast<size_t>(r) * samples], samples, m_, step, first_threshold_,
-        num_thresholds_, [&](int k) { return ReadSample(r, k); },
-        &crossings_[static_cast<size_t>(r) * num_thresholds_],
-        &clipped_[static_cast<size_t>(r) * num_thresholds_]);
-  }
+  computed_begin_ = computed_end_ = 0;
   levels_.assign(num_levels_, LevelValues());
   elements_.resize(num_normals_);
   return true;
+}
+
+void WeightedStabilityEvaluator::ComputeCrossings(int j) {
+  // The thresholds a level needs span 2δ + 1; a few more on either side cover its neighbours.
+  const int slack = 2 * delta_steps_ + 4;
+  int begin = std::max(0, j - slack);
+  int end = std::min(num_thresholds_, j + slack + 1);
+  if (computed_end_ > computed_begin_) {
+    begin = std::min(begin, computed_begin_);
+    end = std::max(end, computed_end_);
+  }
+  const int samples = 2 * m_ + 1;
+  // The new thresholds below and above the computed window. Each threshold's crossing depends on
+  // the threshold alone (ProfileCrossings), so computing them in pieces gives the same values.
+  for (const auto& [from, to] :
+       {std::pair{begin, computed_end_ > computed_begin_ ? computed_begin_ : end},
+        std::pair{computed_end_ > computed_begin_ ? computed_end_ : end, end}}) {
+    if (to <= from) continue;
+    for (int r = 0; r < num_normals_; ++r) {
+      ProfileCrossings(
+          &samples_[static_cast<size_t>(r) * samples], samples, m_, options_.sample_step,
+          first_threshold_ + from, to - from, [&](int k) { return ReadSample(r, k); },
+          &crossings_[static_cast<size_t>(r) * num_thresholds_ + from],
+          &clipped_[static_cast<size_t>(r) * num_thresholds_ + from]);
+    }
+  }
+  computed_begin_ = begin;
+  computed_end_ = end;
 }
 
 double WeightedStabilityEvaluator::CentreOffset(int l) {

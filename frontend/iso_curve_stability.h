@@ -156,11 +156,16 @@ class WeightedStabilityEvaluator {
   const LevelValues& Evaluate(int l);
   // Signed crossing of threshold index j (threshold first_threshold_ + j) on normal r, and
   // whether the profile ended first (clipped).
-  double Crossing(int r, int j, bool* clipped) const {
+  double Crossing(int r, int j, bool* clipped) {
+    if (j < computed_begin_ || j >= computed_end_) ComputeCrossings(j);
     const size_t index = static_cast<size_t>(r) * num_thresholds_ + j;
     *clipped = clipped_[index] != 0;
     return crossings_[index];
   }
+  // Extends the window of threshold indices whose crossings are computed (on every normal) to
+  // include j, with some slack: crossings are found a window at a time, for the thresholds the
+  // level choice reaches.
+  void ComputeCrossings(int j);
   // Sample k of normal r's profile (read on first use).
   float Sample(int r, int k);
   float ReadSample(int r, int k);
@@ -185,6 +190,8 @@ class WeightedStabilityEvaluator {
   std::vector<float> samples_;     // num_normals_ x (2m + 1), read on demand
   std::vector<double> crossings_;  // num_normals_ x num_thresholds_
   std::vector<uint8_t> clipped_;
+  int computed_begin_ = 0;  // crossings are computed for threshold indices in [begin, end)
+  int computed_end_ = 0;
   std::vector<LevelValues> levels_;
   std::vector<double> elements_;
   std::vector<std::pair<double, double>> mids_;
