@@ -12,24 +12,40 @@ constexpr double kPi = 3.14159265358979323846;
 // Floor division for possibly negative numerators.
 long FloorDiv(long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-// One box-filter pass of radius r: out[i] = sum of in[i - r .. i + r], truncated at the ends of an
-// open sequence, wrapped around a closed one. `prefix` is scratch space.
-void BoxPass(const std::vector<double>& in, bool closed, int r, std::vector<double>* prefix,
+constexpr int kChannels = 6;  // 1, x, y, x², xy, y²
+
+// One box-filter pass of radius r over the six interleaved channels of n samples:
+// out[i] = sum of in[i - r .. i + r], truncated at the ends of an open sequence, wrapped around a
+// closed one, through prefix sums. `prefix` is scratch space.
+void BoxPass(const std::vector<double>& in, long n, bool closed, int r, std::vector<double>* prefix,
              std::vector<double>* out) {
-  const long n = static_cast<long>(in.size());
-  prefix->assign(n + 1, 0.0);
-  for (long i = 0; i < n; ++i) (*prefix)[i + 1] = (*prefix)[i] + in[i];
-  out->resize(n);
+  constexpr long C = kChannels;
+  prefix->resize((n + 1) * C);
+  out->resize(n * C);
+  double* p = prefix->data();
+  const double* x = in.data();
+  double* y = out->data();
+  for (long c = 0; c < C; ++c) p[c] = 0.0;
+  for (long i = 0; i < n; ++i) {
+    for (long c = 0; c < C; ++c) p[(i + 1) * C + c] = p[i * C + c] + x[i * C + c];
+  }
   if (closed) {
-    const double total = (*prefix)[n];
-    auto cumulative = [&](long x) {  // sum of in[j mod n] for j in [0, x)
-      const long wraps = FloorDiv(x, n);
-      return wraps * total + (*prefix)[x - wraps * n];
-    };
-    for (long i = 0; i < n; ++i) (*out)[i] = cumulative(i + r + 1) - cumulative(i - r);
+    const double* total = p + n * C;
+    for (long i = 0; i < n; ++i) {
+      // Sums of in[j mod n] for j in [0, i + r + 1) and [0, i - r).
+      const long hi = i + r + 1, lo = i - r;
+      const long hi_wraps = FloorDiv(hi, n), lo_wraps = FloorDiv(lo, n);
+      const double* p_hi = p + (hi - hi_wraps * n) * C;
+      const double* p_lo = p + (lo - lo_wraps * n) * C;
+      for (long c = 0; c < C; ++c) {
+        y[i * C + c] = (hi_wraps * total[c] + p_hi[c]) - (lo_wraps * total[c] + p_lo[c]);
+      }
+    }
   } else {
     for (long i = 0; i < n; ++i) {
-      (*out)[i] = (*prefix)[std::min(n, i + r + 1)] - (*prefix)[std::max(0L, i - r)];
+      const double* p_hi = p + std::min(n, i + r + 1) * C;
+      const double* p_lo = p + std::max(0L, i - r) * C;
+      for (long c = 0; c < C; ++c) y[i * C + c] = p_hi[c] - p_lo[c];
     }
   }
 }
@@ -102,36 +118,36 @@ std::vector<double> CurveCornerness(const std::vector<cv::Point2f>& points, bool
   std::vector<double> kappa(n, -1.0);
   if (n < 3) return kappa;
   const int r = BoxRadiusForGaussian(sigma);
-  // Channels 1, x, y, x², xy, y² (relative to the first point, for numerical range); the
-  // filtered "1" channel normalises truncated windows.
-  std::vector<std::vector<double>> channels(6, std::vector<double>(n));
+  // Channels 1, x, y, x², xy, y² (relative to the first point, for numerical range), interleaved;
+  // the filtered "1" channel normalises truncated windows.
+  std::vector<double> channels(static_cast<size_t>(n) * kChannels);
   const cv::Point2d origin = points[0];
   for (int i = 0; i < n; ++i) {
     const double x = points[i].x - origin.x;
     const double y = points[i].y - origin.y;
-    channels[0][i] = 1.0;
-    channels[1][i] = x;
-    channels[2][i] = y;
-    channels[3][i] = x * x;
-    channels[4][i] = x * y;
-    channels[5][i] = y * y;
+    double* c = &channels[static_cast<size_t>(i) * kChannels];
+    c[0] = 1.0;
+    c[1] = x;
+    c[2] = y;
+    c[3] = x * x;
+    c[4] = x * y;
+    c[5] = y * y;
   }
   std::vector<double> prefix;
   std::vector<double> tmp;
-  for (auto& channel : channels) {
-    for (int pass = 0; pass < 3; ++pass) {
-      BoxPass(channel, closed, r, &prefix, &tmp);
-      channel.swap(tmp);
-    }
+  for (int pass = 0; pass < 3; ++pass) {
+    BoxPass(channels, n, closed, r, &prefix, &tmp);
+    channels.swap(tmp);
   }
   for (int i = 0; i < n; ++i) {
     if (!closed && (i < min_support || i > n - 1 - min_support)) continue;
-    const double w = channels[0][i];
-    const double mx = channels[1][i] / w;
-    const double my = channels[2][i] / w;
-    const double sxx = channels[3][i] / w - mx * mx;
-    const double sxy = channels[4][i] / w - mx * my;
-    const double syy = channels[5][i] / w - my * my;
+    const double* c = &channels[static_cast<size_t>(i) * kChannels];
+    const double w = c[0];
+    const double mx = c[1] / w;
+    const double my = c[2] / w;
+    const double sxx = c[3] / w - mx * mx;
+    const double sxy = c[4] / w - mx * my;
+    const double syy = c[5] / w - my * my;
     const double trace = sxx + syy;
     const double det = sxx * syy - sxy * sxy;
     kappa[i] = trace > 1e-12 ? std::clamp(det / (trace * trace), 0.0, 0.25) : 0.0;
