@@ -103,7 +103,8 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   if (n < 2 * k + 1) return false;
 
   // The corner on it nearest to the previous one.
-  const std::vector<double> kappa = CurveCornerness(samples, traced.closed, options.sigma, k);
+  std::vector<double>& kappa = workspace->kappa;
+  CurveCornerness(samples, traced.closed, options.sigma, k, &workspace->cornerness, &kappa);
   const int nms_radius = std::max(1, static_cast<int>(std::lround(options.sigma)));
   double best_distance = std::numeric_limits<double>::infinity();
   int best_index = -1;
@@ -150,61 +151,83 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   return true;
 }
 
+void CornerConvergence::Start(const cv::Point2f& position, std::vector<cv::Point2f> reference,
+                              double level) {
+  current_ = position;
+  reference_ = std::move(reference);
+  level_ = level;
+  iteration_ = 0;
+  last_ = ConvergedCorner();
+  before_last_ = ConvergedCorner();
+  result_ = ConvergedCorner();
+}
+
+CornerConvergence::Status CornerConvergence::Step(const cv::Mat& gray,
+                                                  const ConvergenceOptions& options,
+                                                  ConvergenceWorkspace* workspace) {
+  ConvergenceWorkspace local_workspace;
+  if (workspace == nullptr) workspace = &local_workspace;
+  ++iteration_;
+  ConvergedCorner next;
+  // The previous MSICS: the seed's curve at first, then the curve the last iteration traced.
+  const std::vector<cv::Point2f>& reference = iteration_ == 1 ? reference_ : last_.curve;
+  if (!RedetectCorner(gray, current_, reference, level_, options, &next, workspace)) {
+    return Status::kLost;
+  }
+  // The iteration runs on the apex, the κ maximum on the curve (the paper's corner): the vertex
+  // correction is an output refinement and would move the weights' centre off the curve.
+  const double moved = Distance(next.apex, current_);
+  // A fixed point keeps its MSICS too: a corner that barely moved while its curve jumped to
+  // another level (typical of the first iteration, from the initialisation's level) goes on.
+  const bool same_curve = std::abs(next.threshold - 0.5 - level_) <= 1.0;
+  if (moved <= options.stop_tolerance && same_curve) {
+    result_ = std::move(next);
+    result_.iterations = iteration_;
+    return Status::kSettled;
+  }
+  // Back where it was two iterations ago (within a quarter of the settle tolerance): the
+  // iteration alternates between two MSICSs near the corner. It has stopped moving in the sense
+  // of Algorithm 1; keep the more stable of the two.
+  if (iteration_ >= 3 &&
+      Distance(next.apex, before_last_.apex) <=
+          std::max(options.stop_tolerance, 0.25 * options.tolerance) &&
+      std::abs(next.threshold - before_last_.threshold) <= 1.0) {
+    result_ = next.stability >= last_.stability ? std::move(next) : std::move(last_);
+    result_.iterations = iteration_;
+    return Status::kSettled;
+  }
+  if (iteration_ >= options.max_iterations) {
+    if (moved > options.tolerance) return Status::kLost;  // still moving: not settled
+    result_ = std::move(next);
+    result_.iterations = iteration_;
+    return Status::kSettled;
+  }
+  current_ = next.apex;
+  level_ = next.threshold - 0.5;
+  before_last_ = std::move(last_);
+  last_ = std::move(next);
+  if (iteration_ == 1) std::vector<cv::Point2f>().swap(reference_);
+  return Status::kRunning;
+}
+
 bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
                     const std::vector<cv::Point2f>& reference, double level,
                     const ConvergenceOptions& options, ConvergedCorner* result,
                     ConvergenceWorkspace* workspace) {
   options.Check();
-  ConvergenceWorkspace local_workspace;
-  if (workspace == nullptr) workspace = &local_workspace;
-  cv::Point2f current = position;
-  std::vector<cv::Point2f> current_reference = reference;
-  double current_level = level;
-  ConvergedCorner last;         // the result of the last iteration
-  ConvergedCorner before_last;  // and of the one before it
-  int done = 0;
-  for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
-    ConvergedCorner next;
-    if (!RedetectCorner(gray, current, current_reference, current_level, options, &next,
-                        workspace)) {
-      return false;
+  CornerConvergence convergence;
+  convergence.Start(position, reference, level);
+  for (;;) {
+    switch (convergence.Step(gray, options, workspace)) {
+      case CornerConvergence::Status::kRunning:
+        continue;
+      case CornerConvergence::Status::kSettled:
+        *result = std::move(convergence.result());
+        return true;
+      case CornerConvergence::Status::kLost:
+        return false;
     }
-    // The iteration runs on the apex, the κ maximum on the curve (the paper's corner): the vertex
-    // correction is an output refinement and would move the weights' centre off the curve.
-    const double moved = Distance(next.apex, current);
-    // A fixed point keeps its MSICS too: a corner that barely moved while its curve jumped to
-    // another level (typical of the first iteration, from the initialisation's level) goes on.
-    const bool same_curve = std::abs(next.threshold - 0.5 - current_level) <= 1.0;
-    if (moved <= options.stop_tolerance && same_curve) {
-      *result = std::move(next);
-      result->iterations = iteration;
-      return true;
-    }
-    // Back where it was two iterations ago (within a quarter of the settle tolerance): the
-    // iteration alternates between two MSICSs near the corner. It has stopped moving in the sense
-    // of Algorithm 1; keep the more stable of the two.
-    if (done >= 2 &&
-        Distance(next.apex, before_last.apex) <=
-            std::max(options.stop_tolerance, 0.25 * options.tolerance) &&
-        std::abs(next.threshold - before_last.threshold) <= 1.0) {
-      *result = next.stability >= last.stability ? std::move(next) : std::move(last);
-      result->iterations = iteration;
-      return true;
-    }
-    if (iteration == options.max_iterations) {
-      if (moved > options.tolerance) return false;  // still moving: not settled
-      *result = std::move(next);
-      result->iterations = iteration;
-      return true;
-    }
-    current = next.apex;
-    current_level = next.threshold - 0.5;
-    current_reference = next.curve;
-    before_last = std::move(last);
-    last = std::move(next);
-    ++done;
   }
-  return false;
 }
 
 }  // namespace comic::frontend

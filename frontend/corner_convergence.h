@@ -73,6 +73,8 @@ struct ConvergedCorner {
 // Buffers reused across calls (one per thread).
 struct ConvergenceWorkspace {
   WeightedStabilityEvaluator profile;
+  CornernessWorkspace cornerness;
+  std::vector<double> kappa;
 };
 
 // One convergence iteration: weights centred on the point of `reference` (a polyline along the
@@ -94,5 +96,32 @@ bool ConvergeCorner(const cv::Mat& gray, const cv::Point2f& position,
                     const std::vector<cv::Point2f>& reference, double level,
                     const ConvergenceOptions& options, ConvergedCorner* result,
                     ConvergenceWorkspace* workspace = nullptr);
+
+// ConvergeCorner one iteration at a time, so that a caller can advance many corners in lock-step
+// and stop those that reach a state another corner has already been in (their futures are the
+// same). Start, then Step until it no longer returns kRunning; ConvergeCorner is exactly that.
+class CornerConvergence {
+ public:
+  enum class Status { kRunning, kSettled, kLost };
+
+  void Start(const cv::Point2f& position, std::vector<cv::Point2f> reference, double level);
+  // One iteration (options checked by the caller). kSettled: result() holds the corner; kLost:
+  // the corner is dropped.
+  Status Step(const cv::Mat& gray, const ConvergenceOptions& options,
+              ConvergenceWorkspace* workspace = nullptr);
+  // The corner found by the last iteration (valid after kRunning).
+  const ConvergedCorner& current() const { return last_; }
+  ConvergedCorner& result() { return result_; }
+  int iteration() const { return iteration_; }
+
+ private:
+  cv::Point2f current_;                 // apex the next iteration starts from
+  std::vector<cv::Point2f> reference_;  // the seed's curve (first iteration only)
+  double level_ = 0.0;                  // level of the previous MSICS
+  int iteration_ = 0;
+  ConvergedCorner last_;         // the result of the last iteration
+  ConvergedCorner before_last_;  // and of the one before it
+  ConvergedCorner result_;
+};
 
 }  // namespace comic::frontend

@@ -114,13 +114,22 @@ int BoxRadiusForGaussian(double sigma) {
 
 std::vector<double> CurveCornerness(const std::vector<cv::Point2f>& points, bool closed,
                                     double sigma, int min_support) {
+  CornernessWorkspace workspace;
+  std::vector<double> kappa;
+  CurveCornerness(points, closed, sigma, min_support, &workspace, &kappa);
+  return kappa;
+}
+
+void CurveCornerness(const std::vector<cv::Point2f>& points, bool closed, double sigma,
+                     int min_support, CornernessWorkspace* workspace, std::vector<double>* kappa) {
   const int n = static_cast<int>(points.size());
-  std::vector<double> kappa(n, -1.0);
-  if (n < 3) return kappa;
+  kappa->assign(n, -1.0);
+  if (n < 3) return;
   const int r = BoxRadiusForGaussian(sigma);
   // Channels 1, x, y, x², xy, y² (relative to the first point, for numerical range), interleaved;
   // the filtered "1" channel normalises truncated windows.
-  std::vector<double> channels(static_cast<size_t>(n) * kChannels);
+  std::vector<double>& channels = workspace->channels;
+  channels.resize(static_cast<size_t>(n) * kChannels);
   const cv::Point2d origin = points[0];
   for (int i = 0; i < n; ++i) {
     const double x = points[i].x - origin.x;
@@ -133,11 +142,9 @@ std::vector<double> CurveCornerness(const std::vector<cv::Point2f>& points, bool
     c[4] = x * y;
     c[5] = y * y;
   }
-  std::vector<double> prefix;
-  std::vector<double> tmp;
   for (int pass = 0; pass < 3; ++pass) {
-    BoxPass(channels, n, closed, r, &prefix, &tmp);
-    channels.swap(tmp);
+    BoxPass(channels, n, closed, r, &workspace->prefix, &workspace->filtered);
+    channels.swap(workspace->filtered);
   }
   for (int i = 0; i < n; ++i) {
     if (!closed && (i < min_support || i > n - 1 - min_support)) continue;
@@ -150,9 +157,8 @@ std::vector<double> CurveCornerness(const std::vector<cv::Point2f>& points, bool
     const double syy = c[5] / w - my * my;
     const double trace = sxx + syy;
     const double det = sxx * syy - sxy * sxy;
-    kappa[i] = trace > 1e-12 ? std::clamp(det / (trace * trace), 0.0, 0.25) : 0.0;
+    (*kappa)[i] = trace > 1e-12 ? std::clamp(det / (trace * trace), 0.0, 0.25) : 0.0;
   }
-  return kappa;
 }
 
 std::vector<int> CornernessMaxima(const std::vector<double>& kappa, bool closed, int radius,

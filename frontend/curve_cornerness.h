@@ -39,6 +39,16 @@ int BoxRadiusForGaussian(double sigma);
 std::vector<double> CurveCornerness(const std::vector<cv::Point2f>& points, bool closed,
                                     double sigma, int min_support);
 
+// Buffers of CurveCornerness, reused across calls (one per thread).
+struct CornernessWorkspace {
+  std::vector<double> channels;
+  std::vector<double> prefix;
+  std::vector<double> filtered;
+};
+// The same, into *kappa, with reused buffers.
+void CurveCornerness(const std::vector<cv::Point2f>& points, bool closed, double sigma,
+                     int min_support, CornernessWorkspace* workspace, std::vector<double>* kappa);
+
 // Indices of the local maxima of κ with κ >= min_cornerness: κ(t) must exceed every valid value
 // in [t - radius, t) and be at least every value in (t, t + radius] (ties go to the first
 // sample, so a plateau yields one maximum).

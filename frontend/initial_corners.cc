@@ -167,7 +167,8 @@ void InitialCornerDetector::AddCornersOfCurve(const CornerContext& context,
     last = std::min(n - 1, last + filter_support + nms_radius + 1);
   }
   part_.assign(samples_.begin() + first, samples_.begin() + last + 1);
-  const std::vector<double> part_kappa = CurveCornerness(part_, curve_.closed, options.sigma, 0);
+  std::vector<double>& part_kappa = part_kappa_;
+  CurveCornerness(part_, curve_.closed, options.sigma, 0, &cornerness_, &part_kappa);
   kappa_.assign(n, -1.0);
   for (int j = first; j <= last; ++j) {
     // κ counts only where the segment is complete on the whole curve and the filter saw its full

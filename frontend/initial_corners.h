@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "frontend/component_tree.h"
+#include "frontend/curve_cornerness.h"
 #include "frontend/feature.h"
 #include "frontend/iso_curve.h"
 
@@ -91,6 +92,8 @@ class InitialCornerDetector {
   std::vector<cv::Point2f> samples_;
   std::vector<cv::Point2f> part_;
   std::vector<double> kappa_;
+  std::vector<double> part_kappa_;
+  CornernessWorkspace cornerness_;
 };
 
 }  // namespace comic::frontend

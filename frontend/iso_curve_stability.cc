@@ -383,8 +383,10 @@ bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
   delta_steps_ = static_cast<int>(std::ceil(options.delta));
   first_threshold_ = first_level_ - delta_steps_ + 0.5;
   num_thresholds_ = num_levels_ + 2 * delta_steps_;
-  crossings_.resize(static_cast<size_t>(num_normals_) * num_thresholds_);
-  clipped_.resize(crossings_.size());
+  // Sized up only (every entry used is computed before it is read).
+  const size_t crossings = static_cast<size_t>(num_normals_) * num_thresholds_;
+  if (crossings_.size() < crossings) crossings_.resize(crossings);
+  if (clipped_.size() < crossings) clipped_.resize(crossings);
   computed_begin_ = computed_end_ = 0;
   levels_.assign(num_levels_, LevelValues());
   elements_.resize(num_normals_);
