@@ -77,6 +77,48 @@ std::vector<T> SuppressNeighbours(std::vector<T> items, double radius, Position 
   return kept;
 }
 
+// The states (apex, threshold) convergence runs have passed through, hashed on a grid, with the
+// run that passed through each.
+class StateGrid {
+ public:
+  explicit StateGrid(double cell) : cell_(cell) {}
+
+  void Insert(const cv::Point2f& apex, double threshold, int run) {
+    cells_[Key(Cell(apex.x), Cell(apex.y))].push_back({apex, threshold, run});
+  }
+  // The first state (in insertion order, by cell) of another run that is not lost, within
+  // `distance` px and `levels` grey levels; that run's number, or -1.
+  int Find(const cv::Point2f& apex, double threshold, int run, double distance, double levels,
+           const std::vector<uint8_t>& lost) const {
+    const int64_t cx = Cell(apex.x), cy = Cell(apex.y);
+    for (int64_t dy = -1; dy <= 1; ++dy) {
+      for (int64_t dx = -1; dx <= 1; ++dx) {
+        auto it = cells_.find(Key(cx + dx, cy + dy));
+        if (it == cells_.end()) continue;
+        for (const State& state : it->second) {
+          if (state.run != run && !lost[state.run] &&
+              std::abs(state.threshold - threshold) <= levels &&
+              std::hypot(state.apex.x - apex.x, state.apex.y - apex.y) <= distance) {
+            return state.run;
+          }
+        }
+      }
+    }
+    return -1;
+  }
+
+ private:
+  struct State {
+    cv::Point2f apex;
+    double threshold;
+    int run;
+  };
+  int64_t Cell(float v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
+  static int64_t Key(int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); }
+  double cell_;
+  std::unordered_map<int64_t, std::vector<State>> cells_;
+};
+
 }  // namespace
 
 FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
@@ -164,17 +206,63 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
   convergence.corner.arm_begin = std::min(4.0, 0.5 * o.half_length);
   convergence.corner.max_vertex_shift = 0.25 * o.half_length;
   std::vector<ConvergenceWorkspace> workspaces(ResolveNumThreads(o.num_threads, 1 << 20));
-  // Converges every seed (in parallel); appends the settled corners to `corners` in seed order.
+  // Converges every seed; appends the settled corners to `corners` in seed order. All seeds
+  // advance one iteration at a time (each iteration in parallel over the seeds). A seed that
+  // reaches, within stop_tolerance and half a grey level, a state (apex, MSICS) another seed has
+  // been in is suspended: from the same state the iteration goes the same way, to a corner the
+  // final merge would fold into the other's. It resumes if that other seed is lost. Which seeds
+  // are suspended depends only on the seed order, never on the threads.
   std::vector<ConvergedCorner> corners;
+  StateGrid visited(std::max(1.0, 4 * o.stop_tolerance));
+  std::vector<uint8_t> run_lost;  // per run, both rounds numbered in one sequence
   auto converge = [&](const std::vector<InitialCorner>& seeds) {
-    std::vector<ConvergedCorner> converged(seeds.size());
-    std::vector<uint8_t> settled(seeds.size(), 0);
-    ParallelFor(static_cast<int>(seeds.size()), o.num_threads, [&](int i, int worker) {
-      settled[i] = ConvergeCorner(gray, seeds[i].position, seeds[i].curve, seeds[i].level,
-                                  convergence, &converged[i], &workspaces[worker]);
-    });
-    for (size_t i = 0; i < seeds.size(); ++i) {
-      if (settled[i]) corners.push_back(std::move(converged[i]));
+    using Status = CornerConvergence::Status;
+    const int n = static_cast<int>(seeds.size());
+    const int first_run = static_cast<int>(run_lost.size());
+    run_lost.resize(first_run + n, 0);
+    std::vector<CornerConvergence> runs(n);
+    std::vector<Status> status(n, Status::kRunning);
+    std::vector<std::vector<int>> waiting(n);  // seeds suspended on each seed
+    std::vector<int> active(n);
+    for (int i = 0; i < n; ++i) {
+      runs[i].Start(seeds[i].position, seeds[i].curve, seeds[i].level);
+      active[i] = i;
+    }
+    while (!active.empty()) {
+      ParallelFor(static_cast<int>(active.size()), o.num_threads, [&](int a, int worker) {
+        const int i = active[a];
+        status[i] = runs[i].Step(gray, convergence, &workspaces[worker]);
+      });
+      std::vector<int> next;
+      for (int i : active) {
+        if (status[i] == Status::kLost) {
+          run_lost[first_run + i] = 1;
+          for (int w : waiting[i]) next.push_back(w);  // resume the seeds that followed it
+          continue;
+        }
+        if (!o.skip_duplicate_paths) {
+          if (status[i] == Status::kRunning) next.push_back(i);
+          continue;
+        }
+        const ConvergedCorner& state =
+            status[i] == Status::kSettled ? runs[i].result() : runs[i].current();
+        if (status[i] == Status::kRunning) {
+          const int other = visited.Find(state.apex, state.threshold, first_run + i,
+                                         o.stop_tolerance, 0.5, run_lost);
+          if (other >= first_run) {  // on the path of a seed of this round: wait for its outcome
+            waiting[other - first_run].push_back(i);
+            continue;
+          }
+          if (other >= 0) continue;  // on the path to a corner the first round settled
+          next.push_back(i);
+        }
+        visited.Insert(state.apex, state.threshold, first_run + i);
+      }
+      std::sort(next.begin(), next.end());
+      active.swap(next);
+    }
+    for (int i = 0; i < n; ++i) {
+      if (status[i] == Status::kSettled) corners.push_back(std::move(runs[i].result()));
     }
   };
   converge(initial);

@@ -53,6 +53,11 @@ struct ComicDetectorOptions {
   // together than the initialisation scale (2s) can share one initial corner, and Algorithm 1
   // would keep only the nearest.
   bool seed_neighbouring_corners = true;
+  // Stop a seed's convergence when it reaches (within stop_tolerance and half a grey level) a
+  // state another seed has been in, resuming it only if that seed is lost: from the same state
+  // the iteration goes the same way, to a corner the final merge would fold into the other's.
+  // Saves ~10 % of the time; false converges every seed to the end.
+  bool skip_duplicate_paths = true;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
