@@ -94,6 +94,7 @@ int Run(int argc, char** argv) {
   int max_features = 0;
   bool full_resolution_init = false;
   bool no_neighbour_seeds = false;
+  bool every_path = false;
   comic::frontend::ComicDetectorOptions options;
   options.num_threads = 0;  // all cores: the output does not depend on the thread count
   comic::apps::ArgParser parser(
@@ -142,6 +143,10 @@ int Run(int argc, char** argv) {
       "do not converge again from the other corners found on each MSICS (corners\n"
       "                              closer than the initialisation scale 2s may be missed)",
       &no_neighbour_seeds);
+  parser.AddFlag("every-path",
+                 "converge every seed to the end (default: a seed that reaches another\n"
+                 "                              seed's state waits for that seed's outcome)",
+                 &every_path);
   parser.AddFlag("full-resolution-init",
                  "run the initialisation stage at full resolution (default: on the image\n"
                  "                              halved, same physical scale, 4x fewer pixels)",
@@ -163,6 +168,7 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
   options.coarse_initialisation = !full_resolution_init;
   options.seed_neighbouring_corners = !no_neighbour_seeds;
+  options.skip_duplicate_paths = !every_path;
   options.Check();
   if (!overlay_path.empty()) comic::io::CheckWritableFile(overlay_path);
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
@@ -203,6 +209,7 @@ int Run(int argc, char** argv) {
                                    {"convergence_tolerance", options.convergence_tolerance},
                                    {"stop_tolerance", options.stop_tolerance},
                                    {"seed_neighbouring_corners", options.seed_neighbouring_corners},
+                                   {"skip_duplicate_paths", options.skip_duplicate_paths},
                                    {"merge_radius", options.merge_radius},
                                    {"min_stability", options.min_stability},
                                    {"min_cornerness", options.min_cornerness},

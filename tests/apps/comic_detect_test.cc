@@ -36,7 +36,7 @@ TEST(ComicDetect, HelpDocumentsEveryOption) {
        {"IMAGE", "--out", "--json", "--resize-height", "--scale", "--block-size", "--delta",
         "--half-length", "--max-iterations", "--convergence-tolerance", "--stop-tolerance",
         "--merge-radius", "--min-stability", "--min-cornerness", "--no-neighbour-seeds",
-        "--full-resolution-init", "--threads", "--max-features"}) {
+        "--every-path", "--full-resolution-init", "--threads", "--max-features"}) {
     EXPECT_NE(result.output.find(option), std::string::npos) << option;
   }
 }
