@@ -1,15 +1,20 @@
 // comic_bench: times the CoMIC detector against OpenCV's MSER (delta 5), FAST-9 and GFTT-Harris
 // on one real frame, in one run, and reports the median milliseconds per frame and the ratio
-// CoMIC / MSER. A plain program rather than a timed test: timings depend on the machine.
+// CoMIC / MSER. A plain program rather than a timed test: timings depend on the machine. With
+// --perturbations it also measures how many features each detector finds again on the same
+// frame after one grey level of noise and after a 0.5 px shift.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <iostream>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
 #include "frontend/comic_detector.h"
+#include "frontend/detector_factory.h"
 #include "frontend/parallel_for.h"
 #include "io/error.h"
 #include "io/file_utils.h"
@@ -41,12 +46,78 @@ Timing Time(int runs, const std::function<size_t()>& detect) {
   return timing;
 }
 
+// The share of `features` (at least 30 px from the border) with a feature of `other` within 1 px
+// of where they should be, `offset` added.
+double Repeated(const comic::frontend::FeatureSet& features,
+                const comic::frontend::FeatureSet& other, const cv::Point2f& offset,
+                const cv::Size& size) {
+  int count = 0, repeated = 0;
+  for (const comic::frontend::Feature& f : features) {
+    if (f.x < 30 || f.y < 30 || f.x > size.width - 31 || f.y > size.height - 31) continue;
+    ++count;
+    for (const comic::frontend::Feature& g : other) {
+      if (std::hypot(g.x - f.x - offset.x, g.y - f.y - offset.y) <= 1.0) {
+        ++repeated;
+        break;
+      }
+    }
+  }
+  return count > 0 ? static_cast<double>(repeated) / count : 0.0;
+}
+
+// Repeatability on the same frame under two small changes that leave every corner where it is:
+// Gaussian noise of one grey level (seeded) and a shift by 0.5 px (bilinear). Every detector keeps
+// as many features as CoMIC finds, by one response cut chosen on the frame and applied unchanged
+// to the changed frames.
+void PrintPerturbations(const cv::Mat& gray, int threads) {
+  cv::Mat noise(gray.size(), CV_32F);
+  cv::RNG rng(7);
+  rng.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
+  cv::Mat noisy;
+  gray.convertTo(noisy, CV_32F);
+  noisy += noise;
+  noisy.convertTo(noisy, CV_8U);
+  cv::Mat shifted;
+  const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, 0.5, 0, 1, 0);
+  cv::warpAffine(gray, shifted, shift, gray.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  comic::io::ReportTable table({"detector", "features",
+                                "noise 1 grey level: repeated within 1 px %",
+                                "0.5 px shift: repeated within 1 px %"});
+  table.SetPrecision("noise 1 grey level: repeated within 1 px %", 1);
+  table.SetPrecision("0.5 px shift: repeated within 1 px %", 1);
+  size_t count = 0;
+  for (const std::string name : {"comic", "harris", "hessian", "fast"}) {
+    comic::frontend::DetectorOptions options;
+    options.name = name;
+    options.comic.num_threads = threads;
+    const auto detector = comic::frontend::MakeDetector(options);
+    auto keep = [&](comic::frontend::FeatureSet features, float cut) {
+      features.erase(std::remove_if(features.begin(), features.end(),
+                                    [&](const auto& f) { return f.response < cut; }),
+                     features.end());
+      return features;
+    };
+    comic::frontend::FeatureSet base = detector->Detect(gray);
+    if (name == "comic") count = base.size();
+    const float cut = base.size() > count && count > 0 ? base[count - 1].response : -1e30f;
+    base = keep(std::move(base), cut);
+    const auto on_noisy = keep(detector->Detect(noisy), cut);
+    const auto on_shifted = keep(detector->Detect(shifted), cut);
+    table.AddRow({name, static_cast<int64_t>(base.size()),
+                  100.0 * Repeated(base, on_noisy, {0, 0}, gray.size()),
+                  100.0 * Repeated(base, on_shifted, {0.5f, 0}, gray.size())});
+  }
+  std::cout << "\nRepeatability on the same frame (features kept: CoMIC's count):\n\n"
+            << table.ToMarkdown();
+}
+
 int Run(int argc, char** argv) {
   std::string input = "../shared/data/middlebury2003_cones/im2.png";
   std::string json_path;
   int resize_height = 700;
   int runs = 9;
   int threads = 0;
+  bool perturbations = false;
   comic::apps::ArgParser parser(
       "comic_bench", "[IMAGE] [options]",
       "Times CoMIC (1 thread and N threads), OpenCV MSER (delta 5), FAST-9 and GFTT-Harris on\n"
@@ -61,6 +132,12 @@ int Run(int argc, char** argv) {
   parser.AddOption("threads", "N", "threads for the multi-threaded CoMIC run (0 = all cores)",
                    &threads);
   parser.AddOption("json", "FILE", "also write the table as JSON", &json_path);
+  parser.AddFlag(
+      "perturbations",
+      "also report, for CoMIC, Harris, Hessian and FAST at CoMIC's count, the\n"
+      "                              share of features found again within 1 px after noise\n"
+      "                              of 1 grey level and after a 0.5 px shift",
+      &perturbations);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
   COMIC_CHECK(runs >= 1, kInvalidArgument, "--runs must be >= 1");
@@ -130,6 +207,7 @@ int Run(int argc, char** argv) {
   if (!json_path.empty()) {
     comic::io::WriteFileAtomically(json_path, table.ToJson().dump(1) + "\n");
   }
+  if (perturbations) PrintPerturbations(gray, many);
   return 0;
 }
 
