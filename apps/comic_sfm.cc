@@ -65,6 +65,10 @@ struct Flags {
   double unpredicted_radius = 60.0;
   std::string prediction = "velocity";
   double coarse_radius = 80.0;
+  int match_window = 1;
+  std::string track_conflicts = "greedy";
+  int verify_min_gap = 0;
+  bool match_turned = false;
   double max_cost = 400.0;
   bool refine_focal = false;
   int local_ba_images = 8;
@@ -103,6 +107,10 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   options.tracker.unpredicted_radius = flags.unpredicted_radius;
   options.tracker.prediction = frontend::ParseMotionPrediction(flags.prediction);
   options.tracker.coarse_radius = flags.coarse_radius;
+  options.tracker.match_window = flags.match_window;
+  options.tracker.conflict_rule = frontend::ParseTrackConflictRule(flags.track_conflicts);
+  options.tracker.verify_min_gap = flags.verify_min_gap;
+  options.tracker.match_turned_180 = flags.match_turned;
   options.tracker.matcher.max_cost = flags.max_cost;
   options.mapper.global_ba.refine_focal_length = flags.refine_focal;
   options.mapper.local_ba_num_images = flags.local_ba_images;
@@ -137,6 +145,10 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"unpredicted_radius_px", flags.unpredicted_radius},
           {"prediction", flags.prediction},
           {"coarse_radius_px", flags.coarse_radius},
+          {"match_window", flags.match_window},
+          {"track_conflicts", flags.track_conflicts},
+          {"verify_min_gap", flags.verify_min_gap},
+          {"match_turned", flags.match_turned},
           {"max_cost", flags.max_cost},
           {"refine_focal", flags.refine_focal},
           {"local_ba_images", flags.local_ba_images},
@@ -317,6 +329,12 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   io::EnsureWritableDirectory(out_dir);
   nlohmann::json json = sfm::RunReportToJson(result.report);
   json["options"] = OptionsToJson(flags, inputs);
+  const frontend::TrackBuildSummary& building = result.run.track_building;
+  json["track_building"] = {{"matches", building.num_matches},
+                            {"tracks", result.run.tracks.tracks.size()},
+                            {"conflicting_components_dropped", building.num_conflicting_components},
+                            {"features_dropped", building.num_dropped_features},
+                            {"matches_refused", building.num_refused_matches}};
   if (result.run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
     io::WriteColmapTextModel(sfm::ToColmapTextModel(reconstruction), out_dir);
     std::vector<io::PlyPoint> cloud;
@@ -495,6 +513,27 @@ int Run(int argc, char** argv) {
                    "coarse-to-fine prediction: search radius of the coarse pass (pixels of the "
                    "frames as used)",
                    &flags.coarse_radius);
+  parser.AddOption("match-window", "K",
+                   "match each frame to the next K frames, not only the next one, and build the "
+                   "tracks from all the matches (sparse image sets: links views across a wide or "
+                   "failed step)",
+                   &flags.match_window);
+  parser.AddOption("track-conflicts", "RULE",
+                   "--match-window > 1: a set of matches holding two features of one frame is "
+                   "'drop'ped whole, or split 'greedy' (nearer frames' matches first, then lower "
+                   "cost; a match joining two features of one frame is refused)",
+                   &flags.track_conflicts);
+  parser.AddOption("verify-min-gap", "G",
+                   "verify the matches of frame pairs at least G frames apart with a fundamental "
+                   "matrix (RANSAC, 2 px); a pair no epipolar geometry explains loses its matches "
+                   "(0 = none)",
+                   &flags.verify_min_gap);
+  parser.AddFlag(
+      "match-turned",
+      "also match each verified pair with the later frame turned by 180 degrees and keep "
+      "the hypothesis with more verified matches (Middlebury rings: views of the other "
+      "latitude sign are upside down; needs --verify-min-gap)",
+      &flags.match_turned);
   parser.AddOption("max-cost", "T", "tracker SSD threshold (mean squared grey difference)",
                    &flags.max_cost);
   parser.AddFlag("refine-focal", "refine the focal length in the global bundle adjustments",

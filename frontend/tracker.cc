@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "io/error.h"
 #include "io/image_sequence.h"
@@ -46,6 +48,14 @@ void TrackerOptions::Check() const {
               "tracker: coarse_factor must be >= 2, got " << coarse_factor);
   COMIC_CHECK(coarse_radius > 0, kInvalidArgument, "tracker: coarse_radius must be > 0 px");
   COMIC_CHECK(coarse_features >= 1, kInvalidArgument, "tracker: coarse_features must be >= 1");
+  COMIC_CHECK(match_window >= 1, kInvalidArgument,
+              "tracker: match_window must be >= 1, got " << match_window);
+  COMIC_CHECK(verify_min_gap >= 0, kInvalidArgument,
+              "tracker: verify_min_gap must be >= 0 (0 = none), got " << verify_min_gap);
+  if (verify_min_gap > 0) verification.Check();
+  COMIC_CHECK(!match_turned_180 || verify_min_gap > 0, kInvalidArgument,
+              "tracker: match_turned_180 needs verify_min_gap > 0 (the verified matches decide "
+              "between the hypotheses)");
 }
 
 FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Size& image_size,
@@ -125,6 +135,32 @@ FeatureSet StrongestFitting(const FeatureSet& detected, const cv::Size& size, in
   return kept;
 }
 
+// The features of an image of `size` turned by 180° in its plane: positions (x, y) ->
+// (w − 1 − x, h − 1 − y), the side masks (row-major, centred) and curves turned with them.
+FeatureSet TurnFeatures180(const FeatureSet& features, const cv::Size& size) {
+  const float w1 = static_cast<float>(size.width - 1), h1 = static_cast<float>(size.height - 1);
+  FeatureSet turned = features;
+  for (Feature& f : turned) {
+    f.x = w1 - f.x;
+    f.y = h1 - f.y;
+    std::reverse(f.side_mask.begin(), f.side_mask.end());
+    for (cv::Point2f& p : f.curve) p = {w1 - p.x, h1 - p.y};
+  }
+  return turned;
+}
+
+// The consecutive pairs (i, i+1) and the window pairs as one list for BuildTracks.
+std::vector<FramePairMatches> AllPairs(const std::vector<std::vector<PatchMatch>>& consecutive,
+                                       const std::vector<FramePairMatches>& window) {
+  std::vector<FramePairMatches> pairs;
+  pairs.reserve(consecutive.size() + window.size());
+  for (size_t i = 0; i < consecutive.size(); ++i) {
+    pairs.push_back({static_cast<int>(i), static_cast<int>(i) + 1, consecutive[i]});
+  }
+  pairs.insert(pairs.end(), window.begin(), window.end());
+  return pairs;
+}
+
 }  // namespace
 
 Tracker::Tracker(const TrackerOptions& options, std::string detector_name, const Detector* detector)
@@ -134,8 +170,40 @@ Tracker::Tracker(const TrackerOptions& options, std::string detector_name, const
               kInvalidArgument, "tracker: coarse-to-fine prediction needs a detector");
 }
 
-SearchRegions Tracker::PredictSearchRegions(const cv::Mat& gray) const {
-  const FeatureSet& current = features_.back();
+Tracker::CoarseFrame Tracker::MakeCoarseFrame(const cv::Mat& gray) const {
+  CoarseFrame coarse;
+  if (options_.prediction != MotionPrediction::kCoarseToFine) return coarse;
+  const double f = options_.coarse_factor;
+  const cv::Size coarse_size(std::max(1, static_cast<int>(std::lround(gray.cols / f))),
+                             std::max(1, static_cast<int>(std::lround(gray.rows / f))));
+  cv::resize(gray, coarse.gray, coarse_size, 0, 0, cv::INTER_AREA);
+  coarse.features =
+      StrongestFitting(detector_->Detect(coarse.gray), coarse_size, options_.coarse_features);
+  return coarse;
+}
+
+Tracker::TurnedFrame Tracker::TurnFrame180(const cv::Mat& gray, const FeatureSet& features,
+                                           const CoarseFrame& coarse) const {
+  TurnedFrame turned;
+  cv::rotate(gray, turned.gray, cv::ROTATE_180);
+  turned.features = TurnFeatures180(features, gray.size());
+  if (!coarse.gray.empty()) {
+    cv::rotate(coarse.gray, turned.coarse.gray, cv::ROTATE_180);
+    turned.coarse.features = TurnFeatures180(coarse.features, coarse.gray.size());
+  }
+  return turned;
+}
+
+const std::vector<PatchMatch>& Tracker::AcceptedMatches(int frame1, int frame2) const {
+  return accepted_[frame2][frame2 - frame1 - 1];
+}
+
+SearchRegions Tracker::PredictSearchRegions(
+    int frame1, const cv::Mat& gray2, const FeatureSet& features2, const CoarseFrame& coarse2,
+    const std::vector<std::vector<PatchMatch>>& accepted_to_frame2, bool turned) const {
+  const FeatureSet& current = features_[frame1];
+  const int frame2 = static_cast<int>(features_.size());
+  const int gap = frame2 - frame1;
   SearchRegions search;
   if (options_.prediction == MotionPrediction::kNone) return search;
   const float fine_radius = static_cast<float>(options_.matcher.radius);
@@ -146,36 +214,50 @@ SearchRegions Tracker::PredictSearchRegions(const cv::Mat& gray) const {
 
   std::vector<MotionSample> samples;
   std::vector<bool> own(current.size(), false);
-  if (options_.prediction == MotionPrediction::kConstantVelocity) {
-    if (!accepted_.empty()) {
-      const FeatureSet& before = features_[features_.size() - 2];
-      for (const PatchMatch& m : accepted_.back()) {
+  // A feature's own velocity says nothing about where it is in a frame turned upside down.
+  if (gap == 1 && !turned && options_.prediction == MotionPrediction::kConstantVelocity) {
+    if (frame1 >= 1) {
+      const FeatureSet& before = features_[frame1 - 1];
+      for (const PatchMatch& m : AcceptedMatches(frame1 - 1, frame1)) {
         const cv::Point2f velocity = current[m.index2].Position() - before[m.index1].Position();
         samples.push_back({current[m.index2].Position(), velocity});
         own[m.index2] = true;
         search.centres[m.index2] = current[m.index2].Position() + velocity;
       }
     }
-  } else {
+  }
+  if (gap > 1) {
+    // Two hops through a frame in between, frame1 -> m -> frame2, both matched already (the
+    // nearer pairs are matched first): where that puts a feature is its prediction, and these
+    // displacements predict its neighbours. Nearest m first, so a feature's own link comes from
+    // the pair of the smallest first hop.
+    for (int m = frame1 + 1; m < frame2; ++m) {
+      std::vector<int> in_frame2(features_[m].size(), -1);
+      for (const PatchMatch& hop : accepted_to_frame2[frame2 - m - 1]) {
+        in_frame2[hop.index1] = hop.index2;
+      }
+      for (const PatchMatch& hop : AcceptedMatches(frame1, m)) {
+        const int c = in_frame2[hop.index2];
+        if (c < 0 || own[hop.index1]) continue;
+        const cv::Point2f position = current[hop.index1].Position();
+        samples.push_back({position, features2[c].Position() - position});
+        own[hop.index1] = true;
+        search.centres[hop.index1] = features2[c].Position();
+      }
+    }
+  }
+  if (options_.prediction == MotionPrediction::kCoarseToFine) {
     // Coarse pass: match the strongest features of the downscaled frames.
+    const CoarseFrame& coarse1 = coarse_[frame1];
     const double f = options_.coarse_factor;
-    const cv::Size coarse_size(std::max(1, static_cast<int>(std::lround(gray.cols / f))),
-                               std::max(1, static_cast<int>(std::lround(gray.rows / f))));
-    cv::Mat coarse_previous, coarse_current;
-    cv::resize(previous_gray_, coarse_previous, coarse_size, 0, 0, cv::INTER_AREA);
-    cv::resize(gray, coarse_current, coarse_size, 0, 0, cv::INTER_AREA);
-    const FeatureSet coarse1 =
-        StrongestFitting(detector_->Detect(coarse_previous), coarse_size, options_.coarse_features);
-    const FeatureSet coarse2 =
-        StrongestFitting(detector_->Detect(coarse_current), coarse_size, options_.coarse_features);
     PatchMatcherOptions coarse_options = options_.matcher;
     coarse_options.radius = options_.coarse_radius / f;
-    const double sx = static_cast<double>(gray.cols) / coarse_size.width;
-    const double sy = static_cast<double>(gray.rows) / coarse_size.height;
-    for (const PatchMatch& m :
-         MatchFeatures(coarse_previous, coarse1, coarse_current, coarse2, coarse_options)) {
-      const Feature& a = coarse1[m.index1];
-      const Feature& b = coarse2[m.index2];
+    const double sx = static_cast<double>(gray2.cols) / coarse2.gray.cols;
+    const double sy = static_cast<double>(gray2.rows) / coarse2.gray.rows;
+    for (const PatchMatch& m : MatchFeatures(coarse1.gray, coarse1.features, coarse2.gray,
+                                             coarse2.features, coarse_options)) {
+      const Feature& a = coarse1.features[m.index1];
+      const Feature& b = coarse2.features[m.index2];
       // Coarse pixel centres map back as areas do: x = (x_c + 0.5)·s − 0.5.
       const cv::Point2f position(static_cast<float>((a.x + 0.5) * sx - 0.5),
                                  static_cast<float>((a.y + 0.5) * sy - 0.5));
@@ -201,33 +283,86 @@ SearchRegions Tracker::PredictSearchRegions(const cv::Mat& gray) const {
 void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::string& name) {
   COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
               "tracker: frames must be non-empty 8-bit single-channel images");
-  COMIC_CHECK(previous_gray_.empty() || gray.size() == previous_gray_.size(), kInvalidArgument,
+  COMIC_CHECK(features_.empty() || gray.size() == image_size_, kInvalidArgument,
               "tracker: frame " << features_.size() << " is " << gray.cols << "x" << gray.rows
-                                << ", the first was " << previous_gray_.cols << "x"
-                                << previous_gray_.rows);
-  if (!features_.empty()) {
-    const SearchRegions search = PredictSearchRegions(gray);
+                                << ", the first was " << image_size_.width << "x"
+                                << image_size_.height);
+  const int frame = static_cast<int>(features_.size());
+  CoarseFrame coarse = MakeCoarseFrame(gray);
+  std::optional<TurnedFrame> turned;  // made when first needed
+  // Earlier frames matched to this one, nearest first: the predictions for the farther ones
+  // build on the matches to the nearer ones.
+  std::vector<std::vector<PatchMatch>> mutual_to_frame, accepted_to_frame;
+  for (int gap = 1; gap <= options_.match_window && gap <= frame; ++gap) {
+    const int earlier = frame - gap;
+    const bool verify = options_.verify_min_gap > 0 && gap >= options_.verify_min_gap;
+    const SearchRegions search =
+        PredictSearchRegions(earlier, gray, features, coarse, accepted_to_frame, false);
     std::vector<PatchMatch> mutual = SelectMutualBest(ComputeCandidateCosts(
-        previous_gray_, features_.back(), gray, features, options_.matcher, search));
-    accepted_.push_back(ApplyCostThreshold(mutual, options_.matcher.max_cost));
-    mutual_.push_back(std::move(mutual));
+        grays_[earlier], features_[earlier], gray, features, options_.matcher, search));
+    std::vector<PatchMatch> accepted = ApplyCostThreshold(mutual, options_.matcher.max_cost);
+    if (verify)
+      accepted = VerifyMatches(features_[earlier], features, accepted, options_.verification);
+    if (verify && options_.match_turned_180) {
+      if (!turned) turned = TurnFrame180(gray, features, coarse);
+      const SearchRegions turned_search = PredictSearchRegions(
+          earlier, turned->gray, turned->features, turned->coarse, accepted_to_frame, true);
+      std::vector<PatchMatch> turned_mutual = SelectMutualBest(
+          ComputeCandidateCosts(grays_[earlier], features_[earlier], turned->gray, turned->features,
+                                options_.matcher, turned_search));
+      // Verified on the features as stored (the same indices), as TracksAtThreshold does.
+      std::vector<PatchMatch> turned_accepted = VerifyMatches(
+          features_[earlier], features,
+          ApplyCostThreshold(turned_mutual, options_.matcher.max_cost), options_.verification);
+      if (turned_accepted.size() > accepted.size()) {
+        mutual = std::move(turned_mutual);
+        accepted = std::move(turned_accepted);
+        turned_pairs_.emplace_back(earlier, frame);
+      }
+    }
+    accepted_to_frame.push_back(std::move(accepted));
+    mutual_to_frame.push_back(std::move(mutual));
   }
   features_.push_back(std::move(features));
   names_.push_back(name);
-  previous_gray_ = gray.clone();
+  mutual_.push_back(std::move(mutual_to_frame));
+  accepted_.push_back(std::move(accepted_to_frame));
+  grays_.push_back(gray.clone());
+  coarse_.push_back(std::move(coarse));
+  image_size_ = gray.size();
+  // Frames no later frame will be matched to: free their images.
+  const int expired = frame - options_.match_window;
+  if (expired >= 0) {
+    grays_[expired].release();
+    coarse_[expired] = CoarseFrame();
+  }
 }
 
 TrackingResult Tracker::Result() const {
   TrackingResult result;
   result.tracks.detector_name = detector_name_;
-  result.tracks.image_size = previous_gray_.size();
+  result.tracks.image_size = image_size_;
   const bool any_name =
       std::any_of(names_.begin(), names_.end(), [](const std::string& n) { return !n.empty(); });
   if (any_name) result.tracks.frame_names = names_;
   result.tracks.features = features_;
-  result.tracks.tracks = ChainMatches(features_, accepted_);
-  result.mutual_matches = mutual_;
-  result.accepted_matches = accepted_;
+  for (int frame2 = 1; frame2 < static_cast<int>(features_.size()); ++frame2) {
+    for (int gap = 1; gap <= static_cast<int>(mutual_[frame2].size()); ++gap) {
+      if (gap == 1) {
+        result.mutual_matches.push_back(mutual_[frame2][0]);
+        result.accepted_matches.push_back(accepted_[frame2][0]);
+      } else {
+        result.window_mutual_matches.push_back({frame2 - gap, frame2, mutual_[frame2][gap - 1]});
+        result.window_accepted_matches.push_back(
+            {frame2 - gap, frame2, accepted_[frame2][gap - 1]});
+      }
+    }
+  }
+  result.options = options_;
+  result.turned_pairs = turned_pairs_;
+  result.tracks.tracks =
+      BuildTracks(features_, AllPairs(result.accepted_matches, result.window_accepted_matches),
+                  options_.conflict_rule, &result.track_building);
   return result;
 }
 
@@ -307,11 +442,25 @@ std::vector<Track> ChainMatches(const std::vector<FeatureSet>& features,
 
 FeatureTracks TracksAtThreshold(const TrackingResult& result, double max_cost) {
   FeatureTracks tracks = result.tracks;
+  const TrackerOptions& options = result.options;
+  auto accept = [&](int frame1, int frame2, const std::vector<PatchMatch>& mutual) {
+    std::vector<PatchMatch> accepted = ApplyCostThreshold(mutual, max_cost);
+    if (options.verify_min_gap > 0 && frame2 - frame1 >= options.verify_min_gap) {
+      accepted = VerifyMatches(tracks.features[frame1], tracks.features[frame2], accepted,
+                               options.verification);
+    }
+    return accepted;
+  };
   std::vector<std::vector<PatchMatch>> accepted;
-  for (const auto& mutual : result.mutual_matches) {
-    accepted.push_back(ApplyCostThreshold(mutual, max_cost));
+  for (size_t i = 0; i < result.mutual_matches.size(); ++i) {
+    accepted.push_back(
+        accept(static_cast<int>(i), static_cast<int>(i) + 1, result.mutual_matches[i]));
   }
-  tracks.tracks = ChainMatches(tracks.features, accepted);
+  std::vector<FramePairMatches> window;
+  for (const FramePairMatches& pair : result.window_mutual_matches) {
+    window.push_back({pair.frame1, pair.frame2, accept(pair.frame1, pair.frame2, pair.matches)});
+  }
+  tracks.tracks = BuildTracks(tracks.features, AllPairs(accepted, window), options.conflict_rule);
   return tracks;
 }
 

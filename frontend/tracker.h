@@ -1,13 +1,18 @@
 // Feature tracking over a video (paper §4–§5): detect on every frame, match frame i to frame i+1
-// with the patch matcher, chain the accepted matches into tracks. The SfM consumes the tracks
-// (FeatureTracks, frontend/track.h); the evaluation (matching_evaluation.h) scores them.
+// with the patch matcher, chain the accepted matches into tracks. Optionally (match_window K > 1)
+// each frame is also matched to the K − 1 frames after the next, so that a feature lost in one
+// frame (occluded, missed by the detector, or across a wide step of a sparse image set) is linked
+// again; the tracks are then the connected components of all the matches
+// (frontend/track_builder.h). The SfM consumes the tracks (FeatureTracks, frontend/track.h); the
+// evaluation (matching_evaluation.h) scores them.
 //
-//   TrackerOptions options;                       // paper protocol: r = 20 px, T = 400, no
-//   prediction options.min_response = cut.min_response;      // from threshold equalisation auto
-//   detector = MakeDetector("harris"); TrackingResult result = TrackSequence(sequence, *detector,
-//   options, [](size_t done, size_t n) {
-//     std::cerr << "\rframe " << done << "/" << n;
-//   });
+//   TrackerOptions options;                          // paper protocol: r = 20 px, T = 400,
+//   options.min_response = cut.min_response;         // no prediction, consecutive frames
+//   auto detector = MakeDetector("harris");          // (threshold equalisation gives the cut)
+//   TrackingResult result = TrackSequence(sequence, *detector, options,
+//                                         [](size_t done, size_t n) {
+//                                           std::cerr << "\rframe " << done << "/" << n;
+//                                         });
 //   const FeatureTracks& tracks = result.tracks;
 //
 // Or frame by frame, e.g. to feed one detection to several matchers:
@@ -32,6 +37,16 @@
 //                      velocity_neighbour_radius; none found -> own position, unpredicted_radius).
 // Either way the final search radius around a prediction is matcher.radius.
 //
+// Frames farther apart (match_window > 1; frame i to frame j = i + g, g >= 2): the nearer frames
+// are matched first, so a feature of i matched to some frame m between them whose match in m is
+// matched to j (two hops) is searched around that feature of j, and these two-hop displacements
+// predict the other features of i by the median of their nearest ones (as above). With
+// kCoarseToFine the coarse pass between i and j adds its displacements to those. This works for
+// video, where the hops follow any motion (forward motion included) without assuming it is
+// constant, and for sparse sets, where a hop across a wide step is missing: the features then
+// fall back to the coarse pass or to their own position with unpredicted_radius. kNone never
+// predicts, at any gap.
+//
 // Deterministic: the result depends only on the frames, the detector and the options.
 #pragma once
 
@@ -39,11 +54,14 @@
 #include <limits>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "frontend/detector.h"
+#include "frontend/match_verification.h"
 #include "frontend/patch_matcher.h"
 #include "frontend/track.h"
+#include "frontend/track_builder.h"
 
 namespace comic::io {
 class ImageSequence;
@@ -79,6 +97,24 @@ struct TrackerOptions {
   int coarse_factor = 4;
   double coarse_radius = 80.0;
   int coarse_features = 500;
+  // Each frame is matched to the next match_window frames (1 = the next frame only: the paper's
+  // protocol, and the tracks are chains of consecutive matches).
+  int match_window = 1;
+  // match_window > 1: what to do with a connected component of matches holding two features of
+  // one frame (frontend/track_builder.h). Irrelevant for match_window = 1 (no conflict can arise).
+  TrackConflictRule conflict_rule = TrackConflictRule::kGreedy;
+  // Frame pairs at least this many frames apart have their accepted matches verified
+  // geometrically (VerifyMatches with `verification`): 0 = no pair, 1 = every pair, 2 = the
+  // pairs beyond the next frame only.
+  int verify_min_gap = 0;
+  MatchVerificationOptions verification;
+  // Verified pairs are also matched with the later frame turned by 180° in its plane, and the
+  // hypothesis with more verified matches is kept (needs verify_min_gap > 0, and a prediction
+  // that finds the offset of the turned frame: kCoarseToFine, or a wide radius). Gantry rigs such
+  // as the Middlebury multi-view rings store the views of one latitude sign upside down; a
+  // translational patch matcher cannot link those to the others. Doubles the matching time of
+  // the verified pairs.
+  bool match_turned_180 = false;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -87,15 +123,27 @@ struct TrackerOptions {
 // Everything a tracking run produces.
 struct TrackingResult {
   // Features per frame (after the cut-off, the patch-fit filter and max_features) and the tracks
-  // chained from the accepted matches. Only tracks of two or more observations are listed.
+  // built from the accepted matches (BuildTracks). Only tracks of two or more observations are
+  // listed.
   FeatureTracks tracks;
-  // Per frame pair (i, i+1): every mutual-best match before the SSD threshold, so a caller can
-  // re-threshold (TracksAtThreshold) without re-matching. Exact for MotionPrediction::kNone and
-  // kCoarseToFine; with kConstantVelocity the search regions themselves depended on the
-  // threshold used while tracking.
+  // Per frame pair (i, i+1): every mutual-best match before the SSD threshold (and before any
+  // verification), so a caller can re-threshold (TracksAtThreshold) without re-matching. Exact
+  // for MotionPrediction::kNone, and for kCoarseToFine with match_window = 1; with
+  // kConstantVelocity (or the two-hop predictions of match_window > 1) the search regions
+  // themselves depended on the matches accepted while tracking.
   std::vector<std::vector<PatchMatch>> mutual_matches;
-  // Per frame pair: the matches accepted at matcher.max_cost (those the tracks are built from).
+  // Per frame pair (i, i+1): the matches accepted at matcher.max_cost.
   std::vector<std::vector<PatchMatch>> accepted_matches;
+  // match_window > 1: the same for the pairs (i, j), 2 <= j − i <= match_window, ordered by j then
+  // by the gap. Empty for match_window = 1.
+  std::vector<FramePairMatches> window_mutual_matches;
+  std::vector<FramePairMatches> window_accepted_matches;
+  // The options the tracks were built with (TracksAtThreshold re-applies them), and what building
+  // the tracks from all the accepted matches met.
+  TrackerOptions options;
+  TrackBuildSummary track_building;
+  // match_turned_180: the frame pairs (i, j) whose matches are those of frame j turned by 180°.
+  std::vector<std::pair<int, int>> turned_pairs;
 };
 
 // Called after each frame with (frames processed, total frames; 0 if unknown).
@@ -115,7 +163,8 @@ class Tracker {
           const Detector* detector = nullptr);
 
   // Adds the next frame (CV_8UC1, the size of the first) with its features (normally
-  // SelectTrackableFeatures of its detection) and matches it to the previous frame. Throws
+  // SelectTrackableFeatures of its detection) and matches it to the previous match_window frames,
+  // the nearest first. Throws
   // comic::Error(kInvalidArgument) for a wrong image type or size.
   void AddFrame(const cv::Mat& gray, FeatureSet features, const std::string& name = "");
 
@@ -125,16 +174,43 @@ class Tracker {
   TrackingResult Result() const;
 
  private:
-  SearchRegions PredictSearchRegions(const cv::Mat& gray) const;
+  // A frame downscaled for the coarse pass, with its strongest features (kCoarseToFine only).
+  struct CoarseFrame {
+    cv::Mat gray;
+    FeatureSet features;
+  };
+  CoarseFrame MakeCoarseFrame(const cv::Mat& gray) const;
+  // A frame turned by 180° in its plane (match_turned_180), with its features and coarse frame.
+  struct TurnedFrame {
+    cv::Mat gray;
+    FeatureSet features;
+    CoarseFrame coarse;
+  };
+  TurnedFrame TurnFrame180(const cv::Mat& gray, const FeatureSet& features,
+                           const CoarseFrame& coarse) const;
+  // The accepted matches of frame1 to frame2 (an added frame, within the window).
+  const std::vector<PatchMatch>& AcceptedMatches(int frame1, int frame2) const;
+  // Where to search the new frame (the next to be added: gray2, features2, coarse2, all turned
+  // by 180° if `turned`) for each feature of frame1, given the accepted matches to the new frame
+  // from the nearer frames (accepted_to_frame2[g − 1]: from the frame g before it).
+  SearchRegions PredictSearchRegions(int frame1, const cv::Mat& gray2, const FeatureSet& features2,
+                                     const CoarseFrame& coarse2,
+                                     const std::vector<std::vector<PatchMatch>>& accepted_to_frame2,
+                                     bool turned) const;
 
   TrackerOptions options_;
   std::string detector_name_;
   const Detector* detector_;
-  cv::Mat previous_gray_;
+  cv::Size image_size_;
+  // Per frame; images are kept only while a later frame may still be matched to them.
+  std::vector<cv::Mat> grays_;
+  std::vector<CoarseFrame> coarse_;
   std::vector<FeatureSet> features_;
   std::vector<std::string> names_;
-  std::vector<std::vector<PatchMatch>> mutual_;
-  std::vector<std::vector<PatchMatch>> accepted_;
+  // [j][g − 1]: matches of frame j − g to frame j (empty for frame 0).
+  std::vector<std::vector<std::vector<PatchMatch>>> mutual_;
+  std::vector<std::vector<std::vector<PatchMatch>>> accepted_;
+  std::vector<std::pair<int, int>> turned_pairs_;
 };
 
 // Detects on every frame of `sequence` (as opened, e.g. resized), tracks, and reports progress.
@@ -148,12 +224,14 @@ TrackingResult TrackFrames(const std::vector<cv::Mat>& grays, const Detector& de
                            const TrackingProgress& progress = {});
 
 // Chains one-to-one frame-pair matches (pair_matches[i] from frame i to frame i+1) into tracks of
-// two or more observations, ordered by first frame then first feature. Throws
+// two or more observations, ordered by first frame then first feature: the tracks of
+// match_window = 1 (BuildTracks on the same matches gives the same tracks). Throws
 // comic::Error(kInvalidArgument) for an index out of range or a feature matched twice.
 std::vector<Track> ChainMatches(const std::vector<FeatureSet>& features,
                                 const std::vector<std::vector<PatchMatch>>& pair_matches);
 
-// The tracks `result` would have had at SSD threshold `max_cost` (see mutual_matches).
+// The tracks `result` would have had at SSD threshold `max_cost` (see mutual_matches), verified
+// and built as result.options say.
 FeatureTracks TracksAtThreshold(const TrackingResult& result, double max_cost);
 
 }  // namespace comic::frontend

@@ -47,6 +47,7 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
   frontend::TrackingResult tracking =
       frontend::TrackSequence(sequence, detector, options.tracker, tracking_progress);
   run.tracks = std::move(tracking.tracks);
+  run.track_building = tracking.track_building;
   run.tracking_time_s = Seconds(start);
 
   const auto mapping_start = std::chrono::steady_clock::now();

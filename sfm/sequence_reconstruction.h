@@ -34,6 +34,9 @@ struct SequenceReconstructionOptions {
 struct SequenceReconstruction {
   std::string detector_name;
   frontend::FeatureTracks tracks;  // what the mapper consumed
+  // Matches given to the track builder and what it dropped or refused (conflicts arise only with
+  // tracker.match_window > 1).
+  frontend::TrackBuildSummary track_building;
   IncrementalReconstruction mapping;
   double tracking_time_s = 0.0;  // detection and tracking
   double mapping_time_s = 0.0;   // incremental reconstruction

@@ -175,6 +175,169 @@ TEST(Tracker, RethresholdingMatchesTrackingAtThatThreshold) {
   EXPECT_LT(strict_steps, loose_steps);  // the threshold removed some matches
 }
 
+// Describes tracks as "frame:feature ..." strings, for comparisons.
+std::vector<std::string> Describe(const std::vector<Track>& tracks) {
+  std::vector<std::string> out;
+  for (const Track& track : tracks) {
+    std::string s;
+    for (const TrackObservation& obs : track.observations) {
+      s += (s.empty() ? "" : " ") + std::to_string(obs.frame) + ":" + std::to_string(obs.feature);
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+// Translating frames with a flat grey box over the middle of frame `occluded_frame`.
+std::vector<cv::Mat> OccludedFrames(int count, cv::Point step, int occluded_frame,
+                                    cv::Rect box = {100, 60, 100, 80}) {
+  std::vector<cv::Mat> frames = TranslatingFrames(count, step, {300, 200});
+  frames[occluded_frame](box).setTo(cv::Scalar(128));
+  return frames;
+}
+
+// Tracks holding frames `a` and `b` but not the frames between, and how many of those moved by
+// (b − a)·step from a to b (within 1 px).
+int TracksSkipping(const FeatureTracks& tracks, int a, int b, cv::Point step, int* correct) {
+  int skipping = 0;
+  *correct = 0;
+  for (const Track& track : tracks.tracks) {
+    const TrackObservation* in_a = nullptr;
+    const TrackObservation* in_b = nullptr;
+    bool between = false;
+    for (const TrackObservation& obs : track.observations) {
+      if (obs.frame == a) in_a = &obs;
+      if (obs.frame == b) in_b = &obs;
+      between |= obs.frame > a && obs.frame < b;
+    }
+    if (!in_a || !in_b || between) continue;
+    ++skipping;
+    const cv::Point2f d = tracks.FeatureOf(*in_b).Position() - tracks.FeatureOf(*in_a).Position();
+    *correct += std::hypot(d.x - (b - a) * step.x, d.y - (b - a) * step.y) < 1.0 ? 1 : 0;
+  }
+  return skipping;
+}
+
+TEST(Tracker, MatchWindowLinksFeaturesAcrossAnOccludedFrame) {
+  // Frame 2 hides the middle of the scene: features there are seen in frames 1 and 3 only.
+  const cv::Point step(3, 2);
+  const auto frames = OccludedFrames(5, step, 2);
+  const HarrisDetector harris;
+  TrackerOptions options = HarrisOptions();
+  int correct = 0;
+  const TrackingResult consecutive = TrackFrames(frames, harris, options);
+  EXPECT_EQ(TracksSkipping(consecutive.tracks, 1, 3, step, &correct), 0);
+  EXPECT_TRUE(consecutive.window_mutual_matches.empty());
+
+  options.match_window = 2;
+  const TrackingResult window = TrackFrames(frames, harris, options);
+  EXPECT_NO_THROW(window.tracks.Check());
+  const int skipping = TracksSkipping(window.tracks, 1, 3, step, &correct);
+  EXPECT_GE(skipping, 10);
+  EXPECT_GT(correct, 0.9 * skipping) << correct << " of " << skipping;
+  // The occluded features' tracks run on across the gap: frames 0 to 4 without frame 2.
+  int across = 0;
+  for (const Track& t : window.tracks.tracks) {
+    across += t.FirstFrame() == 0 && t.LastFrame() == 4 && t.Length() == 4 ? 1 : 0;
+  }
+  EXPECT_GE(across, 5);
+  // Pairs (0, 2), (1, 3), (2, 4) besides the consecutive ones, which are unchanged: the window
+  // only adds matches.
+  ASSERT_EQ(window.window_accepted_matches.size(), 3u);
+  EXPECT_EQ(window.window_accepted_matches[1].frame1, 1);
+  EXPECT_EQ(window.window_accepted_matches[1].frame2, 3);
+  ASSERT_EQ(window.accepted_matches.size(), consecutive.accepted_matches.size());
+  for (size_t p = 0; p < window.accepted_matches.size(); ++p) {
+    ASSERT_EQ(window.accepted_matches[p].size(), consecutive.accepted_matches[p].size());
+    for (size_t m = 0; m < window.accepted_matches[p].size(); ++m) {
+      EXPECT_EQ(window.accepted_matches[p][m].index2, consecutive.accepted_matches[p][m].index2);
+    }
+  }
+}
+
+TEST(Tracker, MatchWindowPredictsFartherFramesFromTwoHops) {
+  // 12 px per frame: 25 px over two frames, beyond the 20 px search radius, so the occluded
+  // features of frame 1 are found in frame 3 only by a prediction — the displacement of their
+  // neighbours' two-hop links 1 -> 2 -> 3, or the coarse pass between frames 1 and 3.
+  const cv::Point step(12, 3);
+  const auto frames = OccludedFrames(5, step, 2);
+  const HarrisDetector harris;
+  TrackerOptions options = HarrisOptions();
+  options.match_window = 2;
+  int correct = 0;
+  EXPECT_LT(TracksSkipping(TrackFrames(frames, harris, options).tracks, 1, 3, step, &correct), 3)
+      << "without prediction the gap is too wide";
+
+  options.prediction = MotionPrediction::kConstantVelocity;
+  options.unpredicted_radius = 40;
+  const TrackingResult velocity = TrackFrames(frames, harris, options);
+  int skipping = TracksSkipping(velocity.tracks, 1, 3, step, &correct);
+  EXPECT_GE(skipping, 10);
+  EXPECT_GT(correct, 0.9 * skipping) << correct << " of " << skipping;
+
+  options.prediction = MotionPrediction::kCoarseToFine;
+  options.unpredicted_radius = 0;
+  options.coarse_factor = 2;
+  options.coarse_radius = 50;
+  const TrackingResult coarse = TrackFrames(frames, harris, options);
+  skipping = TracksSkipping(coarse.tracks, 1, 3, step, &correct);
+  EXPECT_GE(skipping, 10);
+  EXPECT_GT(correct, 0.9 * skipping) << correct << " of " << skipping;
+}
+
+// Noisy translating frames: tracks break now and then.
+std::vector<cv::Mat> NoisyFrames(int count, cv::Point step, uint64_t seed) {
+  std::vector<cv::Mat> noisy;
+  cv::RNG rng(seed);
+  for (const cv::Mat& f : TranslatingFrames(count, step)) {
+    cv::Mat n(f.size(), CV_8UC1);
+    rng.fill(n, cv::RNG::UNIFORM, 0, 40);
+    noisy.push_back(f + n);
+  }
+  return noisy;
+}
+
+TEST(Tracker, DefaultWindowGivesTheChainsOfConsecutiveMatches) {
+  const auto frames = NoisyFrames(6, {3, 1}, 3);
+  const HarrisDetector harris;
+  TrackerOptions options = HarrisOptions();
+  options.prediction = MotionPrediction::kConstantVelocity;
+  options.matcher.max_cost = 300;
+  const TrackingResult result = TrackFrames(frames, harris, options);
+  EXPECT_EQ(options.match_window, 1);
+  EXPECT_TRUE(result.window_accepted_matches.empty());
+  const std::vector<std::string> chains =
+      Describe(ChainMatches(result.tracks.features, result.accepted_matches));
+  EXPECT_EQ(Describe(result.tracks.tracks), chains);
+  int broken = 0;  // the noise ends some tracks early: the test covers more than full chains
+  for (const Track& t : result.tracks.tracks) broken += t.Length() < 6 ? 1 : 0;
+  EXPECT_GE(broken, 10) << result.tracks.tracks.size() << " tracks";
+  EXPECT_GE(result.tracks.tracks.size() - broken, 10u) << "and some full ones";
+  options.conflict_rule = TrackConflictRule::kDrop;  // no conflict without a window
+  EXPECT_EQ(Describe(TrackFrames(frames, harris, options).tracks.tracks), chains);
+}
+
+TEST(Tracker, MatchWindowIsDeterministicAndRethresholds) {
+  const auto frames = NoisyFrames(6, {3, 1}, 5);
+  const HarrisDetector harris;
+  TrackerOptions options = HarrisOptions();
+  options.match_window = 3;
+  options.matcher.max_cost = std::numeric_limits<double>::infinity();
+  const TrackingResult loose = TrackFrames(frames, harris, options);
+  EXPECT_EQ(Describe(TrackFrames(frames, harris, options).tracks.tracks),
+            Describe(loose.tracks.tracks));
+  EXPECT_EQ(loose.window_mutual_matches.size(), 4u + 3u);  // gaps 2 and 3
+  EXPECT_GT(loose.track_building.num_refused_matches, 0) << "loose matches should conflict";
+  // Without prediction the mutual matches do not depend on the threshold: re-thresholding gives
+  // exactly the tracks of tracking at that threshold.
+  options.matcher.max_cost = 150;
+  const TrackingResult strict = TrackFrames(frames, harris, options);
+  EXPECT_EQ(Describe(TracksAtThreshold(loose, 150).tracks), Describe(strict.tracks.tracks));
+  EXPECT_LT(strict.tracks.tracks.size(), loose.tracks.tracks.size());
+  options.match_window = 0;
+  EXPECT_THROW(options.Check(), Error);
+}
+
 TEST(Tracker, SelectsTrackableFeatures) {
   FeatureSet detected(4);
   detected[0].x = 50, detected[0].y = 50, detected[0].response = 1;
