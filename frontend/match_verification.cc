@@ -2,6 +2,7 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "frontend/usac_params.h"
 #include "io/error.h"
 
 namespace comic::frontend {
@@ -37,21 +38,8 @@ std::vector<PatchMatch> VerifyMatches(const FeatureSet& features1, const Feature
   std::vector<PatchMatch> kept;
   if (static_cast<int>(matches.size()) < options.min_num_inliers) return kept;
 
-  // The sfm module's settings for the essential matrix (sfm/two_view_geometry.cc): MSAC scoring
-  // and inner local optimisation, so the inliers are those of a least-squares fit, not of a
-  // noisy minimal sample.
-  cv::UsacParams params;
-  params.confidence = options.confidence;
-  params.isParallel = false;
-  params.loIterations = 10;
-  params.loMethod = cv::LOCAL_OPTIM_INNER_LO;
-  params.loSampleSize = 14;
-  params.maxIterations = options.max_num_iterations;
-  params.neighborsSearch = cv::NEIGH_GRID;
-  params.randomGeneratorState = static_cast<int>(options.random_seed);
-  params.sampler = cv::SAMPLING_UNIFORM;
-  params.score = cv::SCORE_METHOD_MSAC;
-  params.threshold = options.max_error_px;
+  const cv::UsacParams params = DeterministicUsacParams(
+      options.max_error_px, options.confidence, options.max_num_iterations, options.random_seed);
   cv::Mat mask;
   cv::Mat fundamental;
   try {

@@ -7,6 +7,7 @@
 
 #include "frontend/tracker.h"
 #include "io/error.h"
+#include "tests/frontend/track_strings.h"
 
 namespace comic::frontend {
 namespace {
@@ -15,19 +16,6 @@ std::vector<FeatureSet> Frames(std::vector<int> sizes) {
   std::vector<FeatureSet> features;
   for (int n : sizes) features.emplace_back(n);
   return features;
-}
-
-// The tracks as "frame:feature ..." strings, for readable comparisons.
-std::vector<std::string> Describe(const std::vector<Track>& tracks) {
-  std::vector<std::string> out;
-  for (const Track& track : tracks) {
-    std::string s;
-    for (const TrackObservation& obs : track.observations) {
-      s += (s.empty() ? "" : " ") + std::to_string(obs.frame) + ":" + std::to_string(obs.feature);
-    }
-    out.push_back(s);
-  }
-  return out;
 }
 
 // Checks frontend/track.h's contract on `tracks` over `features`.

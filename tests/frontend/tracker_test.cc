@@ -10,6 +10,7 @@
 #include "io/error.h"
 #include "io/image_sequence.h"
 #include "io/kitti_odometry.h"
+#include "tests/frontend/track_strings.h"
 #include "tests/test_support.h"
 
 namespace comic::frontend {
@@ -173,19 +174,6 @@ TEST(Tracker, RethresholdingMatchesTrackingAtThatThreshold) {
   for (const auto& m : loose.accepted_matches) loose_steps += m.size();
   for (const auto& m : strict.accepted_matches) strict_steps += m.size();
   EXPECT_LT(strict_steps, loose_steps);  // the threshold removed some matches
-}
-
-// Describes tracks as "frame:feature ..." strings, for comparisons.
-std::vector<std::string> Describe(const std::vector<Track>& tracks) {
-  std::vector<std::string> out;
-  for (const Track& track : tracks) {
-    std::string s;
-    for (const TrackObservation& obs : track.observations) {
-      s += (s.empty() ? "" : " ") + std::to_string(obs.frame) + ":" + std::to_string(obs.feature);
-    }
-    out.push_back(s);
-  }
-  return out;
 }
 
 // Translating frames with a flat grey box over the middle of frame `occluded_frame`.
