@@ -312,7 +312,11 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
                   << "registered " << p.frame_name << (p.initial_pair ? " (initial pair)" : "")
                   << ": " << p.num_registered << "/" << p.num_frames << " frames, "
                   << p.num_points3D << " points";
-        if (!p.initial_pair) std::cout << ", " << p.num_pose_inliers << " PnP inliers";
+        if (p.merged) {
+          std::cout << " (merged from an earlier model)";
+        } else if (!p.initial_pair) {
+          std::cout << ", " << p.num_pose_inliers << " PnP inliers";
+        }
         std::cout << std::endl;
       });
   const sfm::Reconstruction& reconstruction = result.run.mapping.reconstruction;

@@ -4,8 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
+#include <random>
 
 #include "io/error.h"
+#include "sfm/trajectory_evaluation.h"
 
 namespace comic::sfm {
 
@@ -30,6 +33,12 @@ void IncrementalMapper::Options::Check() const {
               "mapper filter_max_reprojection_error_px must be > 0");
   COMIC_CHECK(filter_min_tri_angle_deg >= 0, kInvalidArgument,
               "mapper filter_min_tri_angle_deg must be >= 0");
+  COMIC_CHECK(merge_max_relative_distance > 0, kInvalidArgument,
+              "mapper merge_max_relative_distance must be > 0");
+  COMIC_CHECK(merge_min_num_inliers >= 3, kInvalidArgument,
+              "mapper merge_min_num_inliers must be >= 3, got " << merge_min_num_inliers);
+  COMIC_CHECK(merge_min_inlier_ratio >= 0 && merge_min_inlier_ratio <= 1, kInvalidArgument,
+              "mapper merge_min_inlier_ratio must be in [0, 1]");
 }
 
 IncrementalMapper::IncrementalMapper(const frontend::FeatureTracks& tracks, const Camera& camera,
@@ -317,6 +326,100 @@ size_t IncrementalMapper::TriangulateAllTracks() {
     num_new += TriangulateOrCompleteTrack(static_cast<int>(t));
   }
   return num_new;
+}
+
+size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
+  // Point pairs through the features of frames registered in both models.
+  struct PointPair {
+    image_t image_id;
+    Eigen::Vector2d xy;         // the feature in that frame
+    Eigen::Vector3d other_xyz;  // the point of `other`
+    Eigen::Vector3d xyz;        // the point of this model
+  };
+  std::vector<PointPair> pairs;
+  std::vector<image_t> new_image_ids;
+  for (const auto& [image_id, other_image] : other.images()) {
+    if (!other_image.registered || !reconstruction_.ExistsImage(image_id)) continue;
+    const Image& image = reconstruction_.image(image_id);
+    if (!image.registered) {
+      new_image_ids.push_back(image_id);
+      continue;
+    }
+    const size_t n = std::min(image.points2D.size(), other_image.points2D.size());
+    for (size_t idx = 0; idx < n; ++idx) {
+      if (!image.points2D[idx].HasPoint3D() || !other_image.points2D[idx].HasPoint3D()) continue;
+      pairs.push_back({image_id, image.points2D[idx].xy,
+                       other.point3D(other_image.points2D[idx].point3D_id).xyz,
+                       reconstruction_.point3D(image.points2D[idx].point3D_id).xyz});
+    }
+  }
+  if (new_image_ids.empty() || static_cast<int>(pairs.size()) < options_.merge_min_num_inliers) {
+    return 0;
+  }
+
+  const auto consistent = [&](const Sim3d& sim, const PointPair& pair) {
+    const Image& image = reconstruction_.image(pair.image_id);
+    const Eigen::Vector3d mapped = sim * pair.other_xyz;
+    const double depth = (image.cam_from_world * pair.xyz).z();
+    if (depth <= 0 || (mapped - pair.xyz).norm() > options_.merge_max_relative_distance * depth) {
+      return false;
+    }
+    const auto projection =
+        ProjectPoint(reconstruction_.camera(image.camera_id), image.cam_from_world, mapped);
+    return projection &&
+           (*projection - pair.xy).norm() <= options_.filter_max_reprojection_error_px;
+  };
+  const auto count_inliers = [&](const Sim3d& sim, std::vector<Eigen::Vector3d>* src,
+                                 std::vector<Eigen::Vector3d>* dst) {
+    src->clear();
+    dst->clear();
+    for (const PointPair& pair : pairs) {
+      if (!consistent(sim, pair)) continue;
+      src->push_back(pair.other_xyz);
+      dst->push_back(pair.xyz);
+    }
+    return src->size();
+  };
+
+  // RANSAC over triples, deterministic.
+  std::mt19937 random(1);
+  std::uniform_int_distribution<size_t> pick(0, pairs.size() - 1);
+  std::vector<Eigen::Vector3d> best_src, best_dst, src, dst;
+  constexpr int kNumIterations = 500;
+  for (int iteration = 0; iteration < kNumIterations; ++iteration) {
+    const size_t a = pick(random), b = pick(random), c = pick(random);
+    if (a == b || b == c || a == c) continue;
+    const auto sim =
+        EstimateSim3dUmeyama({pairs[a].other_xyz, pairs[b].other_xyz, pairs[c].other_xyz},
+                             {pairs[a].xyz, pairs[b].xyz, pairs[c].xyz});
+    if (!sim || !(sim->scale > 0)) continue;
+    if (count_inliers(*sim, &src, &dst) > best_src.size()) {
+      best_src.swap(src);
+      best_dst.swap(dst);
+    }
+  }
+  // Refit on the consistent pairs until the set stops growing (twice at most).
+  std::optional<Sim3d> sim;
+  for (int round = 0; round < 2 && best_src.size() >= 3; ++round) {
+    sim = EstimateSim3dUmeyama(best_src, best_dst);
+    if (!sim) return 0;
+    if (count_inliers(*sim, &src, &dst) < best_src.size()) break;
+    best_src.swap(src);
+    best_dst.swap(dst);
+  }
+  const double num_inliers = static_cast<double>(best_src.size());
+  if (!sim || num_inliers < options_.merge_min_num_inliers ||
+      num_inliers < options_.merge_min_inlier_ratio * static_cast<double>(pairs.size())) {
+    return 0;
+  }
+  for (image_t image_id : new_image_ids) {
+    Image& image = reconstruction_.image(image_id);
+    image.cam_from_world = sim->TransformPose(other.image(image_id).cam_from_world);
+    reconstruction_.RegisterImage(image_id);
+    registration_order_.push_back(image_id);
+  }
+  TriangulateAllTracks();
+  return new_image_ids.size();
 }
 
 void IncrementalMapper::FixGauge(BundleAdjustmentConfig* config) const {

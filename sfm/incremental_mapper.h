@@ -68,6 +68,14 @@ class IncrementalMapper {
     double filter_max_reprojection_error_px = 4.0;
     // Filtering: points whose largest triangulation angle is below this are removed (degrees).
     double filter_min_tri_angle_deg = 1.5;
+    // Merging another model (MergeModel): a 3-D point pair is consistent with a similarity when
+    // the mapped point reprojects within filter_max_reprojection_error_px in the shared frame and
+    // lies within this fraction of its depth from this model's point (reprojection alone leaves
+    // the scale free when the models share a single frame).
+    double merge_max_relative_distance = 0.05;
+    // Merging: at least this many consistent point pairs, and at least this fraction of them.
+    int merge_min_num_inliers = 15;
+    double merge_min_inlier_ratio = 0.25;
 
     // Throws comic::Error(kInvalidArgument) naming the bad field.
     void Check() const;
@@ -123,6 +131,16 @@ class IncrementalMapper {
   // Triangulates and completes every track (e.g. after a global bundle adjustment). Returns the
   // number of new points.
   size_t TriangulateAllTracks();
+
+  // Model merging, for a sparse ring that fell apart into models sharing frames: `other` is a
+  // model of the same tracks (e.g. an earlier model of the pipeline). The similarity mapping it
+  // into this model is estimated from the point pairs the two give to one feature of a frame
+  // registered in both (RANSAC over triples with a fixed seed, Umeyama, refitted on the
+  // consistent pairs; see merge_max_relative_distance). The frames only `other` registered are
+  // then registered here with their poses mapped by it, and every track is triangulated or
+  // completed. Returns the number of frames added (0: no shared frame, or too few consistent
+  // pairs). The gauge stays this model's.
+  size_t MergeModel(const Reconstruction& other);
 
   // Bundle adjustment of the image and the num_images − 1 registered images sharing most points
   // with it; other images seeing those points are held constant. Filters the adjusted points.

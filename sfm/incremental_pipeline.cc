@@ -68,9 +68,10 @@ void IncrementalPipelineOptions::Check() const {
 namespace {
 
 void Report(const MapperProgressCallback& progress, const IncrementalMapper& mapper,
-            image_t image_id, bool initial, int num_inliers, int attempt) {
+            image_t image_id, bool initial, int num_inliers, int attempt, bool merged = false) {
   if (!progress) return;
   MapperProgress p;
+  p.merged = merged;
   p.frame = IncrementalMapper::FrameOfImageId(image_id);
   p.frame_name = mapper.reconstruction().image(image_id).name;
   p.initial_pair = initial;
@@ -87,7 +88,9 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
                                           const Camera& camera,
                                           const IncrementalPipelineOptions& options,
                                           const std::optional<IncrementalMapper::InitialPair>& pair,
-                                          int attempt, const MapperProgressCallback& progress) {
+                                          int attempt,
+                                          const std::vector<Reconstruction>& earlier_models,
+                                          const MapperProgressCallback& progress) {
   IncrementalReconstruction result;
   IncrementalMapper mapper(tracks, camera, options.mapper);
   const auto finish = [&](ReconstructionStatus status) {
@@ -152,7 +155,24 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
       registered = true;
       break;
     }
-    if (!registered) break;
+    if (registered) continue;
+    // Stopped short: merge the earlier models that share a frame with this one, then grow on.
+    size_t num_merged = 0;
+    if (options.merge_models) {
+      for (const Reconstruction& other : earlier_models) {
+        const size_t num_before = mapper.registration_order().size();
+        if (mapper.MergeModel(other) == 0) continue;
+        num_merged += mapper.registration_order().size() - num_before;
+        for (size_t i = num_before; i < mapper.registration_order().size(); ++i) {
+          Report(progress, mapper, mapper.registration_order()[i], false, 0, attempt, true);
+        }
+      }
+    }
+    if (num_merged == 0) break;
+    global_ba();
+    mapper.TriangulateAllTracks();
+    num_registered_at_last_global_ba = mapper.reconstruction().NumRegisteredImages();
+    num_trials.clear();
   }
 
   // Final refinement: adjust, recover tracks the improved poses now explain, adjust again.
@@ -185,6 +205,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
     const IncrementalMapper searcher(tracks, camera, options.mapper);
     std::vector<IncrementalMapper::InitialPair> candidates = searcher.FindInitialPairs();
     std::set<image_t> excluded;
+    std::vector<Reconstruction> earlier_models;
     for (int attempt = 0; attempt < options.max_num_models; ++attempt) {
       const auto usable = [&](const IncrementalMapper::InitialPair& pair) {
         return !excluded.count(pair.image_id1) && !excluded.count(pair.image_id2);
@@ -197,7 +218,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
       std::optional<IncrementalMapper::InitialPair> pair;
       if (it != candidates.end()) pair = *it;
       IncrementalReconstruction model =
-          ReconstructOnce(tracks, camera, options, pair, attempt, progress);
+          ReconstructOnce(tracks, camera, options, pair, attempt, earlier_models, progress);
       const bool better =
           attempt == 0 || (model.status == ReconstructionStatus::kSuccess &&
                            (best.status != ReconstructionStatus::kSuccess ||
@@ -214,6 +235,9 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
       }
       for (int frame : model.registered_frames) {
         excluded.insert(IncrementalMapper::ImageIdOfFrame(frame));
+      }
+      if (options.merge_models && model.status == ReconstructionStatus::kSuccess) {
+        earlier_models.push_back(model.reconstruction);
       }
       if (better) best = std::move(model);
       best.num_models = attempt + 1;

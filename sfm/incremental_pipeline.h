@@ -52,6 +52,9 @@ struct IncrementalPipelineOptions {
   // initial pair among the frames no earlier model reached, and the model with the most
   // registered frames is returned.
   int max_num_models = 4;
+  // When a model stops short, the earlier models sharing a registered frame with it are merged
+  // into it (IncrementalMapper::MergeModel), and it grows on from the merged frames.
+  bool merge_models = true;
 
   IncrementalPipelineOptions();
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -64,6 +67,7 @@ struct MapperProgress {
   std::string frame_name;
   int attempt = 0;            // which model (0 = the first; see max_num_models)
   bool initial_pair = false;  // registered as part of the initial pair
+  bool merged = false;        // registered by merging an earlier model (merge_models)
   size_t num_registered = 0;  // registered frames so far
   size_t num_frames = 0;
   size_t num_points3D = 0;
