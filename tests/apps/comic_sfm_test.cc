@@ -121,6 +121,33 @@ TEST(ComicSfm, CompareWritesOneTable) {
   EXPECT_TRUE(comic::io::IsRegularFile(dir.File("fast/report.json")));
 }
 
+// The Middlebury temple sparse ring (docs/sfm.md): 16 views 23 degrees apart, ring neighbours up
+// to 12 files apart, views 12-16 stored upside down. The image-set options close the ring; without
+// the 180-degree matching the two latitude groups never link.
+TEST(ComicSfm, TempleSparseRingClosesWithTheImageSetOptions) {
+  COMIC_REQUIRE_SHARED_DATA();
+  const std::string temple = comic::test::SharedDataDir() + "/middlebury_mview_templeSparseRing";
+  const std::string command = AppPath("comic_sfm") + " " + temple + " --gt " + temple +
+                              "/templeSR_par.txt --detector hessian --match-window 16 "
+                              "--verify-min-gap 1 --prediction coarse-to-fine --coarse-radius 200 "
+                              "--search-radius 40 --resize-height 960 --quiet --out ";
+  ScopedTempDir dir;
+  const auto turned = RunCommand(command + dir.File("turned") + " --match-turned");
+  ASSERT_EQ(turned.exit_code, 0) << turned.output;
+  const nlohmann::json report =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("turned/report.json")));
+  EXPECT_EQ(report["registered_frames"], 16);
+  EXPECT_LT(report["ground_truth"]["ate_fraction_of_path"].get<double>(), 0.005);
+  EXPECT_LT(report["ground_truth"]["mean_rotation_error_deg"].get<double>(), 1.0);
+  EXPECT_LT(report["points3D"]["mean_reprojection_error_px"].get<double>(), 1.0);
+
+  const auto upright = RunCommand(command + dir.File("upright"));
+  ASSERT_EQ(upright.exit_code, 0) << upright.output;
+  const nlohmann::json upright_report =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("upright/report.json")));
+  EXPECT_LT(upright_report["registered_frames"].get<int>(), 16);
+}
+
 TEST(ComicSfm, UnreconstructableInputIsReportedNotCrashed) {
   ScopedTempDir dir;
   // One frame: nothing to reconstruct. Exit 1, a clear message, and the report still written.
