@@ -274,22 +274,7 @@ bool IncrementalMapper::RegisterNextImage(image_t image_id) {
 bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id) {
   const frontend::Track& track = tracks_->tracks[track_id];
   const point3D_t point3D_id = TrackPoint(track_id);
-  if (point3D_id != kInvalidPoint3DId) {
-    // Complete: add registered views the point misses if they agree with it.
-    const Eigen::Vector3d xyz = reconstruction_.point3D(point3D_id).xyz;
-    for (const frontend::TrackObservation& obs : track.observations) {
-      const image_t image_id = ImageIdOfFrame(obs.frame);
-      const Image& image = reconstruction_.image(image_id);
-      if (!image.registered || image.points2D[obs.feature].HasPoint3D()) continue;
-      const auto projection =
-          ProjectPoint(reconstruction_.camera(image.camera_id), image.cam_from_world, xyz);
-      if (projection && (*projection - image.points2D[obs.feature].xy).norm() <=
-                            options_.complete_max_reprojection_error_px) {
-        reconstruction_.AddObservation(point3D_id, {image_id, static_cast<point2D_t>(obs.feature)});
-      }
-    }
-    return false;
-  }
+  // The track's registered views.
   std::vector<TriangulationView> views;
   std::vector<TrackElement> elements;
   for (const frontend::TrackObservation& obs : track.observations) {
@@ -299,6 +284,35 @@ bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id) {
     views.push_back({&reconstruction_.camera(image.camera_id), image.cam_from_world,
                      image.points2D[obs.feature].xy});
     elements.push_back({image_id, static_cast<point2D_t>(obs.feature)});
+  }
+  if (point3D_id != kInvalidPoint3DId) {
+    // Complete: add registered views the point misses if they agree with it.
+    const Eigen::Vector3d xyz = reconstruction_.point3D(point3D_id).xyz;
+    for (size_t i = 0; i < elements.size(); ++i) {
+      const Image& image = reconstruction_.image(elements[i].image_id);
+      if (image.points2D[elements[i].point2D_idx].HasPoint3D()) continue;
+      const auto projection =
+          ProjectPoint(reconstruction_.camera(image.camera_id), image.cam_from_world, xyz);
+      if (projection &&
+          (*projection - views[i].point2D).norm() <= options_.complete_max_reprojection_error_px) {
+        reconstruction_.AddObservation(point3D_id, elements[i]);
+      }
+    }
+    // Re-triangulate: a point made early from a few close views can lie so far off that the
+    // track's later views miss it by more than complete_max_reprojection_error_px, and then the
+    // track never gets the baseline that would fix the point. A hypothesis from all registered
+    // views of the track replaces the point if it explains more of them.
+    const size_t num_observations = reconstruction_.point3D(point3D_id).track.size();
+    if (!options_.retriangulate_incomplete_tracks || num_observations >= elements.size()) {
+      return false;
+    }
+    const auto point = TriangulateMultiView(views, options_.triangulation);
+    if (!point || point->inlier_views.size() <= num_observations) return false;
+    reconstruction_.DeletePoint3D(point3D_id);
+    std::vector<TrackElement> inlier_elements;
+    for (int i : point->inlier_views) inlier_elements.push_back(elements[i]);
+    reconstruction_.AddPoint3D(point->xyz, inlier_elements);
+    return false;
   }
   if (views.size() < 2) return false;
   const auto point = TriangulateMultiView(views, options_.triangulation);
@@ -315,7 +329,9 @@ size_t IncrementalMapper::TriangulateImage(image_t image_id) {
               "mapper: image " << image_id << " is not registered");
   size_t num_new = 0;
   for (int t : track_of_feature_[FrameOfImageId(image_id)]) {
-    if (t >= 0) num_new += TriangulateOrCompleteTrack(t);
+    if (t >= 0) {
+      num_new += TriangulateOrCompleteTrack(t);
+    }
   }
   return num_new;
 }
