@@ -71,6 +71,7 @@ struct Flags {
   bool match_turned = false;
   double max_cost = 400.0;
   bool refine_focal = false;
+  bool retriangulate = false;
   int local_ba_images = 8;
   double global_ba_growth = 1.5;
   double init_angle = 4.0;
@@ -113,6 +114,7 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   options.tracker.match_turned_180 = flags.match_turned;
   options.tracker.matcher.max_cost = flags.max_cost;
   options.mapper.global_ba.refine_focal_length = flags.refine_focal;
+  options.mapper.mapper.retriangulate_incomplete_tracks = flags.retriangulate;
   options.mapper.local_ba_num_images = flags.local_ba_images;
   options.mapper.global_ba_growth_ratio = flags.global_ba_growth;
   options.mapper.mapper.init_tri_angle_deg = flags.init_angle;
@@ -151,6 +153,7 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"match_turned", flags.match_turned},
           {"max_cost", flags.max_cost},
           {"refine_focal", flags.refine_focal},
+          {"retriangulate", flags.retriangulate},
           {"local_ba_images", flags.local_ba_images},
           {"global_ba_growth", flags.global_ba_growth},
           {"init_angle_deg", flags.init_angle},
@@ -540,6 +543,10 @@ int Run(int argc, char** argv) {
       &flags.match_turned);
   parser.AddOption("max-cost", "T", "tracker SSD threshold (mean squared grey difference)",
                    &flags.max_cost);
+  parser.AddFlag("retriangulate",
+                 "triangulate a track again from all its registered views when its point misses "
+                 "some of them, keeping the point that explains more views",
+                 &flags.retriangulate);
   parser.AddFlag("refine-focal", "refine the focal length in the global bundle adjustments",
                  &flags.refine_focal);
   parser.AddOption("local-ba-images", "N", "images in each local bundle adjustment",

@@ -66,8 +66,10 @@ class IncrementalMapper {
     // (TriangulateMultiView) and the new point replaces the old one if it has more inlier views.
     // Without this, a point made early from a few close frames and lying off keeps later views
     // out, which would give it the baseline to be corrected (on KITTI with CoMIC's tracks
-    // ATE 0.063 m without, 0.047 m with).
-    bool retriangulate_incomplete_tracks = true;
+    // ATE 0.063 m without, 0.047 m with; Harris 0.028 -> 0.018 m). Off by default: it is not a
+    // win everywhere (KITTI with MSER 0.071 -> 0.150 m, the dino ring with Hessian 0.0039 ->
+    // 0.0050 m; docs/sfm.md).
+    bool retriangulate_incomplete_tracks = false;
     // Extend an existing point to a newly registered view whose observation reprojects within
     // this distance (pixels).
     double complete_max_reprojection_error_px = 4.0;

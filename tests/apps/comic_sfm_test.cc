@@ -48,6 +48,7 @@ TEST(ComicSfm, HelpDocumentsEveryOption) {
                              "--coarse-radius",
                              "--max-cost",
                              "--refine-focal",
+                             "--retriangulate",
                              "--local-ba-images",
                              "--init-angle",
                              "--init-max-gap",
