@@ -146,7 +146,7 @@ std::vector<Track> BuildTracks(const std::vector<FeatureSet>& features,
   }
 
   // Components in node order: observations come out by increasing frame, and components by
-  // their first (frame, feature) — ChainMatches' order.
+  // their first (frame, feature).
   std::vector<int> root_of_node(num_nodes), component_size(num_nodes, 0);
   for (int node = 0; node < num_nodes; ++node) {
     root_of_node[node] = sets.Find(node);

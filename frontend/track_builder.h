@@ -1,8 +1,8 @@
 // Feature tracks from pairwise matches between any two frames (OpenMVG's track builder,
 // tracks/tracks.hpp): every (frame, feature) is a node, every match joins two nodes, and the
-// connected components (union-find) are the tracks. The tracker uses it when it matches a frame to
-// several later ones (TrackerOptions::match_window); for matches between consecutive frames only
-// the components are exactly the chains of ChainMatches.
+// connected components (union-find) are the tracks. The tracker builds its tracks with it, from
+// matches between consecutive frames and, with TrackerOptions::match_window > 1, farther ones; for
+// matches between consecutive frames only the components are exactly the chains of those matches.
 //
 //   std::vector<FramePairMatches> pairs = {{0, 1, matches01}, {1, 2, matches12}, {0, 2, ...}};
 //   TrackBuildSummary summary;
@@ -56,7 +56,7 @@ struct TrackBuildSummary {
 };
 
 // Tracks of two or more observations from the matches of `pairs` (see above), observations in
-// increasing frame order, tracks ordered by first frame then first feature (ChainMatches' order).
+// increasing frame order, tracks ordered by first frame then first feature.
 // Only the sizes of `features` are used. Throws comic::Error(kInvalidArgument) for a pair whose
 // frames are out of range or not increasing, an index out of range, or a feature matched twice
 // within one pair.

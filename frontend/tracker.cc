@@ -398,48 +398,6 @@ TrackingResult TrackFrames(const std::vector<cv::Mat>& grays, const Detector& de
   return tracker.Result();
 }
 
-std::vector<Track> ChainMatches(const std::vector<FeatureSet>& features,
-                                const std::vector<std::vector<PatchMatch>>& pair_matches) {
-  COMIC_CHECK(
-      pair_matches.size() + 1 == features.size() || (features.empty() && pair_matches.empty()),
-      kInvalidArgument,
-      "chaining: " << pair_matches.size() << " frame pairs for " << features.size() << " frames");
-  // next[f][i]: the feature of frame f+1 matched to feature i of frame f, or -1.
-  std::vector<std::vector<int>> next(features.size());
-  std::vector<std::vector<bool>> has_previous(features.size());
-  for (size_t f = 0; f < features.size(); ++f) {
-    next[f].assign(features[f].size(), -1);
-    has_previous[f].assign(features[f].size(), false);
-  }
-  for (size_t f = 0; f < pair_matches.size(); ++f) {
-    for (const PatchMatch& m : pair_matches[f]) {
-      COMIC_CHECK(m.index1 >= 0 && m.index1 < static_cast<int>(features[f].size()) &&
-                      m.index2 >= 0 && m.index2 < static_cast<int>(features[f + 1].size()),
-                  kInvalidArgument, "chaining: match index out of range in frame pair " << f);
-      COMIC_CHECK(next[f][m.index1] < 0 && !has_previous[f + 1][m.index2], kInvalidArgument,
-                  "chaining: a feature is matched twice in frame pair " << f);
-      next[f][m.index1] = m.index2;
-      has_previous[f + 1][m.index2] = true;
-    }
-  }
-  std::vector<Track> tracks;
-  for (size_t f = 0; f < features.size(); ++f) {
-    for (int i = 0; i < static_cast<int>(features[f].size()); ++i) {
-      if (has_previous[f][i] || next[f][i] < 0) continue;
-      Track track;
-      int frame = static_cast<int>(f);
-      int feature = i;
-      while (feature >= 0) {
-        track.observations.push_back({frame, feature});
-        feature = frame + 1 < static_cast<int>(features.size()) ? next[frame][feature] : -1;
-        ++frame;
-      }
-      tracks.push_back(std::move(track));
-    }
-  }
-  return tracks;
-}
-
 FeatureTracks TracksAtThreshold(const TrackingResult& result, double max_cost) {
   FeatureTracks tracks = result.tracks;
   const TrackerOptions& options = result.options;

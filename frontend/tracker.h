@@ -223,13 +223,6 @@ TrackingResult TrackFrames(const std::vector<cv::Mat>& grays, const Detector& de
                            const std::vector<std::string>& frame_names = {},
                            const TrackingProgress& progress = {});
 
-// Chains one-to-one frame-pair matches (pair_matches[i] from frame i to frame i+1) into tracks of
-// two or more observations, ordered by first frame then first feature: the tracks of
-// match_window = 1 (BuildTracks on the same matches gives the same tracks). Throws
-// comic::Error(kInvalidArgument) for an index out of range or a feature matched twice.
-std::vector<Track> ChainMatches(const std::vector<FeatureSet>& features,
-                                const std::vector<std::vector<PatchMatch>>& pair_matches);
-
 // The tracks `result` would have had at SSD threshold `max_cost` (see mutual_matches), verified
 // and built as result.options say.
 FeatureTracks TracksAtThreshold(const TrackingResult& result, double max_cost);

@@ -329,9 +329,7 @@ size_t IncrementalMapper::TriangulateImage(image_t image_id) {
               "mapper: image " << image_id << " is not registered");
   size_t num_new = 0;
   for (int t : track_of_feature_[FrameOfImageId(image_id)]) {
-    if (t >= 0) {
-      num_new += TriangulateOrCompleteTrack(t);
-    }
+    if (t >= 0) num_new += TriangulateOrCompleteTrack(t);
   }
   return num_new;
 }

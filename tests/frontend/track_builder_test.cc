@@ -7,7 +7,7 @@
 
 #include "frontend/tracker.h"
 #include "io/error.h"
-#include "tests/frontend/track_strings.h"
+#include "tests/frontend/track_test_helpers.h"
 
 namespace comic::frontend {
 namespace {
@@ -126,7 +126,7 @@ TEST(TrackBuilder, ResultDoesNotDependOnTheOrderOfThePairs) {
 
 TEST(TrackBuilder, ConsecutiveMatchesGiveExactlyTheChains) {
   // Random one-to-one matches between consecutive frames only: no conflict can arise, and both
-  // rules give ChainMatches' tracks in ChainMatches' order.
+  // rules give the chains in the chains' order (first frame, then first feature).
   std::mt19937 rng(11);
   const auto features = Frames({30, 25, 30, 28, 30, 30});
   std::vector<std::vector<PatchMatch>> consecutive;
@@ -143,7 +143,8 @@ TEST(TrackBuilder, ConsecutiveMatchesGiveExactlyTheChains) {
     consecutive.push_back(matches);
     pairs.push_back({i, i + 1, matches});
   }
-  const std::vector<std::string> chains = Describe(ChainMatches(features, consecutive));
+  const std::vector<std::string> chains =
+      Describe(ChainConsecutiveMatches({30, 25, 30, 28, 30, 30}, consecutive));
   EXPECT_GT(chains.size(), 20u);
   for (TrackConflictRule rule : {TrackConflictRule::kDrop, TrackConflictRule::kGreedy}) {
     EXPECT_EQ(Describe(BuildTracks(features, pairs, rule)), chains);

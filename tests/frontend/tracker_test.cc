@@ -10,7 +10,7 @@
 #include "io/error.h"
 #include "io/image_sequence.h"
 #include "io/kitti_odometry.h"
-#include "tests/frontend/track_strings.h"
+#include "tests/frontend/track_test_helpers.h"
 #include "tests/test_support.h"
 
 namespace comic::frontend {
@@ -132,20 +132,21 @@ TEST(Tracker, MotionPredictionFollowsMotionBeyondTheSearchRadius) {
   EXPECT_GE(coarse.accepted_matches[0].size(), 20u);
 }
 
-TEST(Tracker, ChainMatchesBuildsTracksAndRejectsDoubleMatches) {
+TEST(Tracker, ConsecutiveMatchesChainIntoTracks) {
   std::vector<FeatureSet> features(3, FeatureSet(3));
   // 0:0 -> 1:2 -> 2:1; 0:1 -> 1:0 (ends); 1:1 -> 2:2.
-  const std::vector<std::vector<PatchMatch>> pairs = {{{0, 2, 1.f}, {1, 0, 1.f}},
-                                                      {{2, 1, 1.f}, {1, 2, 1.f}}};
-  const std::vector<Track> tracks = ChainMatches(features, pairs);
+  const std::vector<FramePairMatches> pairs = {{0, 1, {{0, 2, 1.f}, {1, 0, 1.f}}},
+                                               {1, 2, {{2, 1, 1.f}, {1, 2, 1.f}}}};
+  const std::vector<Track> tracks = BuildTracks(features, pairs, TrackConflictRule::kGreedy);
   ASSERT_EQ(tracks.size(), 3u);
   EXPECT_EQ(tracks[0].Length(), 3u);
   EXPECT_EQ(tracks[0].observations[2].feature, 1);
   EXPECT_EQ(tracks[1].Length(), 2u);
   EXPECT_EQ(tracks[2].FirstFrame(), 1);
-  EXPECT_THROW(ChainMatches(features, {{{0, 2, 1.f}, {1, 2, 1.f}}, {}}), Error);
-  EXPECT_THROW(ChainMatches(features, {{{0, 3, 1.f}}, {}}), Error);
-  EXPECT_THROW(ChainMatches(features, {{}}), Error);
+  EXPECT_THROW(
+      BuildTracks(features, {{0, 1, {{0, 2, 1.f}, {1, 2, 1.f}}}}, TrackConflictRule::kGreedy),
+      Error);
+  EXPECT_THROW(BuildTracks(features, {{0, 1, {{0, 3, 1.f}}}}, TrackConflictRule::kGreedy), Error);
 }
 
 TEST(Tracker, RethresholdingMatchesTrackingAtThatThreshold) {
@@ -294,8 +295,10 @@ TEST(Tracker, DefaultWindowGivesTheChainsOfConsecutiveMatches) {
   const TrackingResult result = TrackFrames(frames, harris, options);
   EXPECT_EQ(options.match_window, 1);
   EXPECT_TRUE(result.window_accepted_matches.empty());
+  std::vector<int> num_features;
+  for (const FeatureSet& f : result.tracks.features) num_features.push_back(f.size());
   const std::vector<std::string> chains =
-      Describe(ChainMatches(result.tracks.features, result.accepted_matches));
+      Describe(ChainConsecutiveMatches(num_features, result.accepted_matches));
   EXPECT_EQ(Describe(result.tracks.tracks), chains);
   int broken = 0;  // the noise ends some tracks early: the test covers more than full chains
   for (const Track& t : result.tracks.tracks) broken += t.Length() < 6 ? 1 : 0;
