@@ -92,7 +92,7 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   // The new corner may lie up to k px along the curve from p; κ there needs the filter's support
   // (3 box radii) beyond the segment. Crossings are 0.5-1 px apart.
   const int reach = 2 * k + 3 * BoxRadiusForGaussian(options.sigma) + 2;
-  IsoCurve traced;
+  IsoCurve& traced = workspace->traced;
   tracer.Trace(seed, 2 * reach, &traced);
   if (traced.closed && PolylineLength(traced.points, true) < 4 * k + 1) return false;
   int origin = 0;

@@ -17,6 +17,7 @@
 
 #include "frontend/curve_cornerness.h"
 #include "frontend/feature.h"
+#include "frontend/iso_curve.h"
 #include "frontend/iso_curve_stability.h"
 
 namespace comic::frontend {
@@ -75,6 +76,7 @@ struct ConvergenceWorkspace {
   WeightedStabilityEvaluator profile;
   CornernessWorkspace cornerness;
   std::vector<double> kappa;
+  IsoCurve traced;
 };
 
 // One convergence iteration: weights centred on the point of `reference` (a polyline along the

@@ -76,18 +76,23 @@ struct Line {
 bool FitLine(const std::vector<cv::Point2f>& points, bool closed, double from, double to,
              Line* line) {
   const int n = static_cast<int>(points.size());
-  std::vector<cv::Point2d> samples;
-  for (int j = static_cast<int>(std::ceil(from)); j <= static_cast<int>(std::floor(to)); ++j) {
-    if (!closed && (j < 0 || j >= n)) continue;
-    samples.push_back(points[((j % n) + n) % n]);
+  // The samples: indices [first, last], clipped to the curve if it is open (two passes over
+  // them, no copy).
+  int first = static_cast<int>(std::ceil(from));
+  int last = static_cast<int>(std::floor(to));
+  if (!closed) {
+    first = std::max(first, 0);
+    last = std::min(last, n - 1);
   }
-  if (samples.size() < 3) return false;
+  const int count = std::max(0, last - first + 1);
+  if (count < 3) return false;
+  auto sample = [&](int j) { return cv::Point2d(points[((j % n) + n) % n]); };
   cv::Point2d mean(0, 0);
-  for (const auto& p : samples) mean += p;
-  mean *= 1.0 / samples.size();
+  for (int j = first; j <= last; ++j) mean += sample(j);
+  mean *= 1.0 / count;
   double sxx = 0, sxy = 0, syy = 0;
-  for (const auto& p : samples) {
-    const cv::Point2d d = p - mean;
+  for (int j = first; j <= last; ++j) {
+    const cv::Point2d d = sample(j) - mean;
     sxx += d.x * d.x;
     sxy += d.x * d.y;
     syy += d.y * d.y;
@@ -99,7 +104,7 @@ bool FitLine(const std::vector<cv::Point2f>& points, bool closed, double from, d
   const double half_trace = 0.5 * (sxx + syy);
   const double across =
       half_trace - std::sqrt(std::max(0.0, half_trace * half_trace - (sxx * syy - sxy * sxy)));
-  line->rms = std::sqrt(std::max(0.0, across) / samples.size());
+  line->rms = std::sqrt(std::max(0.0, across) / count);
   return true;
 }
 
@@ -165,22 +170,26 @@ std::vector<int> CornernessMaxima(const std::vector<double>& kappa, bool closed,
                                   double min_cornerness) {
   const int n = static_cast<int>(kappa.size());
   std::vector<int> maxima;
+  // Whether neighbour j (offset != 0) lets sample i, with κ = k, be a maximum: it is ignored when
+  // outside an open curve, on i itself after wrapping, or without κ; earlier samples must be
+  // strictly lower and later ones not higher, so that a plateau yields its first sample.
+  auto allows = [&](int i, int offset, double k) {
+    int j = i + offset;
+    if (closed) {
+      if (j < 0 || j >= n) j = ((j % n) + n) % n;  // a radius beyond n wraps more than once
+      if (j == i) return true;
+    } else if (j < 0 || j >= n) {
+      return true;
+    }
+    if (kappa[j] < 0) return true;
+    return offset < 0 ? kappa[j] < k : kappa[j] <= k;
+  };
   for (int i = 0; i < n; ++i) {
     const double k = kappa[i];
     if (k < 0 || k < min_cornerness) continue;
+    // Nearest neighbours first: most samples are rejected by an adjacent one.
     bool is_max = true;
-    for (int offset = -radius; offset <= radius && is_max; ++offset) {
-      if (offset == 0) continue;
-      int j = i + offset;
-      if (closed) {
-        j = ((j % n) + n) % n;
-        if (j == i) continue;
-      } else if (j < 0 || j >= n) {
-        continue;
-      }
-      if (kappa[j] < 0) continue;
-      is_max = offset < 0 ? kappa[j] < k : kappa[j] <= k;
-    }
+    for (int d = 1; d <= radius && is_max; ++d) is_max = allows(i, -d, k) && allows(i, d, k);
     if (is_max) maxima.push_back(i);
   }
   return maxima;

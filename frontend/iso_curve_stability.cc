@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace comic::frontend {
 
@@ -86,19 +91,16 @@ class ProfileSampler {
   explicit ProfileSampler(const cv::Mat& gray) : gray_(gray) {}
 
   float Cubic(double x, double y) const {
-    const int x0 = static_cast<int>(std::floor(x));
-    const int y0 = static_cast<int>(std::floor(y));
+    const int x0 = FloorToInt(x);
+    const int y0 = FloorToInt(y);
     float wx[4], wy[4];
     CubicWeights(static_cast<float>(x - x0), wx);
     CubicWeights(static_cast<float>(y - y0), wy);
-    float sum = 0.0f;
     if (x0 >= 1 && y0 >= 1 && x0 + 2 < gray_.cols && y0 + 2 < gray_.rows) {
       const uint8_t* row = gray_.ptr<uint8_t>(y0 - 1) + (x0 - 1);
-      for (int j = 0; j < 4; ++j, row += gray_.step[0]) {
-        sum += wy[j] * (wx[0] * row[0] + wx[1] * row[1] + wx[2] * row[2] + wx[3] * row[3]);
-      }
-      return sum;
+      return Convolve4x4(row, gray_.step[0], wx, wy);
     }
+    float sum = 0.0f;
     for (int j = 0; j < 4; ++j) {
       const uint8_t* row = gray_.ptr<uint8_t>(std::clamp(y0 - 1 + j, 0, gray_.rows - 1));
       float line = 0.0f;
@@ -125,6 +127,50 @@ class ProfileSampler {
   }
 
  private:
+  // floor for the coordinates of a profile (well inside the int range): a truncation corrected
+  // for negatives, cheaper than std::floor without SSE4.1.
+  static int FloorToInt(double v) {
+    const int i = static_cast<int>(v);
+    return i - (v < i ? 1 : 0);
+  }
+
+  // Σ_j wy[j] (Σ_i wx[i] row_j[i]) over a 4 x 4 window, each sum accumulated in the order
+  // written (i, then j, from 0): with SSE2 the four rows run in the four lanes, which performs
+  // the same float operations in the same order, so both paths give the same bits.
+  static float Convolve4x4(const uint8_t* row, size_t step, const float* wx, const float* wy) {
+#if defined(__SSE2__)
+    auto load4 = [](const uint8_t* p) {
+      int32_t v;
+      std::memcpy(&v, p, sizeof(v));
+      return _mm_cvtsi32_si128(v);
+    };
+    // Bytes of the four rows interleaved column by column: r0[i] r1[i] r2[i] r3[i] for i = 0..3.
+    const __m128i r01 = _mm_unpacklo_epi8(load4(row), load4(row + step));
+    const __m128i r23 = _mm_unpacklo_epi8(load4(row + 2 * step), load4(row + 3 * step));
+    const __m128i columns = _mm_unpacklo_epi16(r01, r23);
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i low = _mm_unpacklo_epi8(columns, zero);   // columns 0, 1 as 16-bit
+    const __m128i high = _mm_unpackhi_epi8(columns, zero);  // columns 2, 3
+    const __m128 c0 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(low, zero));
+    const __m128 c1 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(low, zero));
+    const __m128 c2 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(high, zero));
+    const __m128 c3 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(high, zero));
+    __m128 line =
+        _mm_add_ps(_mm_mul_ps(_mm_set1_ps(wx[0]), c0), _mm_mul_ps(_mm_set1_ps(wx[1]), c1));
+    line = _mm_add_ps(line, _mm_mul_ps(_mm_set1_ps(wx[2]), c2));
+    line = _mm_add_ps(line, _mm_mul_ps(_mm_set1_ps(wx[3]), c3));
+    alignas(16) float terms[4];
+    _mm_store_ps(terms, _mm_mul_ps(_mm_loadu_ps(wy), line));
+    return ((terms[0] + terms[1]) + terms[2]) + terms[3];
+#else
+    float sum = 0.0f;
+    for (int j = 0; j < 4; ++j, row += step) {
+      sum += wy[j] * (wx[0] * row[0] + wx[1] * row[1] + wx[2] * row[2] + wx[3] * row[3]);
+    }
+    return sum;
+#endif
+  }
+
   static void CubicWeights(float t, float* w) {
     const float t2 = t * t, t3 = t2 * t;
     w[0] = -0.5f * t3 + t2 - 0.5f * t;
@@ -151,11 +197,14 @@ void ProfileCrossings(float* f, int size, int m, double step, double first_thres
   };
   const double centre = at(m);
   const int last = size - 1;
+  // Thresholds first_threshold + j <= centre are those with j < split (the difference of a float
+  // and a half-integer of grey-level range is exact in double, so the floor decides exactly).
+  const int split = static_cast<int>(
+      std::clamp(std::floor(centre - first_threshold) + 1.0, 0.0, static_cast<double>(count)));
   // Thresholds above the centre value, ascending: walk outwards.
   int k = m + 1;
-  for (int j = 0; j < count; ++j) {
+  for (int j = split; j < count; ++j) {
     const double t = first_threshold + j;
-    if (t <= centre) continue;
     while (k <= last && at(k) < t) ++k;
     if (k > last) {
       crossing[j] = (last - m) * step;
@@ -167,9 +216,8 @@ void ProfileCrossings(float* f, int size, int m, double step, double first_thres
   }
   // Thresholds at or below the centre value, descending: walk inwards.
   k = m - 1;
-  for (int j = count - 1; j >= 0; --j) {
+  for (int j = split - 1; j >= 0; --j) {
     const double t = first_threshold + j;
-    if (t > centre) continue;
     while (k >= 0 && at(k) >= t) --k;
     if (k < 0) {
       crossing[j] = -m * step;
@@ -275,6 +323,10 @@ bool SelectLevel(int first_level, int count, double middle_level, double previou
 }
 
 }  // namespace
+
+float InterpolateProfileCubic(const cv::Mat& gray, double x, double y) {
+  return ProfileSampler(gray).Cubic(x, y);
+}
 
 inline float WeightedStabilityEvaluator::Sample(int r, int k) {
   const float value = samples_[static_cast<size_t>(r) * (2 * m_ + 1) + k];
@@ -394,8 +446,10 @@ bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
 }
 
 void WeightedStabilityEvaluator::ComputeCrossings(int j) {
-  // The thresholds a level needs span 2δ + 1; a few more on either side cover its neighbours.
-  const int slack = 2 * delta_steps_ + 4;
+  // A level asks for thresholds j - δ and j + δ (Evaluate), so windows of δ + 2 around each
+  // cover its band and the neighbouring levels the choice looks at next; wider windows were
+  // measured to compute mostly crossings that are never read.
+  const int slack = delta_steps_ + 2;
   int begin = std::max(0, j - slack);
   int end = std::min(num_thresholds_, j + slack + 1);
   if (computed_end_ > computed_begin_) {
@@ -433,14 +487,20 @@ const WeightedStabilityEvaluator::LevelValues& WeightedStabilityEvaluator::Evalu
   const int j = l + delta_steps_;  // threshold index of the level itself
   const double delta = options_.delta;
   const bool whole_delta = delta == delta_steps_;
+  // The level reads the thresholds j - δ .. j + δ (a fractional δ interpolates between whole
+  // ones inside that range): make sure their crossings are computed, then read them directly.
+  for (const int needed : {j - delta_steps_, j + delta_steps_}) {
+    if (needed < computed_begin_ || needed >= computed_end_) ComputeCrossings(needed);
+  }
+  const int stride = num_thresholds_;
   auto u_at = [&](int r, double jj) {  // crossing of threshold index jj (may be fractional)
-    bool clipped = false;
-    if (whole_delta) return Crossing(r, static_cast<int>(jj), &clipped);
+    const double* row = &crossings_[static_cast<size_t>(r) * stride];
+    if (whole_delta) return row[static_cast<int>(jj)];
     const int j0 = std::clamp(static_cast<int>(std::floor(jj)), 0, num_thresholds_ - 1);
     const int j1 = std::min(j0 + 1, num_thresholds_ - 1);
     const double t = std::clamp(jj - j0, 0.0, 1.0);
-    const double u0 = Crossing(r, j0, &clipped);
-    const double u1 = Crossing(r, j1, &clipped);
+    const double u0 = row[j0];
+    const double u1 = row[j1];
     return u0 + t * (u1 - u0);
   };
   // Length element of the level's curve at each normal: half of each adjoining chord between
@@ -449,9 +509,9 @@ const WeightedStabilityEvaluator::LevelValues& WeightedStabilityEvaluator::Evalu
   cv::Point2d previous;
   bool previous_valid = false;
   for (int r = 0; r < num_normals_; ++r) {
-    bool clipped = false;
-    const double u = Crossing(r, j, &clipped);
-    const bool valid = !clipped;
+    const size_t index = static_cast<size_t>(r) * stride + j;
+    const double u = crossings_[index];
+    const bool valid = clipped_[index] == 0;
     const cv::Point2d q = points_[r] + u * normals_[r];
     if (valid && previous_valid) {
       const double dx = q.x - previous.x;

@@ -69,6 +69,11 @@ std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& 
 // ---------------------------------------------------------------------------------------------
 // Convergence stage.
 
+// The cubic convolution (Catmull-Rom, Keys a = -0.5, border replicated) that samples the normal
+// profiles near the curve, at (x, y) in pixel-centre coordinates of an 8-bit image. Exposed so
+// that its vectorised form can be checked against the formula.
+float InterpolateProfileCubic(const cv::Mat& gray, double x, double y);
+
 struct WeightedStabilityOptions {
   // Samples on either side of p in the segment, k (≈ 25 points per ICS, paper §3).
   int half_length = 12;

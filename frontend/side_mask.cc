@@ -1,7 +1,6 @@
 #include "frontend/side_mask.h"
 
 #include <array>
-#include <deque>
 
 #include "frontend/iso_curve.h"
 
@@ -22,8 +21,10 @@ std::vector<PatchSide> ComputeSideMask(const cv::Mat& gray, double threshold,
   std::array<uint8_t, kSize * kSize> cut_right{};
   std::array<uint8_t, kSize * kSize> cut_down{};
   auto local_index = [&](const cv::Point& p) { return (p.y - patch.y) * kSize + (p.x - patch.x); };
-  std::deque<int> queue;
-  std::vector<uint8_t> near_curve(kSize * kSize, 0);
+  // Every pixel enters the queue at most once (it is labelled when it enters).
+  std::array<int, kSize * kSize> queue;
+  int head = 0, tail = 0;
+  std::array<uint8_t, kSize * kSize> near_curve{};
   for (const CurveEdge& edge : curve.edges) {
     const cv::Point lo(std::min(edge.inside.x, edge.outside.x),
                        std::min(edge.inside.y, edge.outside.y));
@@ -33,11 +34,11 @@ std::vector<PatchSide> ComputeSideMask(const cv::Mat& gray, double threshold,
     // Seeds in curve order, so the fill (and any tie where the cut is open) is deterministic.
     if (mask[inside] == PatchSide::kNone) {
       mask[inside] = PatchSide::kMinus;
-      queue.push_back(inside);
+      queue[tail++] = inside;
     }
     if (mask[outside] == PatchSide::kNone) {
       mask[outside] = PatchSide::kPlus;
-      queue.push_back(outside);
+      queue[tail++] = outside;
     }
     const double v_in = tracer.Value(edge.inside);
     const double t = (threshold - v_in) / (tracer.Value(edge.outside) - v_in);
@@ -46,9 +47,8 @@ std::vector<PatchSide> ComputeSideMask(const cv::Mat& gray, double threshold,
   }
   // Breadth-first fill of both sides within the image part of the patch, not across cut links.
   const cv::Rect image_rect(0, 0, gray.cols, gray.rows);
-  while (!queue.empty()) {
-    const int index = queue.front();
-    queue.pop_front();
+  while (head < tail) {
+    const int index = queue[head++];
     const int u = index % kSize;
     const int v = index / kSize;
     auto visit = [&](int nu, int nv, bool cut) {
@@ -57,7 +57,7 @@ std::vector<PatchSide> ComputeSideMask(const cv::Mat& gray, double threshold,
       if (mask[next] != PatchSide::kNone) return;
       if (!image_rect.contains(cv::Point(patch.x + nu, patch.y + nv))) return;
       mask[next] = mask[index];
-      queue.push_back(next);
+      queue[tail++] = next;
     };
     visit(u + 1, v, u + 1 < kSize && cut_right[index]);
     visit(u - 1, v, u > 0 && cut_right[index - 1]);
