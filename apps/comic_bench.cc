@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/features2d.hpp>
@@ -122,7 +123,8 @@ int Run(int argc, char** argv) {
       "comic_bench", "[IMAGE] [options]",
       "Times CoMIC (1 thread and N threads), OpenCV MSER (delta 5), FAST-9 and GFTT-Harris on\n"
       "IMAGE resized to --resize-height, each run --runs times after one warm-up run, and prints\n"
-      "the median milliseconds per frame and the ratio CoMIC (1 thread) / MSER. OpenCV's own\n"
+      "the median milliseconds per frame and the ratio CoMIC (1 thread) / MSER, then CoMIC's\n"
+      "one-thread time by stage (initialisation, convergence, output). OpenCV's own\n"
       "thread pool is left as configured (cv::getNumThreads() is reported).");
   parser.AddPositional("IMAGE",
                        "a real frame [default: ../shared/data/middlebury2003_cones/im2.png]",
@@ -171,7 +173,13 @@ int Run(int argc, char** argv) {
     Timing timing;
   };
   std::vector<Entry> entries;
-  entries.push_back({"CoMIC", 1, Time(runs, [&] { return comic_1.Detect(gray).size(); })});
+  std::vector<comic::frontend::ComicDetectionStats> stages;  // of the 1-thread runs
+  entries.push_back({"CoMIC", 1, Time(runs, [&] {
+                       comic::frontend::ComicDetectionStats stats;
+                       const size_t count = comic_1.Detect(gray, &stats).size();
+                       stages.push_back(stats);
+                       return count;
+                     })});
   entries.push_back({"CoMIC", many, Time(runs, [&] { return comic_n.Detect(gray).size(); })});
   entries.push_back({"OpenCV MSER (delta 5)", 1, Time(runs, [&] {
                        std::vector<std::vector<cv::Point>> regions;
@@ -204,6 +212,24 @@ int Run(int argc, char** argv) {
             << " threads): " << entries[1].timing.median_ms / mser_ms << "\nCoMIC speed-up with "
             << many << " threads: " << entries[0].timing.median_ms / entries[1].timing.median_ms
             << "\n";
+  // Where CoMIC's one-thread time goes: medians of each stage over the timed runs (the warm-up
+  // run, first, left out).
+  stages.erase(stages.begin());
+  auto median_of = [&](double comic::frontend::ComicDetectionStats::*field) {
+    std::vector<double> values;
+    for (const auto& stats : stages) values.push_back(stats.*field);
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+  };
+  const comic::frontend::ComicDetectionStats& counts = stages.front();
+  const double init_ms = median_of(&comic::frontend::ComicDetectionStats::initialisation_ms);
+  std::cout << std::fixed << std::setprecision(1)
+            << "CoMIC stages, 1 thread (medians): initialisation " << init_ms << " ms ("
+            << init_ms / mser_ms << " x MSER), convergence "
+            << median_of(&comic::frontend::ComicDetectionStats::convergence_ms) << " ms ("
+            << counts.num_seeds << " seeds, " << counts.num_iterations << " iterations, "
+            << counts.num_settled << " settled), side masks and output "
+            << median_of(&comic::frontend::ComicDetectionStats::output_ms) << " ms\n";
   if (!json_path.empty()) {
     comic::io::WriteFileAtomically(json_path, table.ToJson().dump(1) + "\n");
   }

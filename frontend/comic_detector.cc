@@ -1,6 +1,7 @@
 #include "frontend/comic_detector.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <unordered_map>
@@ -121,11 +122,22 @@ class StateGrid {
 
 }  // namespace
 
-FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
+FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats) const {
   COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
               "comic: expected a non-empty 8-bit single-channel image");
   const ComicDetectorOptions& o = options_;
+  ComicDetectionStats local_stats;
+  if (stats == nullptr) stats = &local_stats;
+  *stats = ComicDetectionStats();
   if (gray.cols < o.block_size || gray.rows < o.block_size) return {};
+  auto stage_start = std::chrono::steady_clock::now();
+  // Milliseconds since the previous call (or the start).
+  auto lap = [&stage_start] {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
+    stage_start = now;
+    return ms;
+  };
 
   // ---- Initialisation (Algorithm 1 lines 4-6): blocks B x B, stride B/2, scale 2s, δ/2. ----
   const int factor = o.coarse_initialisation ? 2 : 1;
@@ -191,6 +203,8 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
       [&](const InitialCorner& a, const InitialCorner& b) {
         return a.polarity == b.polarity && std::abs(a.level - b.level) <= o.delta;
       });
+
+  stats->initialisation_ms = lap();
 
   // ---- Feature convergence (Algorithm 1 lines 7-17): B/2 blocks, scale s, δ, weights. ----
   ConvergenceOptions convergence;
@@ -261,8 +275,13 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
       std::sort(next.begin(), next.end());
       active.swap(next);
     }
+    stats->num_seeds += n;
     for (int i = 0; i < n; ++i) {
-      if (status[i] == Status::kSettled) corners.push_back(std::move(runs[i].result()));
+      stats->num_iterations += runs[i].iteration();
+      if (status[i] == Status::kSettled) {
+        ++stats->num_settled;
+        corners.push_back(std::move(runs[i].result()));
+      }
     }
   };
   converge(initial);
@@ -312,6 +331,8 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
       std::move(corners), o.merge_radius, [](const ConvergedCorner& c) { return c.position; },
       [](const ConvergedCorner&, const ConvergedCorner&) { return true; });
 
+  stats->convergence_ms = lap();
+
   // ---- Output: one feature per corner, with the side mask of its patch. ----
   FeatureSet features(corners.size());
   ParallelFor(static_cast<int>(corners.size()), o.num_threads, [&](int i, int) {
@@ -329,6 +350,7 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray) const {
     f.side_mask = ComputeSideMask(gray, c.threshold, c.apex, centre);
   });
   SortByResponse(&features);
+  stats->output_ms = lap();
   return features;
 }
 

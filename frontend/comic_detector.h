@@ -63,12 +63,25 @@ struct ComicDetectorOptions {
   void Check() const;
 };
 
+// Where one detection spent its work, for benchmarks and diagnostics (the features do not depend
+// on whether it is asked for). Times are wall-clock milliseconds.
+struct ComicDetectionStats {
+  double initialisation_ms = 0.0;  // block trees, MSICS, initial corners (Algorithm 1 lines 4-6)
+  double convergence_ms = 0.0;     // both convergence rounds (lines 7-17), merge included
+  double output_ms = 0.0;          // side masks and sorting
+  int num_seeds = 0;               // initial corners converged (both rounds)
+  int num_iterations = 0;          // convergence iterations over all seeds
+  int num_settled = 0;             // seeds that settled, before duplicates are merged
+};
+
 class ComicDetector : public Detector {
  public:
   explicit ComicDetector(const ComicDetectorOptions& options = {});
 
   std::string Name() const override { return "comic"; }
-  FeatureSet Detect(const cv::Mat& gray) const override;
+  FeatureSet Detect(const cv::Mat& gray) const override { return Detect(gray, nullptr); }
+  // The same, filling `stats` when it is not null.
+  FeatureSet Detect(const cv::Mat& gray, ComicDetectionStats* stats) const;
 
   const ComicDetectorOptions& options() const { return options_; }
 

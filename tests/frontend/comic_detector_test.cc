@@ -470,6 +470,38 @@ TEST(ComicDetector, OutputIsIdenticalWithOneAndTwoThreads) {
   ExpectIdentical(a, ComicDetector(one).Detect(image));
 }
 
+TEST(ComicDetector, StatisticsAccountForEverySeedAndLeaveTheFeaturesUnchanged) {
+  const cv::Mat image = TexturedScene(10);
+  ComicDetectorOptions options;
+  options.num_threads = 2;
+  const ComicDetector detector(options);
+  ComicDetectionStats stats;
+  stats.num_seeds = -7;  // overwritten, not accumulated
+  const FeatureSet features = detector.Detect(image, &stats);
+  ExpectIdentical(features, detector.Detect(image));
+  // Every feature is a settled seed (duplicates merged), every settled seed took at least one
+  // iteration, and no seed took more than max_iterations.
+  EXPECT_GE(stats.num_settled, static_cast<int>(features.size()));
+  EXPECT_GE(stats.num_seeds, stats.num_settled);
+  EXPECT_GE(stats.num_iterations, stats.num_settled);
+  EXPECT_LE(stats.num_iterations, options.max_iterations * stats.num_seeds);
+  EXPECT_GT(stats.initialisation_ms, 0.0);
+  EXPECT_GT(stats.convergence_ms, 0.0);
+  EXPECT_GE(stats.output_ms, 0.0);
+  // The counts are properties of the image, not of the run.
+  ComicDetectionStats again;
+  detector.Detect(image, &again);
+  EXPECT_EQ(again.num_seeds, stats.num_seeds);
+  EXPECT_EQ(again.num_iterations, stats.num_iterations);
+  EXPECT_EQ(again.num_settled, stats.num_settled);
+  // A frame smaller than a block does no work.
+  ComicDetectionStats none;
+  none.num_seeds = 5;
+  EXPECT_TRUE(detector.Detect(cv::Mat(40, 40, CV_8UC1, cv::Scalar(9)), &none).empty());
+  EXPECT_EQ(none.num_seeds, 0);
+  EXPECT_EQ(none.num_iterations, 0);
+}
+
 TEST(ComicDetector, SkippingDuplicateConvergencePathsKeepsTheCorners) {
   // Seeds that reach another seed's state are suspended; the corners found must be those every
   // seed converged to the end gives, up to which of two near-identical results the merge keeps.
