@@ -296,24 +296,27 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
   for (int gap = 1; gap <= options_.match_window && gap <= frame; ++gap) {
     const int earlier = frame - gap;
     const bool verify = options_.verify_min_gap > 0 && gap >= options_.verify_min_gap;
-    const SearchRegions search =
-        PredictSearchRegions(earlier, gray, features, coarse, accepted_to_frame, false);
-    std::vector<PatchMatch> mutual = SelectMutualBest(ComputeCandidateCosts(
-        grays_[earlier], features_[earlier], gray, features, options_.matcher, search));
-    std::vector<PatchMatch> accepted = ApplyCostThreshold(mutual, options_.matcher.max_cost);
-    if (verify)
-      accepted = VerifyMatches(features_[earlier], features, accepted, options_.verification);
+    // The earlier frame matched to this one as given (gray2, features2, coarse2), or turned by
+    // 180°: the mutual best matches, and those accepted (cost threshold, then the epipolar
+    // verification on the features as stored, whose indices the turned ones share).
+    auto match = [&](const cv::Mat& gray2, const FeatureSet& features2, const CoarseFrame& coarse2,
+                     bool is_turned, std::vector<PatchMatch>* mutual,
+                     std::vector<PatchMatch>* accepted) {
+      const SearchRegions search =
+          PredictSearchRegions(earlier, gray2, features2, coarse2, accepted_to_frame, is_turned);
+      *mutual = SelectMutualBest(ComputeCandidateCosts(grays_[earlier], features_[earlier], gray2,
+                                                       features2, options_.matcher, search));
+      *accepted = ApplyCostThreshold(*mutual, options_.matcher.max_cost);
+      if (verify) {
+        *accepted = VerifyMatches(features_[earlier], features, *accepted, options_.verification);
+      }
+    };
+    std::vector<PatchMatch> mutual, accepted;
+    match(gray, features, coarse, false, &mutual, &accepted);
     if (verify && options_.match_turned_180) {
       if (!turned) turned = TurnFrame180(gray, features, coarse);
-      const SearchRegions turned_search = PredictSearchRegions(
-          earlier, turned->gray, turned->features, turned->coarse, accepted_to_frame, true);
-      std::vector<PatchMatch> turned_mutual = SelectMutualBest(
-          ComputeCandidateCosts(grays_[earlier], features_[earlier], turned->gray, turned->features,
-                                options_.matcher, turned_search));
-      // Verified on the features as stored (the same indices), as TracksAtThreshold does.
-      std::vector<PatchMatch> turned_accepted = VerifyMatches(
-          features_[earlier], features,
-          ApplyCostThreshold(turned_mutual, options_.matcher.max_cost), options_.verification);
+      std::vector<PatchMatch> turned_mutual, turned_accepted;
+      match(turned->gray, turned->features, turned->coarse, true, &turned_mutual, &turned_accepted);
       if (turned_accepted.size() > accepted.size()) {
         mutual = std::move(turned_mutual);
         accepted = std::move(turned_accepted);

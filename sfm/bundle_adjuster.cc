@@ -117,6 +117,20 @@ BundleAdjuster::BundleAdjuster(const BundleAdjustmentOptions& options,
   options_.Check();
 }
 
+std::set<image_t> ConstantNeighbourImages(const Reconstruction& reconstruction,
+                                          const std::set<image_t>& image_ids,
+                                          const std::set<point3D_t>& point_ids) {
+  std::set<image_t> neighbours;
+  for (point3D_t point3D_id : point_ids) {
+    for (const TrackElement& element : reconstruction.point3D(point3D_id).track) {
+      if (!image_ids.count(element.image_id) && reconstruction.image(element.image_id).registered) {
+        neighbours.insert(element.image_id);
+      }
+    }
+  }
+  return neighbours;
+}
+
 BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) const {
   COMIC_CHECK(reconstruction != nullptr, kInvalidArgument, "bundle adjustment: no reconstruction");
   const auto start = std::chrono::steady_clock::now();
@@ -136,15 +150,8 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
     }
   }
   std::set<image_t> observing_ids(config_.image_ids.begin(), config_.image_ids.end());
-  std::set<image_t> neighbour_ids;  // registered images outside the config seeing its points
-  for (point3D_t point3D_id : point_id_set) {
-    for (const TrackElement& element : reconstruction->point3D(point3D_id).track) {
-      if (!config_.image_ids.count(element.image_id) &&
-          reconstruction->image(element.image_id).registered) {
-        neighbour_ids.insert(element.image_id);
-      }
-    }
-  }
+  const std::set<image_t> neighbour_ids =
+      ConstantNeighbourImages(*reconstruction, config_.image_ids, point_id_set);
   observing_ids.insert(neighbour_ids.begin(), neighbour_ids.end());
   std::vector<image_t> image_ids;  // images with at least one observation in the problem
   std::set<camera_t> camera_id_set;

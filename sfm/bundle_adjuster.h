@@ -66,6 +66,12 @@ struct BundleAdjustmentSummary {
   std::string termination;  // Ceres's termination type and message
 };
 
+// Registered images outside `image_ids` that observe one of `point_ids`: an adjustment of
+// `image_ids` (and of the points they see) holds these images' poses constant.
+std::set<image_t> ConstantNeighbourImages(const Reconstruction& reconstruction,
+                                          const std::set<image_t>& image_ids,
+                                          const std::set<point3D_t>& point_ids);
+
 class BundleAdjuster {
  public:
   // Throws comic::Error(kInvalidArgument) for invalid options.

@@ -481,19 +481,15 @@ BundleAdjustmentSummary IncrementalMapper::AdjustLocalBundle(
     }
   }
   // Registered images outside the window that see its points: the adjuster holds them constant.
-  std::set<image_t> constant_neighbours;
-  for (point3D_t point3D_id : point_ids) {
-    for (const TrackElement& element : reconstruction_.point3D(point3D_id).track) {
-      if (!variable.count(element.image_id)) constant_neighbours.insert(element.image_id);
-    }
-  }
+  const size_t num_constant_neighbours =
+      ConstantNeighbourImages(reconstruction_, variable, point_ids).size();
   BundleAdjustmentConfig config;
   config.image_ids = variable;
   FixGauge(&config);
   // Without the initial pair and with fewer than two constant neighbours the window would float
   // freely: hold its earliest-registered images fixed until two poses anchor it.
   for (image_t id : registration_order_) {
-    if (constant_neighbours.size() + config.constant_pose_ids.size() +
+    if (num_constant_neighbours + config.constant_pose_ids.size() +
             config.fixed_scale_image_ids.size() >=
         2) {
       break;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "io/error.h"
 #include "sfm/synthetic_scene.h"
@@ -156,6 +157,38 @@ TEST(BundleAdjuster, IsDeterministic) {
   for (const auto& [id, point] : a.perturbed.points3D()) {
     EXPECT_EQ(point.xyz, b.perturbed.point3D(id).xyz);
   }
+}
+
+TEST(BundleAdjuster, ConstantNeighboursAreTheRegisteredImagesSeeingTheWindowsPoints) {
+  Reconstruction reconstruction = MakeScene(3).truth;
+  const std::set<image_t> window = {3, 4};
+  std::set<point3D_t> point_ids;
+  for (image_t id : window) {
+    for (const Point2D& point2D : reconstruction.image(id).points2D) {
+      if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
+    }
+  }
+  // Found the other way round: images outside the window with an observation of those points.
+  auto expected = [&] {
+    std::set<image_t> images;
+    for (image_t id : reconstruction.RegisteredImageIds()) {
+      if (window.count(id)) continue;
+      for (const Point2D& point2D : reconstruction.image(id).points2D) {
+        if (point2D.HasPoint3D() && point_ids.count(point2D.point3D_id)) images.insert(id);
+      }
+    }
+    return images;
+  };
+  const std::set<image_t> neighbours = ConstantNeighbourImages(reconstruction, window, point_ids);
+  EXPECT_EQ(neighbours, expected());
+  EXPECT_EQ(neighbours.size(), 4u);  // every other frame of the six sees some of those points
+  // An image not registered (its observations still in the tracks) is no neighbour, and no point
+  // means no neighbour.
+  reconstruction.image(6).registered = false;
+  const std::set<image_t> registered = ConstantNeighbourImages(reconstruction, window, point_ids);
+  EXPECT_EQ(registered.count(6), 0u);
+  EXPECT_EQ(registered.size(), 3u);
+  EXPECT_TRUE(ConstantNeighbourImages(reconstruction, window, {}).empty());
 }
 
 TEST(BundleAdjuster, EmptyProblemsAndBadInput) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "io/error.h"
+#include "sfm/ground_truth.h"
 #include "sfm/synthetic_scene.h"
 #include "sfm/trajectory_evaluation.h"
 
@@ -14,14 +15,8 @@ namespace {
 
 std::optional<TrajectoryEvaluation> Evaluate(const IncrementalReconstruction& result,
                                              const SyntheticScene& scene) {
-  std::vector<std::optional<Rigid3d>> estimated(scene.cams_from_world.size());
-  std::vector<std::optional<Rigid3d>> truth(scene.cams_from_world.begin(),
-                                            scene.cams_from_world.end());
-  for (const auto& [image_id, image] : result.reconstruction.images()) {
-    if (image.registered)
-      estimated[IncrementalMapper::FrameOfImageId(image_id)] = image.cam_from_world;
-  }
-  return EvaluateTrajectory(estimated, truth);
+  return EvaluateTrajectory(RegisteredPosesByName(result.reconstruction, scene.tracks.frame_names),
+                            {scene.cams_from_world.begin(), scene.cams_from_world.end()});
 }
 
 void ExpectAccurate(const SyntheticSceneOptions& scene_options) {

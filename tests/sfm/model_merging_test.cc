@@ -6,6 +6,7 @@
 #include <random>
 #include <set>
 
+#include "sfm/ground_truth.h"
 #include "sfm/incremental_mapper.h"
 #include "sfm/synthetic_scene.h"
 #include "sfm/trajectory_evaluation.h"
@@ -49,14 +50,8 @@ void GrowModel(IncrementalMapper* mapper, int first, int last, int num_frames) {
 
 std::optional<TrajectoryEvaluation> Evaluate(const Reconstruction& reconstruction,
                                              const SyntheticScene& scene) {
-  std::vector<std::optional<Rigid3d>> estimated(scene.cams_from_world.size());
-  std::vector<std::optional<Rigid3d>> truth(scene.cams_from_world.begin(),
-                                            scene.cams_from_world.end());
-  for (const auto& [image_id, image] : reconstruction.images()) {
-    if (image.registered)
-      estimated[IncrementalMapper::FrameOfImageId(image_id)] = image.cam_from_world;
-  }
-  return EvaluateTrajectory(estimated, truth);
+  return EvaluateTrajectory(RegisteredPosesByName(reconstruction, scene.tracks.frame_names),
+                            {scene.cams_from_world.begin(), scene.cams_from_world.end()});
 }
 
 TEST(ModelMerging, JoinsModelsSharingOneFrameWithTheRightScale) {
