@@ -94,11 +94,14 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   const int reach = 2 * k + 3 * BoxRadiusForGaussian(options.sigma) + 2;
   IsoCurve& traced = workspace->traced;
   tracer.Trace(seed, 2 * reach, &traced);
-  if (traced.closed && PolylineLength(traced.points, true) < 4 * k + 1) return false;
+  std::vector<double>& arc_lengths = workspace->arc_lengths;
+  PolylineArcLengths(traced.points, traced.closed, &arc_lengths);
+  if (traced.closed && arc_lengths.back() < 4 * k + 1) return false;
   int origin = 0;
-  const double s_seed = ArcLengthAt(traced.points, traced.seed_index);
-  std::vector<cv::Point2f> samples =
-      ResamplePolyline(traced.points, traced.closed, 1.0, s_seed, reach, reach, &origin);
+  const double s_seed = arc_lengths[std::clamp(
+      traced.seed_index, 0, std::max(0, static_cast<int>(traced.points.size()) - 1))];
+  std::vector<cv::Point2f> samples = ResamplePolyline(traced.points, arc_lengths, traced.closed,
+                                                      1.0, s_seed, reach, reach, &origin);
   const int n = static_cast<int>(samples.size());
   if (n < 2 * k + 1) return false;
 

@@ -77,6 +77,7 @@ struct ConvergenceWorkspace {
   CornernessWorkspace cornerness;
   std::vector<double> kappa;
   IsoCurve traced;
+  std::vector<double> arc_lengths;
 };
 
 // One convergence iteration: weights centred on the point of `reference` (a polyline along the

@@ -55,6 +55,16 @@ void InitialCornerDetector::DetectInBlock(const cv::Mat& image, const cv::Rect& 
   std::fill(edge_stamp_.begin(), edge_stamp_.begin() + 2 * padded_size, 0);
   if (static_cast<int>(stable_index_.size()) < padded_size) stable_index_.resize(padded_size, -1);
   for (int i = 0; i < static_cast<int>(stable.size()); ++i) stable_index_[stable[i].node] = i;
+  // The walk below visits only stable nodes: from the root down (reverse processing order), each
+  // node's nearest stable ancestor-or-self.
+  if (static_cast<int>(stable_up_.size()) < padded_size) stable_up_.resize(padded_size);
+  {
+    const std::vector<int>& nodes = tree_.Nodes();
+    for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
+      const int parent = tree_.Parent(*it);
+      stable_up_[*it] = stable_index_[*it] >= 0 ? *it : (parent < 0 ? -1 : stable_up_[parent]);
+    }
+  }
 
   // Seeds: the crossings of each component's level in the owned part whose inside pixel belongs
   // to the component. One pass over the owned 4-neighbour pairs: a pair with values a < b is
@@ -71,12 +81,14 @@ void InitialCornerDetector::DetectInBlock(const cv::Mat& image, const cv::Rect& 
         if (!tree_.InBlock(q) || tree_.Value(p) == tree_.Value(q)) continue;
         const int in = tree_.Value(p) < tree_.Value(q) ? p : q;
         const int out_value = tree_.Value(p) < tree_.Value(q) ? tree_.Value(q) : tree_.Value(p);
-        for (int node = tree_.NodeOfPixel(in); node >= 0 && tree_.Level(node) < out_value;
-             node = tree_.Parent(node)) {
+        // Levels grow towards the root, so skipping the unstable nodes on the way up visits the
+        // same stable ones.
+        for (int node = stable_up_[tree_.NodeOfPixel(in)];
+             node >= 0 && tree_.Level(node) < out_value;) {
           const int index = stable_index_[node];
-          if (index >= 0 && stable[index].level < out_value) {
-            seeds_.push_back({index, 2 * p + direction});
-          }
+          if (stable[index].level < out_value) seeds_.push_back({index, 2 * p + direction});
+          const int parent = tree_.Parent(node);
+          node = parent < 0 ? -1 : stable_up_[parent];
         }
       }
     }
@@ -137,10 +149,11 @@ void InitialCornerDetector::AddCornersOfCurve(const CornerContext& context,
   if (static_cast<int>(curve_.points.size()) < 2 * k + 1) return;
   // A closed curve must be long enough for a segment to be a proper part of it (at most half):
   // on a small loop κ is near its maximum everywhere and the corner is arbitrary.
-  const double length = PolylineLength(curve_.points, curve_.closed);
+  PolylineArcLengths(curve_.points, curve_.closed, &arc_lengths_);
+  const double length = arc_lengths_.back();
   if (curve_.closed && length < 4 * k + 1) return;
   int origin_index = 0;
-  samples_ = ResamplePolyline(curve_.points, curve_.closed, 1.0, 0.0, 0,
+  samples_ = ResamplePolyline(curve_.points, arc_lengths_, curve_.closed, 1.0, 0.0, 0,
                               static_cast<int>(length) + 1, &origin_index);
   const int n = static_cast<int>(samples_.size());
   if (n < 2 * k + 1) return;

@@ -85,10 +85,13 @@ class InitialCornerDetector {
   std::vector<int> edge_stamp_;
   // Seed crossings per stable component: (index in the stable list, 2 * pixel + direction).
   std::vector<int> stable_index_;  // per tree node: its index in the stable list, or -1
+  // Per tree node: the node itself if it is stable, else its nearest stable ancestor, or -1.
+  std::vector<int> stable_up_;
   std::vector<std::pair<int, int>> seeds_;
   std::vector<int> seed_start_;
   std::vector<int> seed_fill_;
   std::vector<int> sorted_seeds_;
+  std::vector<double> arc_lengths_;
   std::vector<cv::Point2f> samples_;
   std::vector<cv::Point2f> part_;
   std::vector<double> kappa_;

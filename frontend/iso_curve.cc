@@ -129,19 +129,6 @@ double Distance(const cv::Point2f& a, const cv::Point2f& b) {
   return std::sqrt(dx * dx + dy * dy);
 }
 
-// Cumulative arc length at each vertex, plus the total (closing segment included if closed) as
-// the last element.
-std::vector<double> CumulativeLengths(const std::vector<cv::Point2f>& points, bool closed) {
-  std::vector<double> cumulative(points.size() + 1, 0.0);
-  for (size_t i = 1; i < points.size(); ++i) {
-    cumulative[i] = cumulative[i - 1] + Distance(points[i - 1], points[i]);
-  }
-  const size_t n = points.size();
-  cumulative[n] =
-      n == 0 ? 0.0 : cumulative[n - 1] + (closed ? Distance(points[n - 1], points[0]) : 0.0);
-  return cumulative;
-}
-
 cv::Point2f Interpolate(const std::vector<cv::Point2f>& points,
                         const std::vector<double>& cumulative, bool closed, double s) {
   const size_t n = points.size();
@@ -159,8 +146,20 @@ cv::Point2f Interpolate(const std::vector<cv::Point2f>& points,
 
 }  // namespace
 
+void PolylineArcLengths(const std::vector<cv::Point2f>& points, bool closed,
+                        std::vector<double>* cumulative) {
+  const size_t n = points.size();
+  cumulative->resize(n + 1);
+  double* c = cumulative->data();
+  c[0] = 0.0;
+  for (size_t i = 1; i < n; ++i) c[i] = c[i - 1] + Distance(points[i - 1], points[i]);
+  c[n] = n == 0 ? 0.0 : c[n - 1] + (closed ? Distance(points[n - 1], points[0]) : 0.0);
+}
+
 double PolylineLength(const std::vector<cv::Point2f>& points, bool closed) {
-  return CumulativeLengths(points, closed).back();
+  std::vector<double> cumulative;
+  PolylineArcLengths(points, closed, &cumulative);
+  return cumulative.back();
 }
 
 double ArcLengthAt(const std::vector<cv::Point2f>& points, int index) {
@@ -174,10 +173,19 @@ double ArcLengthAt(const std::vector<cv::Point2f>& points, int index) {
 std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points, bool closed,
                                           double spacing, double origin, int max_before,
                                           int max_after, int* origin_index) {
+  std::vector<double> cumulative;
+  PolylineArcLengths(points, closed, &cumulative);
+  return ResamplePolyline(points, cumulative, closed, spacing, origin, max_before, max_after,
+                          origin_index);
+}
+
+std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points,
+                                          const std::vector<double>& cumulative, bool closed,
+                                          double spacing, double origin, int max_before,
+                                          int max_after, int* origin_index) {
   std::vector<cv::Point2f> samples;
   if (origin_index) *origin_index = 0;
   if (points.size() < 2 || spacing <= 0) return samples;
-  const std::vector<double> cumulative = CumulativeLengths(points, closed);
   const double length = cumulative.back();
   if (length <= 0) return samples;
   if (closed) {

@@ -86,6 +86,18 @@ std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points
                                           double spacing, double origin, int max_before,
                                           int max_after, int* origin_index);
 
+// The arc length at each vertex of a polyline, plus its total length (closing segment included
+// when `closed`) as the last element; n + 1 values. `cumulative[i]` equals ArcLengthAt(points, i)
+// and `cumulative.back()` PolylineLength(points, closed), bit for bit.
+void PolylineArcLengths(const std::vector<cv::Point2f>& points, bool closed,
+                        std::vector<double>* cumulative);
+// ResamplePolyline given the polyline's PolylineArcLengths, for callers that also need the
+// lengths: the arc lengths are then computed once.
+std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points,
+                                          const std::vector<double>& cumulative, bool closed,
+                                          double spacing, double origin, int max_before,
+                                          int max_after, int* origin_index);
+
 // Arc length along the polyline of the point of the polyline nearest to `query`.
 double ProjectOntoPolyline(const std::vector<cv::Point2f>& points, bool closed,
                            const cv::Point2f& query);

@@ -111,6 +111,18 @@ class ProfileSampler {
   }
 
   float Bilinear(double x, double y) const {
+    if (x >= 0.0 && y >= 0.0 && x < gray_.cols - 1.0 && y < gray_.rows - 1.0) {
+      // Inside: the clamps below change nothing and (x0, y0) + 1 is in the image.
+      const int x0 = static_cast<int>(x);
+      const int y0 = static_cast<int>(y);
+      const float tx = static_cast<float>(x - x0);
+      const float ty = static_cast<float>(y - y0);
+      const uint8_t* r0 = gray_.ptr<uint8_t>(y0) + x0;
+      const uint8_t* r1 = r0 + gray_.step[0];
+      const float top = r0[0] + tx * (r0[1] - r0[0]);
+      const float bottom = r1[0] + tx * (r1[1] - r1[0]);
+      return top + ty * (bottom - top);
+    }
     x = std::clamp(x, 0.0, gray_.cols - 1.0);
     y = std::clamp(y, 0.0, gray_.rows - 1.0);
     const int x0 = std::min(static_cast<int>(x), std::max(0, gray_.cols - 2));
@@ -326,6 +338,10 @@ bool SelectLevel(int first_level, int count, double middle_level, double previou
 
 float InterpolateProfileCubic(const cv::Mat& gray, double x, double y) {
   return ProfileSampler(gray).Cubic(x, y);
+}
+
+float InterpolateProfileBilinear(const cv::Mat& gray, double x, double y) {
+  return ProfileSampler(gray).Bilinear(x, y);
 }
 
 inline float WeightedStabilityEvaluator::Sample(int r, int k) {

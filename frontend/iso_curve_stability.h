@@ -73,6 +73,10 @@ std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& 
 // profiles near the curve, at (x, y) in pixel-centre coordinates of an 8-bit image. Exposed so
 // that its vectorised form can be checked against the formula.
 float InterpolateProfileCubic(const cv::Mat& gray, double x, double y);
+// The bilinear interpolation that samples the profiles beyond cubic_distance (coordinates clamped
+// to the image), exposed for the same reason: its fast path inside the image is checked against
+// the clamped formula.
+float InterpolateProfileBilinear(const cv::Mat& gray, double x, double y);
 
 struct WeightedStabilityOptions {
   // Samples on either side of p in the segment, k (≈ 25 points per ICS, paper §3).

@@ -66,6 +66,48 @@ TEST(IsoCurveStability, ProfileCubicIsTheScalarFormulaBitForBit) {
   EXPECT_EQ(InterpolateProfileCubic(gray, 10.0, 12.0), gray.at<uint8_t>(12, 10));
 }
 
+// Bilinear interpolation with the coordinates clamped to the image, in scalar form: each row
+// interpolated along x in float, then the two rows along y.
+float ReferenceBilinear(const cv::Mat& gray, double x, double y) {
+  x = std::clamp(x, 0.0, gray.cols - 1.0);
+  y = std::clamp(y, 0.0, gray.rows - 1.0);
+  const int x0 = std::min(static_cast<int>(x), std::max(0, gray.cols - 2));
+  const int y0 = std::min(static_cast<int>(y), std::max(0, gray.rows - 2));
+  const int x1 = std::min(x0 + 1, gray.cols - 1);
+  const int y1 = std::min(y0 + 1, gray.rows - 1);
+  const float tx = static_cast<float>(x - x0);
+  const float ty = static_cast<float>(y - y0);
+  auto at = [&](int yy, int xx) { return gray.at<uint8_t>(yy, xx); };
+  const float top = at(y0, x0) + tx * (at(y0, x1) - at(y0, x0));
+  const float bottom = at(y1, x0) + tx * (at(y1, x1) - at(y1, x0));
+  return top + ty * (bottom - top);
+}
+
+TEST(IsoCurveStability, ProfileBilinearIsTheClampedFormulaBitForBit) {
+  std::mt19937 random(11);
+  for (const cv::Size size : {cv::Size(29, 23), cv::Size(1, 9), cv::Size(9, 1)}) {
+    cv::Mat gray(size, CV_8UC1);
+    for (int y = 0; y < gray.rows; ++y) {
+      for (int x = 0; x < gray.cols; ++x) gray.at<uint8_t>(y, x) = random() % 256;
+    }
+    std::uniform_real_distribution<double> xs(-3.0, gray.cols + 2.0), ys(-3.0, gray.rows + 2.0);
+    int differences = 0;
+    for (int i = 0; i < 20000; ++i) {
+      // Random points, and points just inside and on the last row and column.
+      double x = xs(random), y = ys(random);
+      if (i % 10 == 0) x = gray.cols - 1 - 1e-9 * (i % 3);
+      if (i % 10 == 1) y = gray.rows - 1 - 1e-9 * (i % 3);
+      const float expected = ReferenceBilinear(gray, x, y);
+      const float actual = InterpolateProfileBilinear(gray, x, y);
+      if (std::memcmp(&expected, &actual, sizeof(float)) != 0) ++differences;
+    }
+    EXPECT_EQ(differences, 0) << size;
+    EXPECT_EQ(InterpolateProfileBilinear(gray, 0.0, 0.0), gray.at<uint8_t>(0, 0));
+    EXPECT_EQ(InterpolateProfileBilinear(gray, gray.cols + 5.0, gray.rows + 5.0),
+              gray.at<uint8_t>(gray.rows - 1, gray.cols - 1));
+  }
+}
+
 TEST(IsoCurveStability, UpAndDownLevelsBoundABandOfTwoDeltaLevels) {
   EXPECT_EQ(UpLevel(100.5, 5), 105);
   EXPECT_EQ(DownLevel(100.5, 5), 95);  // band 96..105

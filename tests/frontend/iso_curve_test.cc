@@ -185,5 +185,42 @@ TEST(IsoCurve, ResamplingIsUniformAlongTheArcLength) {
   EXPECT_NEAR(ArcLengthAt(square, 2), 20.0, 1e-9);
 }
 
+TEST(IsoCurve, ArcLengthsComputedOnceGiveTheSameLengthsAndSamples) {
+  // An irregular polyline (lengths not exact in binary), open and closed: the precomputed arc
+  // lengths must be the ones ArcLengthAt and PolylineLength give, and resampling with them the
+  // same samples, bit for bit (the detector relies on it to compute the lengths once).
+  std::vector<cv::Point2f> points;
+  for (int i = 0; i < 40; ++i) {
+    const double angle = 0.37 * i;
+    points.emplace_back(static_cast<float>(20 + (9 + 0.3 * i) * std::cos(angle)),
+                        static_cast<float>(20 + (7 + 0.1 * i) * std::sin(angle)));
+  }
+  for (bool closed : {false, true}) {
+    std::vector<double> cumulative;
+    PolylineArcLengths(points, closed, &cumulative);
+    ASSERT_EQ(cumulative.size(), points.size() + 1);
+    for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+      EXPECT_EQ(cumulative[i], ArcLengthAt(points, i)) << i;
+    }
+    EXPECT_EQ(cumulative.back(), PolylineLength(points, closed));
+    EXPECT_GT(cumulative.back(), cumulative[points.size() - 1] + (closed ? 1.0 : -1.0));
+    for (double origin : {0.0, 17.3, cumulative[11]}) {
+      int origin_a = -1, origin_b = -2;
+      const auto a = ResamplePolyline(points, closed, 1.0, origin, 30, 30, &origin_a);
+      const auto b = ResamplePolyline(points, cumulative, closed, 1.0, origin, 30, 30, &origin_b);
+      ASSERT_EQ(a.size(), b.size());
+      ASSERT_FALSE(a.empty());
+      EXPECT_EQ(origin_a, origin_b);
+      for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].x, b[i].x) << i;
+        EXPECT_EQ(a[i].y, b[i].y) << i;
+      }
+    }
+  }
+  std::vector<double> empty_lengths = {5.0};
+  PolylineArcLengths({}, true, &empty_lengths);
+  EXPECT_EQ(empty_lengths, std::vector<double>{0.0});
+}
+
 }  // namespace
 }  // namespace comic::frontend
