@@ -98,8 +98,7 @@ bool RedetectCorner(const cv::Mat& gray, const cv::Point2f& position,
   PolylineArcLengths(traced.points, traced.closed, &arc_lengths);
   if (traced.closed && arc_lengths.back() < 4 * k + 1) return false;
   int origin = 0;
-  const double s_seed = arc_lengths[std::clamp(
-      traced.seed_index, 0, std::max(0, static_cast<int>(traced.points.size()) - 1))];
+  const double s_seed = arc_lengths[traced.seed_index];  // the seed is always one of the points
   std::vector<cv::Point2f> samples = ResamplePolyline(traced.points, arc_lengths, traced.closed,
                                                       1.0, s_seed, reach, reach, &origin);
   const int n = static_cast<int>(samples.size());
