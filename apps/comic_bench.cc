@@ -14,7 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
-#include "frontend/comic_detector.h"
+#include "frontend/comic/comic_detector.h"
 #include "frontend/detector_factory.h"
 #include "frontend/parallel_for.h"
 #include "io/error.h"

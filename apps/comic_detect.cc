@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
-#include "frontend/comic_detector.h"
+#include "frontend/comic/comic_detector.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_io.h"

@@ -7,13 +7,13 @@
 
 #include "apps/common/arg_parser.h"
 #include "frontend/detector_factory.h"
-#include "frontend/tracker.h"
+#include "frontend/matching/tracker.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/ground_truth_cameras.h"
 #include "io/image_sequence.h"
-#include "sfm/colmap_export.h"
-#include "sfm/colmap_runner.h"
+#include "sfm/colmap/colmap_export.h"
+#include "sfm/colmap/colmap_runner.h"
 
 namespace {
 

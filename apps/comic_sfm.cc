@@ -4,7 +4,7 @@
 // point cloud, report.json and a top-view trajectory plot; with ground-truth cameras it also
 // reports the Sim(3)-aligned trajectory error. --compare runs several detectors on the same frames
 // and writes one table. All the work is done by the libraries (sfm/sequence_reconstruction.h,
-// sfm/sfm_report.h, ...); this file only wires flags to them.
+// sfm/evaluation/sfm_report.h, ...); this file only wires flags to them.
 #include <algorithm>
 #include <iostream>
 #include <map>
@@ -17,8 +17,8 @@
 
 #include "apps/common/arg_parser.h"
 #include "frontend/detector_factory.h"
-#include "frontend/region_labels.h"
-#include "frontend/tracker.h"
+#include "frontend/evaluation/region_labels.h"
+#include "frontend/matching/tracker.h"
 #include "io/colmap_text_model.h"
 #include "io/error.h"
 #include "io/file_utils.h"
@@ -30,16 +30,16 @@
 #include "io/report_table.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"
-#include "sfm/colmap_comparison.h"
-#include "sfm/colmap_export.h"
-#include "sfm/colmap_model_conversion.h"
-#include "sfm/colmap_runner.h"
-#include "sfm/ground_truth.h"
-#include "sfm/reconstruction_stats.h"
+#include "sfm/colmap/colmap_comparison.h"
+#include "sfm/colmap/colmap_export.h"
+#include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/colmap/colmap_runner.h"
+#include "sfm/evaluation/ground_truth.h"
+#include "sfm/evaluation/reconstruction_stats.h"
+#include "sfm/evaluation/sfm_report.h"
+#include "sfm/evaluation/trajectory_plot.h"
 #include "sfm/sequence_reconstruction.h"
-#include "sfm/sfm_report.h"
 #include "sfm/trajectory_evaluation.h"
-#include "sfm/trajectory_plot.h"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "apps/common/arg_parser.h"
-#include "frontend/stereo_evaluation.h"
-#include "frontend/stereo_evaluation_report.h"
-#include "frontend/stereo_match_figure.h"
+#include "frontend/evaluation/stereo_evaluation.h"
+#include "frontend/evaluation/stereo_evaluation_report.h"
+#include "frontend/evaluation/stereo_match_figure.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/middlebury.h"

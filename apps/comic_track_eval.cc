@@ -15,9 +15,9 @@
 #include <sstream>
 
 #include "apps/common/arg_parser.h"
-#include "frontend/epipolar_check.h"
-#include "frontend/track_drawing.h"
-#include "frontend/track_evaluation.h"
+#include "frontend/evaluation/epipolar_check.h"
+#include "frontend/evaluation/track_drawing.h"
+#include "frontend/evaluation/track_evaluation.h"
 #include "io/bar_chart.h"
 #include "io/error.h"
 #include "io/file_utils.h"

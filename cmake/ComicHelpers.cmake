@@ -2,7 +2,7 @@
 #
 #   comic_add_library(NAME comic_io SRCS a.cc b.cc PUBLIC_DEPS OpenCV... PRIVATE_DEPS ...)
 #   comic_add_executable(NAME comic_detect SRCS main.cc DEPS comic_frontend)
-#   comic_add_test(NAME frontend/comic_detector SRCS comic_detector_test.cc DEPS comic_frontend)
+#   comic_add_test(NAME frontend/comic/comic_detector SRCS comic_detector_test.cc DEPS comic_frontend)
 #
 # Tests are registered with gtest_discover_tests; every test case is named
 # "<NAME>.<Suite>.<Case>" so `ctest -R frontend/` selects a module.
@@ -41,7 +41,7 @@ function(comic_add_test)
 endfunction()
 
 # Adds one test executable per tests/<module>/<concept>_test.cc in the calling directory,
-# named "<module>/<concept>" (e.g. tests/frontend/comic_detector_test.cc -> frontend/comic_detector).
+# named "<module>/<concept>" (e.g. tests/frontend/comic/comic_detector_test.cc -> frontend/comic/comic_detector).
 function(comic_add_module_tests MODULE)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
   file(GLOB test_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)

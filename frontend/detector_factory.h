@@ -17,12 +17,12 @@
 #include <string>
 #include <vector>
 
-#include "frontend/comic_detector.h"
+#include "frontend/baselines/fast_detector.h"
+#include "frontend/baselines/harris_detector.h"
+#include "frontend/baselines/hessian_detector.h"
+#include "frontend/baselines/mser_detector.h"
+#include "frontend/comic/comic_detector.h"
 #include "frontend/detector.h"
-#include "frontend/fast_detector.h"
-#include "frontend/harris_detector.h"
-#include "frontend/hessian_detector.h"
-#include "frontend/mser_detector.h"
 
 namespace comic::frontend {
 

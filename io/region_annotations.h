@@ -15,7 +15,7 @@
 //     (x − 1.5 + w, y − 1.5 + h);
 //   - a VOT polygon's vertices are points in 1-based pixel coordinates: 1 is subtracted.
 // An annotation convention moves a region by at most a pixel either way — far less than the
-// boundary band the evaluation uses (frontend/region_labels.h).
+// boundary band the evaluation uses (frontend/evaluation/region_labels.h).
 #pragma once
 
 #include <opencv2/core.hpp>

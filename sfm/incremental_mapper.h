@@ -23,7 +23,7 @@
 #include <set>
 #include <vector>
 
-#include "frontend/track.h"
+#include "frontend/matching/track.h"
 #include "sfm/absolute_pose.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"

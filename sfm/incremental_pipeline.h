@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/track.h"
+#include "frontend/matching/track.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"
 #include "sfm/incremental_mapper.h"

@@ -9,8 +9,8 @@
 #pragma once
 
 #include "frontend/detector.h"
-#include "frontend/track.h"
-#include "frontend/tracker.h"
+#include "frontend/matching/track.h"
+#include "frontend/matching/tracker.h"
 #include "io/image_sequence.h"
 #include "sfm/camera.h"
 #include "sfm/incremental_pipeline.h"

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "frontend/track.h"
+#include "frontend/matching/track.h"
 #include "sfm/camera.h"
 #include "sfm/rigid3d.h"
 

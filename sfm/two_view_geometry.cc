@@ -4,7 +4,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
-#include "frontend/usac_params.h"
+#include "frontend/matching/usac_params.h"
 #include "io/error.h"
 #include "sfm/triangulation.h"
 
@@ -58,9 +58,10 @@ TwoViewGeometry EstimateCalibratedTwoViewGeometry(const Camera& camera1, const C
   const double mean_focal = (camera1.fx + camera1.fy + camera2.fx + camera2.fy) / 4.0;
   const double threshold = options.max_error_px / mean_focal;
 
-  // RANSAC with MSAC scoring and inner local optimisation (frontend/usac_params.h): the model
-  // and its inlier mask come from a least-squares fit to the inliers rather than from a minimal
-  // sample, whose noise would make the homography check and the initial pose needlessly poor.
+  // RANSAC with MSAC scoring and inner local optimisation (frontend/matching/usac_params.h): the
+  // model and its inlier mask come from a least-squares fit to the inliers rather than from a
+  // minimal sample, whose noise would make the homography check and the initial pose needlessly
+  // poor.
   const cv::UsacParams params = frontend::DeterministicUsacParams(
       threshold, options.confidence, options.max_num_iterations, options.random_seed);
   const cv::Mat unit_camera = cv::Mat::eye(3, 3, CV_64F);

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/patch_matcher.h"
-#include "frontend/track.h"
+#include "frontend/matching/patch_matcher.h"
+#include "frontend/matching/track.h"
 
 namespace comic::frontend {
 

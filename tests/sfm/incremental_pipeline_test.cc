@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "io/error.h"
-#include "sfm/ground_truth.h"
+#include "sfm/evaluation/ground_truth.h"
 #include "sfm/synthetic_scene.h"
 #include "sfm/trajectory_evaluation.h"
 

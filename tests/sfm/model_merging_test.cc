@@ -6,7 +6,7 @@
 #include <random>
 #include <set>
 
-#include "sfm/ground_truth.h"
+#include "sfm/evaluation/ground_truth.h"
 #include "sfm/incremental_mapper.h"
 #include "sfm/synthetic_scene.h"
 #include "sfm/trajectory_evaluation.h"

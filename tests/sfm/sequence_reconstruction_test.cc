@@ -8,7 +8,7 @@
 #include "frontend/detector_factory.h"
 #include "io/error.h"
 #include "io/ground_truth_cameras.h"
-#include "sfm/ground_truth.h"
+#include "sfm/evaluation/ground_truth.h"
 #include "sfm/trajectory_evaluation.h"
 #include "tests/test_support.h"
 

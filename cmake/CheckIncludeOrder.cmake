@@ -1,0 +1,111 @@
+# Checks the one-way include order between the project's folders (see the top-level
+# CMakeLists.txt). Run as a script:
+#
+#   cmake -DSOURCE_DIR=<tree to check> -P cmake/CheckIncludeOrder.cmake
+#
+# Every #include "x/y.h" in a .h/.cc under io/, frontend/, sfm/ or apps/ is looked up: the
+# including file's layer (longest matching path prefix below) must list the included file's layer.
+# Fails with one line per violation. In the spirit of Chromium's DEPS include_rules / checkdeps.
+
+if(NOT SOURCE_DIR)
+  message(FATAL_ERROR "CheckIncludeOrder: pass -DSOURCE_DIR=<tree>")
+endif()
+
+# Layers, most specific prefix first. frontend/detector_factory is the one file of frontend/'s
+# common room that may see the detectors it constructs.
+set(layers
+  frontend/detector_factory frontend/comic frontend/baselines frontend/matching
+  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm apps io)
+
+# What each layer may include (besides itself).
+set(allowed_io "")
+set(allowed_frontend io)
+set(allowed_frontend/comic io frontend)
+set(allowed_frontend/baselines io frontend)
+set(allowed_frontend/detector_factory io frontend frontend/comic frontend/baselines)
+set(allowed_frontend/matching io frontend frontend/comic frontend/baselines
+  frontend/detector_factory)
+set(allowed_frontend/evaluation io frontend frontend/comic frontend/baselines
+  frontend/detector_factory frontend/matching)
+set(frontend_all frontend frontend/comic frontend/baselines frontend/detector_factory
+  frontend/matching frontend/evaluation)
+set(allowed_sfm io ${frontend_all})
+set(allowed_sfm/evaluation io ${frontend_all} sfm)
+set(allowed_sfm/colmap io ${frontend_all} sfm sfm/evaluation)
+set(allowed_apps io ${frontend_all} sfm sfm/evaluation sfm/colmap)
+
+function(layer_of path out)
+  foreach(layer ${layers})
+    string(LENGTH "${layer}" n)
+    string(SUBSTRING "${path}" 0 ${n} head)
+    if(head STREQUAL layer)
+      string(SUBSTRING "${path}" ${n} 1 next)
+      if(next STREQUAL "/" OR next STREQUAL "." OR next STREQUAL "")
+        set(${out} ${layer} PARENT_SCOPE)
+        return()
+      endif()
+    endif()
+  endforeach()
+  set(${out} "" PARENT_SCOPE)
+endfunction()
+
+file(GLOB_RECURSE sources RELATIVE ${SOURCE_DIR}
+  ${SOURCE_DIR}/io/*.h ${SOURCE_DIR}/io/*.cc
+  ${SOURCE_DIR}/frontend/*.h ${SOURCE_DIR}/frontend/*.cc
+  ${SOURCE_DIR}/sfm/*.h ${SOURCE_DIR}/sfm/*.cc
+  ${SOURCE_DIR}/apps/*.h ${SOURCE_DIR}/apps/*.cc)
+list(SORT sources)
+
+set(violations 0)
+set(checked 0)
+foreach(src ${sources})
+  layer_of(${src} from)
+  if(NOT from)
+    continue()
+  endif()
+  file(STRINGS ${SOURCE_DIR}/${src} includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+  foreach(line ${includes})
+    string(REGEX REPLACE "^[^\"]*\"([^\"]+)\".*$" "\\1" target "${line}")
+    layer_of(${target} to)
+    if(NOT to OR to STREQUAL from)
+      continue()
+    endif()
+    math(EXPR checked "${checked} + 1")
+    list(FIND allowed_${from} ${to} found)
+    if(found EQUAL -1)
+      message("include order: ${src} (${from}) includes ${target} (${to}), not allowed")
+      math(EXPR violations "${violations} + 1")
+    endif()
+  endforeach()
+endforeach()
+
+# With -DCHECK_READMES=ON every folder holding sources opens with a README.md of five lines at
+# most, saying which paper section or job it holds and what it may include.
+if(CHECK_READMES)
+  set(folders "")
+  foreach(src ${sources})
+    get_filename_component(dir ${src} DIRECTORY)
+    list(APPEND folders ${dir})
+  endforeach()
+  list(REMOVE_DUPLICATES folders)
+  foreach(dir ${folders})
+    if(NOT EXISTS ${SOURCE_DIR}/${dir}/README.md)
+      message("layout: ${dir}/ has no README.md")
+      math(EXPR violations "${violations} + 1")
+    else()
+      file(READ ${SOURCE_DIR}/${dir}/README.md readme)
+      string(REGEX MATCHALL "\n" newlines "${readme}")
+      list(LENGTH newlines n)
+      if(n GREATER 5)
+        message("layout: ${dir}/README.md has ${n} lines, at most 5")
+        math(EXPR violations "${violations} + 1")
+      endif()
+    endif()
+  endforeach()
+endif()
+
+list(LENGTH sources num_sources)
+if(violations GREATER 0)
+  message(FATAL_ERROR "include order: ${violations} violation(s) in ${num_sources} files")
+endif()
+message("include order: ${num_sources} files, ${checked} includes across folders, all in order")

@@ -1,0 +1,254 @@
+#include "frontend/comic/iso_curve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "io/error.h"
+
+namespace comic::frontend {
+
+IsoCurveTracer::IsoCurveTracer(const cv::Mat& image, const cv::Rect& domain, double threshold)
+    : image_(image),
+      domain_(domain & cv::Rect(0, 0, image.cols, image.rows)),
+      threshold_(threshold) {
+  COMIC_CHECK(image.type() == CV_8UC1, kInvalidArgument, "IsoCurveTracer: expected CV_8UC1");
+}
+
+bool IsoCurveTracer::IsCrossing(const CurveEdge& edge) const {
+  const cv::Point d = edge.outside - edge.inside;
+  return std::abs(d.x) + std::abs(d.y) == 1 && InDomain(edge.inside) && InDomain(edge.outside) &&
+         IsInside(edge.inside) && !IsInside(edge.outside);
+}
+
+cv::Point2f IsoCurveTracer::Crossing(const CurveEdge& edge) const {
+  const double v_in = Value(edge.inside);
+  const double v_out = Value(edge.outside);
+  const double t = (threshold_ - v_in) / (v_out - v_in);
+  return {static_cast<float>(edge.inside.x + t * (edge.outside.x - edge.inside.x)),
+          static_cast<float>(edge.inside.y + t * (edge.outside.y - edge.inside.y))};
+}
+
+bool IsoCurveTracer::Step(const CurveEdge& edge, bool forward, CurveEdge* next) const {
+  // Direction of travel with the inside on the left: the inside->outside vector turned by -90°
+  // (image coordinates, y down).
+  const cv::Point d = edge.outside - edge.inside;
+  cv::Point t(d.y, -d.x);
+  if (!forward) t = -t;
+  const cv::Point a = edge.inside + t;   // ahead of the inside pixel
+  const cv::Point b = edge.outside + t;  // ahead of the outside pixel
+  if (!InDomain(a) || !InDomain(b)) return false;
+  const bool a_inside = IsInside(a);
+  const bool b_inside = IsInside(b);
+  if (!a_inside) {
+    // Saddle (inside pixels on a diagonal): the cell centre, the mean of its four pixels as in
+    // the bilinear interpolant, decides whether the two inside pixels are joined.
+    const bool joined = b_inside && Value(edge.inside) + Value(edge.outside) + Value(a) + Value(b) <
+                                        4.0 * threshold_;
+    *next = joined ? CurveEdge{b, edge.outside} : CurveEdge{edge.inside, a};
+  } else if (!b_inside) {
+    *next = CurveEdge{a, b};
+  } else {
+    *next = CurveEdge{b, edge.outside};
+  }
+  return true;
+}
+
+void IsoCurveTracer::Trace(const CurveEdge& seed, int max_points_each_way, IsoCurve* curve) const {
+  COMIC_CHECK(IsCrossing(seed), kInvalidArgument, "IsoCurveTracer: seed is not a crossing");
+  std::vector<CurveEdge>& edges = curve->edges;
+  edges.clear();
+  curve->closed = false;
+  // Backward part first (collected reversed), then the seed, then the forward part.
+  CurveEdge edge = seed;
+  CurveEdge next;
+  for (int n = 0; n < max_points_each_way && Step(edge, false, &next); ++n) {
+    if (next == seed) {
+      curve->closed = true;
+      break;
+    }
+    edges.push_back(next);
+    edge = next;
+  }
+  if (curve->closed) {
+    // A closed curve: restart from the seed going forward so that the order is the natural one.
+    edges.clear();
+    edge = seed;
+    edges.push_back(seed);
+    while (Step(edge, true, &next) && !(next == seed)) {
+      edges.push_back(next);
+      edge = next;
+    }
+    curve->seed_index = 0;
+  } else {
+    std::reverse(edges.begin(), edges.end());
+    curve->seed_index = static_cast<int>(edges.size());
+    edges.push_back(seed);
+    edge = seed;
+    for (int n = 0; n < max_points_each_way && Step(edge, true, &next); ++n) {
+      if (next == seed) break;  // cannot happen for an open curve; guards the loop
+      edges.push_back(next);
+      edge = next;
+    }
+  }
+  curve->points.resize(edges.size());
+  for (size_t i = 0; i < edges.size(); ++i) curve->points[i] = Crossing(edges[i]);
+}
+
+bool IsoCurveTracer::FindNearestCrossing(const cv::Point2f& point, int radius,
+                                         CurveEdge* edge) const {
+  const int cx = static_cast<int>(std::lround(point.x));
+  const int cy = static_cast<int>(std::lround(point.y));
+  double best = std::numeric_limits<double>::infinity();
+  for (int y = cy - radius; y <= cy + radius; ++y) {
+    for (int x = cx - radius; x <= cx + radius; ++x) {
+      const cv::Point p(x, y);
+      if (!InDomain(p)) continue;
+      const bool p_inside = IsInside(p);
+      for (const cv::Point& q : {cv::Point(x + 1, y), cv::Point(x, y + 1)}) {
+        if (q.x > cx + radius || q.y > cy + radius || !InDomain(q)) continue;
+        if (IsInside(q) == p_inside) continue;
+        const CurveEdge candidate = p_inside ? CurveEdge{p, q} : CurveEdge{q, p};
+        const cv::Point2f c = Crossing(candidate);
+        const double d2 = (c.x - point.x) * (c.x - point.x) + (c.y - point.y) * (c.y - point.y);
+        if (d2 < best) {
+          best = d2;
+          *edge = candidate;
+        }
+      }
+    }
+  }
+  return std::isfinite(best);
+}
+
+namespace {
+
+double Distance(const cv::Point2f& a, const cv::Point2f& b) {
+  const double dx = static_cast<double>(a.x) - b.x;
+  const double dy = static_cast<double>(a.y) - b.y;
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+cv::Point2f Interpolate(const std::vector<cv::Point2f>& points,
+                        const std::vector<double>& cumulative, bool closed, double s) {
+  const size_t n = points.size();
+  // Segment i runs from vertex i to vertex i + 1 (vertex 0 for the closing segment).
+  const size_t segments = closed ? n : n - 1;
+  auto it = std::upper_bound(cumulative.begin(), cumulative.begin() + segments + 1, s);
+  size_t i = it == cumulative.begin() ? 0 : static_cast<size_t>(it - cumulative.begin()) - 1;
+  i = std::min(i, segments - 1);
+  const double length = cumulative[i + 1] - cumulative[i];
+  const double t = length > 0 ? std::clamp((s - cumulative[i]) / length, 0.0, 1.0) : 0.0;
+  const cv::Point2f& a = points[i];
+  const cv::Point2f& b = points[(i + 1) % n];
+  return {static_cast<float>(a.x + t * (b.x - a.x)), static_cast<float>(a.y + t * (b.y - a.y))};
+}
+
+}  // namespace
+
+void PolylineArcLengths(const std::vector<cv::Point2f>& points, bool closed,
+                        std::vector<double>* cumulative) {
+  const size_t n = points.size();
+  cumulative->resize(n + 1);
+  double* c = cumulative->data();
+  c[0] = 0.0;
+  for (size_t i = 1; i < n; ++i) c[i] = c[i - 1] + Distance(points[i - 1], points[i]);
+  c[n] = n == 0 ? 0.0 : c[n - 1] + (closed ? Distance(points[n - 1], points[0]) : 0.0);
+}
+
+double PolylineLength(const std::vector<cv::Point2f>& points, bool closed) {
+  std::vector<double> cumulative;
+  PolylineArcLengths(points, closed, &cumulative);
+  return cumulative.back();
+}
+
+double ArcLengthAt(const std::vector<cv::Point2f>& points, int index) {
+  double s = 0;
+  for (int i = 1; i <= index && i < static_cast<int>(points.size()); ++i) {
+    s += Distance(points[i - 1], points[i]);
+  }
+  return s;
+}
+
+std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points, bool closed,
+                                          double spacing, double origin, int max_before,
+                                          int max_after, int* origin_index) {
+  std::vector<double> cumulative;
+  PolylineArcLengths(points, closed, &cumulative);
+  return ResamplePolyline(points, cumulative, closed, spacing, origin, max_before, max_after,
+                          origin_index);
+}
+
+std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points,
+                                          const std::vector<double>& cumulative, bool closed,
+                                          double spacing, double origin, int max_before,
+                                          int max_after, int* origin_index) {
+  std::vector<cv::Point2f> samples;
+  if (origin_index) *origin_index = 0;
+  if (points.size() < 2 || spacing <= 0) return samples;
+  const double length = cumulative.back();
+  if (length <= 0) return samples;
+  if (closed) {
+    const int n = std::max(3, static_cast<int>(std::lround(length / spacing)));
+    const double step = length / n;
+    samples.reserve(n);
+    for (int k = 0; k < n; ++k) {
+      double s = std::fmod(origin + k * step, length);
+      if (s < 0) s += length;
+      samples.push_back(Interpolate(points, cumulative, true, s));
+    }
+    return samples;
+  }
+  constexpr double kSlack = 1e-6;
+  const int k_first =
+      std::max(-max_before, static_cast<int>(std::ceil((-kSlack - origin) / spacing)));
+  const int k_last =
+      std::min(max_after, static_cast<int>(std::floor((length + kSlack - origin) / spacing)));
+  if (k_last < k_first) return samples;
+  samples.reserve(k_last - k_first + 1);
+  // Arc lengths increase with k: walk the segments once.
+  size_t segment = 0;
+  const size_t last_segment = points.size() - 2;
+  for (int k = k_first; k <= k_last; ++k) {
+    const double s = std::clamp(origin + k * spacing, 0.0, length);
+    while (segment < last_segment && cumulative[segment + 1] < s) ++segment;
+    const double segment_length = cumulative[segment + 1] - cumulative[segment];
+    const double t =
+        segment_length > 0 ? std::clamp((s - cumulative[segment]) / segment_length, 0.0, 1.0) : 0.0;
+    const cv::Point2f& a = points[segment];
+    const cv::Point2f& b = points[segment + 1];
+    samples.emplace_back(static_cast<float>(a.x + t * (b.x - a.x)),
+                         static_cast<float>(a.y + t * (b.y - a.y)));
+  }
+  if (origin_index) *origin_index = std::max(0, -k_first);
+  return samples;
+}
+
+double ProjectOntoPolyline(const std::vector<cv::Point2f>& points, bool closed,
+                           const cv::Point2f& query) {
+  if (points.size() < 2) return 0.0;
+  const size_t n = points.size();
+  const size_t segments = closed ? n : n - 1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  double best_s = 0;
+  double s0 = 0;
+  for (size_t i = 0; i < segments; ++i) {
+    const cv::Point2d a = points[i];
+    const cv::Point2d b = points[(i + 1) % n];
+    const cv::Point2d ab = b - a;
+    const double len2 = ab.dot(ab);
+    const double t = len2 > 0 ? std::clamp((cv::Point2d(query) - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    const cv::Point2d c = a + t * ab;
+    const cv::Point2d diff = cv::Point2d(query) - c;
+    const double d2 = diff.dot(diff);
+    const double len = std::sqrt(len2);
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best_s = s0 + t * len;
+    }
+    s0 += len;
+  }
+  return best_s;
+}
+
+}  // namespace comic::frontend

@@ -1,0 +1,34 @@
+#include "frontend/matching/track.h"
+
+#include <set>
+#include <utility>
+
+#include "io/error.h"
+
+namespace comic::frontend {
+
+void FeatureTracks::Check() const {
+  COMIC_CHECK(
+      frame_names.empty() || frame_names.size() == features.size(), kInvalidData,
+      "tracks: " << frame_names.size() << " frame names for " << features.size() << " frames");
+  std::set<std::pair<int, int>> used;
+  for (size_t t = 0; t < tracks.size(); ++t) {
+    int previous_frame = -1;
+    for (const TrackObservation& obs : tracks[t].observations) {
+      COMIC_CHECK(obs.frame >= 0 && obs.frame < static_cast<int>(features.size()), kInvalidData,
+                  "track " << t << ": frame " << obs.frame << " out of range");
+      COMIC_CHECK(
+          obs.feature >= 0 && obs.feature < static_cast<int>(features[obs.frame].size()),
+          kInvalidData,
+          "track " << t << ": feature " << obs.feature << " out of range in frame " << obs.frame);
+      COMIC_CHECK(obs.frame > previous_frame, kInvalidData,
+                  "track " << t << ": frames not strictly increasing at frame " << obs.frame);
+      COMIC_CHECK(used.insert({obs.frame, obs.feature}).second, kInvalidData,
+                  "track " << t << ": feature " << obs.feature << " of frame " << obs.frame
+                           << " already belongs to another track");
+      previous_frame = obs.frame;
+    }
+  }
+}
+
+}  // namespace comic::frontend

@@ -1,0 +1,52 @@
+#include "frontend/matching/track.h"
+
+#include <gtest/gtest.h>
+
+#include "io/error.h"
+
+namespace comic::frontend {
+namespace {
+
+FeatureTracks ThreeFrames() {
+  FeatureTracks tracks;
+  tracks.features.resize(3);
+  for (auto& frame : tracks.features) frame.resize(4);
+  tracks.tracks.push_back({{{0, 0}, {1, 2}, {2, 1}}});
+  tracks.tracks.push_back({{{1, 0}, {2, 3}}});
+  return tracks;
+}
+
+TEST(FeatureTracks, ValidTracksPass) {
+  const FeatureTracks tracks = ThreeFrames();
+  EXPECT_NO_THROW(tracks.Check());
+  EXPECT_EQ(tracks.tracks[0].Length(), 3u);
+  EXPECT_EQ(tracks.tracks[0].FirstFrame(), 0);
+  EXPECT_EQ(tracks.tracks[1].LastFrame(), 2);
+}
+
+TEST(FeatureTracks, TwoFeaturesOfOneFrameInATrackAreRejected) {
+  FeatureTracks tracks = ThreeFrames();
+  tracks.tracks[0].observations.push_back({2, 2});  // frame 2 again
+  EXPECT_THROW(tracks.Check(), Error);
+}
+
+TEST(FeatureTracks, FeatureSharedByTwoTracksIsRejected) {
+  FeatureTracks tracks = ThreeFrames();
+  tracks.tracks[1].observations[1] = {2, 1};  // already in track 0
+  EXPECT_THROW(tracks.Check(), Error);
+}
+
+TEST(FeatureTracks, OutOfRangeIndicesAreRejected) {
+  FeatureTracks tracks = ThreeFrames();
+  tracks.tracks[1].observations[1] = {3, 0};
+  EXPECT_THROW(tracks.Check(), Error);
+  tracks = ThreeFrames();
+  tracks.tracks[1].observations[1] = {2, 4};
+  EXPECT_THROW(tracks.Check(), Error);
+  tracks = ThreeFrames();
+  tracks.frame_names = {"a", "b"};
+  EXPECT_THROW(tracks.Check(), Error);
+}
+
+}  // namespace
+}  // namespace comic::frontend
