@@ -353,14 +353,34 @@ py::dict TracksToPython(const frontend::FeatureTracks& tracks) {
   return result;
 }
 
-// Calls a Python progress callback from C++ code running without the GIL.
-template <typename... Args>
-std::function<void(Args...)> WithGil(const py::object& callback,
-                                     std::function<py::object(Args...)> convert) {
+// A Python progress callback called from C++ code running without the GIL: it takes the GIL for
+// the call. It captures a pointer to the caller's py::object (alive for the whole call), so that
+// copying the std::function inside the libraries touches no Python reference count without the
+// GIL.
+frontend::TrackingProgress TrackingCallback(const py::object& callback) {
   if (callback.is_none()) return {};
-  return [callback, convert](Args... args) {
+  const py::object* function = &callback;
+  return [function](size_t done, size_t total) {
     py::gil_scoped_acquire gil;
-    callback(convert(args...));
+    (*function)(done, total);
+  };
+}
+
+sfm::MapperProgressCallback MapperCallback(const py::object& callback) {
+  if (callback.is_none()) return {};
+  const py::object* function = &callback;
+  return [function](const sfm::MapperProgress& p) {
+    py::gil_scoped_acquire gil;
+    py::dict event;
+    event["frame"] = p.frame;
+    event["frame_name"] = p.frame_name;
+    event["model"] = p.attempt;
+    event["initial_pair"] = p.initial_pair;
+    event["merged"] = p.merged;
+    event["num_registered"] = p.num_registered;
+    event["num_frames"] = p.num_frames;
+    event["num_points3D"] = p.num_points3D;
+    (*function)(event);
   };
 }
 
@@ -423,8 +443,7 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
   ApplyOptions(options, table, "track");
   tracker.Check();
   sequence_options.Check();
-  const auto progress = WithGil<size_t, size_t>(
-      callback, [](size_t done, size_t total) { return py::make_tuple(done, total); });
+  const frontend::TrackingProgress progress = TrackingCallback(callback);
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
   frontend::TrackingResult result;
   if (from_path) {
@@ -625,19 +644,7 @@ PyReconstruction Reconstruct(const std::string& path, const std::string& detecto
   }
   const sfm::Camera camera = ResolveCamera(sequence, intrinsics, truth);
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
-  const auto progress =
-      WithGil<const sfm::MapperProgress&>(callback, [](const sfm::MapperProgress& p) {
-        py::dict event;
-        event["frame"] = p.frame;
-        event["frame_name"] = p.frame_name;
-        event["model"] = p.attempt;
-        event["initial_pair"] = p.initial_pair;
-        event["merged"] = p.merged;
-        event["num_registered"] = p.num_registered;
-        event["num_frames"] = p.num_frames;
-        event["num_points3D"] = p.num_points3D;
-        return py::object(event);
-      });
+  const sfm::MapperProgressCallback progress = MapperCallback(callback);
   PyReconstruction result;
   {
     py::gil_scoped_release release;

@@ -5,6 +5,7 @@
 #include <comic/io/error.h>
 #include <comic/sfm/rigid3d.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -39,7 +40,7 @@ int main() {
   for (const cv::Point2f& corner : corners) {
     double nearest = 1e9;
     for (const comic::frontend::Feature& f : features) {
-      nearest = std::min(nearest, std::hypot(f.x - corner.x, f.y - corner.y));
+      nearest = std::min(nearest, std::hypot(double{f.x} - corner.x, double{f.y} - corner.y));
     }
     if (nearest > 2.0) {
       return Fail("no feature within 2 px of the corner (" + std::to_string(corner.x) + ", " +
