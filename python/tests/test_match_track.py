@@ -63,7 +63,7 @@ def test_bad_match_input_raises():
         comic.match(image, features, image, features, cost="sad")
     with pytest.raises(ValueError):
         comic.match(image, features, image, features, radius=-1.0)
-    with pytest.raises(ValueError, match="no field 'level'"):
+    with pytest.raises(ValueError, match="no field 'scale'"):
         comic.match(image, features[["x", "y"]], image, features)
 
 
