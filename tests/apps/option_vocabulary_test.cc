@@ -48,6 +48,8 @@ const std::map<std::string, std::string> kDefaultsDifferOnPurpose = {
     {"resize-height", "the evaluations and the benchmark work at the paper's 700 px (§5)"},
     {"detectors", "comic_sfm's empty list is every detector; comic_track_eval names its five"},
     {"target-precision", "comic_stereo_eval's 0 takes --precision-reference's precision"},
+    {"output", "each app's default folder is named after it (out/sfm, stereo_eval, track_eval)"},
+    {"max-features", "comic_detect shows every feature of its image; the trackers keep 2000"},
 };
 
 std::vector<std::string> AppNames() {
@@ -77,6 +79,7 @@ std::map<std::string, HelpOption> ParseHelp(const std::string& help) {
     if (line.empty()) break;
     std::smatch match;
     if (!std::regex_match(line, match, option_line)) continue;  // a continuation line
+    const std::string name = match[2];  // `match` points into `line`, read again below
     HelpOption option;
     option.short_name = match[1];
     option.value_name = match[3];
@@ -90,7 +93,7 @@ std::map<std::string, HelpOption> ParseHelp(const std::string& help) {
       meaning = meaning.substr(0, bracket);
     }
     option.meaning = meaning;
-    options[match[2]] = option;
+    options[name] = option;
   }
   return options;
 }
