@@ -268,8 +268,8 @@ def reconstruct(
     intrinsics: a file ('fx fy cx cy', 3x3 K or 3x4 P such as KITTI's calib.txt); else those of
     `gt` (ground-truth cameras: KITTI poses.txt, Middlebury *_par.txt, Strecha folder), else
     f = 1.2 max(w, h). `options` use comic_sfm's names: max_features, search_radius,
-    unpredicted_radius, prediction, match_window, max_cost, threads, resize_height, first, last,
-    stride, ... `callback(event)` gets a dict after each registered frame (frame, frame_name,
+    unpredicted_radius, prediction, match_window, max_cost, threads (detection; 0 = one per
+    core), resize_height, first, last, stride, ... `callback(event)` gets a dict after each registered frame (frame, frame_name,
     num_registered, num_frames, num_points3D, ...). Returns a Reconstruction; a sequence that
     cannot be reconstructed gives status != "success", not an exception.
     """
@@ -297,8 +297,9 @@ def export_colmap(
     **options
 ):
     """Tracks features through a folder of frames and writes a COLMAP 3.8 database, as
-    comic_export_colmap (same defaults: max_features=1500, prediction="coarse-to-fine",
-    window=5). Returns a summary dict with the `colmap mapper` command to run."""
+    comic_export_colmap (same options and defaults, which are comic_sfm's tracker's: the same
+    tracks from the same folder; window=5, max_error, min_inliers, threads). Returns a summary
+    dict with the `colmap mapper` command to run."""
     return _core.export_colmap(
         frames,
         database,

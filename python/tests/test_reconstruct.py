@@ -37,7 +37,7 @@ def test_same_model_as_comic_sfm(harris_run, tmp_path):
     reconstruction, _ = harris_run
     code, output = run_app(
         app("comic_sfm"), FRAMES, "--gt", POSES, "--detector", "harris", "--quiet",
-        "--out", tmp_path / "app",
+        "--output", tmp_path / "app",
     )
     assert code == 0, output
     reconstruction.write(str(tmp_path / "python"))
@@ -99,7 +99,7 @@ def test_failures_are_reported_or_raised(tmp_path):
     with pytest.raises(ValueError, match="unknown detector"):
         comic.reconstruct(FRAMES, detector="sift")
     with pytest.raises(ValueError, match="unknown option 'radius'"):
-        comic.reconstruct(FRAMES, radius=20.0)
+        comic.reconstruct(FRAMES, radius=20.0)  # comic_sfm's name is search_radius
     with pytest.raises(ValueError):
         comic.reconstruct(FRAMES, local_ba_images=1)
     with pytest.raises(RuntimeError, match="no such file or folder"):
@@ -115,7 +115,7 @@ def rows(database, table):
 
 def test_export_colmap_writes_the_apps_database(tmp_path):
     code, output = run_app(
-        app("comic_export_colmap"), FRAMES, "--output", tmp_path / "app.db", "--intrinsics", CALIB,
+        app("comic_export_colmap"), FRAMES, "--colmap-db", tmp_path / "app.db", "--intrinsics", CALIB,
         "--last", "5",
     )
     assert code == 0, output
