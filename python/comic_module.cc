@@ -449,6 +449,249 @@ py::dict Match(const py::array& image1, const py::dict& features1, const py::obj
 py::dict Track(const py::object& frames, const std::string& detector_name,
                const py::dict& detector_options, const py::dict& options,
                const py::object& callback) {
+  const frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
+  frontend::TrackerOptions tracker;
+  io::ImageSequenceOptions sequence_options;
+  OptionTable table;
+  AddTrackerOptions(&tracker, &table);
+  const bool from_path = py::isinstance<py::str>(frames);
+  if (from_path) AddSequenceOptions(&sequence_options, &table);
+  ApplyOptions(options, table, "track");
+  tracker.Check();
+  sequence_options.Check();
+  const frontend::TrackingProgress progress = TrackingCallback(callback);
+  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
+  frontend::TrackingResult result;
+  if (from_path) {
+    const io::ImageSequence sequence =
+        io::ImageSequence::Open(py::cast<std::string>(frames), sequence_options);
+    py::gil_scoped_release release;
+    result = frontend::TrackSequence(sequence, *detector, tracker, progress);
+  } else {
+    std::vector<cv::Mat> grays;
+    for (const py::handle frame : frames) {
+      COMIC_CHECK(py::isinstance<py::array>(frame), kInvalidArgument,
+                  "track: frames must be a path or a sequence of uint8 numpy images");
+      grays.push_back(GrayFromArray(py::reinterpret_borrow<py::array>(frame),
+                                    "track: frame " + std::to_string(grays.size())));
+      COMIC_CHECK(grays.back().size() == grays.front().size(), kInvalidArgument,
+                  "track: frame " << grays.size() - 1 << " differs in size from frame 0");
+    }
+    COMIC_CHECK(!grays.empty(), kInvalidArgument, "track: no frames");
+    py::gil_scoped_release release;
+    result = frontend::TrackFrames(grays, *detector, tracker, {}, progress);
+  }
+  return TracksToPython(result.tracks);
+}
+
+// A finished reconstruction: the COLMAP model (what comic_sfm writes) and the run's report.
+struct PyReconstruction {
+  io::ColmapTextModel model;
+  std::string status;
+  std::string report_json;
+};
+
+py::dict ModelToColumns(const io::ColmapTextModel& model) {
+  py::dict result;
+  {
+    const size_t n = model.cameras.size();
+    py::array_t<uint32_t> id(n);
+    py::array_t<int32_t> width(n), height(n);
+    py::list names, params;
+    for (size_t i = 0; i < n; ++i) {
+      const io::ColmapCamera& c = model.cameras[i];
+      id.mutable_at(i) = c.camera_id;
+      width.mutable_at(i) = c.width;
+      height.mutable_at(i) = c.height;
+      names.append(c.model);
+      params.append(py::array_t<double>(c.params.size(), c.params.data()));
+    }
+    py::dict cameras;
+    cameras["camera_id"] = id;
+    cameras["model"] = names;
+    cameras["width"] = width;
+    cameras["height"] = height;
+    cameras["params"] = params;
+    result["cameras"] = cameras;
+  }
+  {
+    const size_t n = model.images.size();
+    py::array_t<uint32_t> id(n), camera_id(n), num_points2D(n);
+    py::array_t<double> qvec({static_cast<py::ssize_t>(n), py::ssize_t{4}});
+    py::array_t<double> tvec({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+    py::list names;
+    size_t num_observations = 0;
+    for (const io::ColmapImage& image : model.images) num_observations += image.points2D.size();
+    py::array_t<uint32_t> obs_image(num_observations);
+    py::array_t<double> obs_x(num_observations), obs_y(num_observations);
+    py::array_t<int64_t> obs_point(num_observations);
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const io::ColmapImage& image = model.images[i];
+      id.mutable_at(i) = image.image_id;
+      camera_id.mutable_at(i) = image.camera_id;
+      num_points2D.mutable_at(i) = static_cast<uint32_t>(image.points2D.size());
+      const Eigen::Quaterniond& q = image.cam_from_world_rotation;
+      qvec.mutable_at(i, 0) = q.w();
+      qvec.mutable_at(i, 1) = q.x();
+      qvec.mutable_at(i, 2) = q.y();
+      qvec.mutable_at(i, 3) = q.z();
+      for (int c = 0; c < 3; ++c) tvec.mutable_at(i, c) = image.cam_from_world_translation[c];
+      names.append(image.name);
+      for (const io::ColmapPoint2D& point : image.points2D) {
+        obs_image.mutable_at(k) = image.image_id;
+        obs_x.mutable_at(k) = point.x;
+        obs_y.mutable_at(k) = point.y;
+        obs_point.mutable_at(k) = point.point3D_id;
+        ++k;
+      }
+    }
+    py::dict images;
+    images["image_id"] = id;
+    images["camera_id"] = camera_id;
+    images["qvec"] = qvec;
+    images["tvec"] = tvec;
+    images["name"] = names;
+    images["num_points2D"] = num_points2D;
+    result["images"] = images;
+    py::dict points2D;
+    points2D["image_id"] = obs_image;
+    points2D["x"] = obs_x;
+    points2D["y"] = obs_y;
+    points2D["point3D_id"] = obs_point;
+    result["points2D"] = points2D;
+  }
+  {
+    const size_t n = model.points3D.size();
+    py::array_t<uint64_t> id(n);
+    py::array_t<double> xyz({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+    py::array_t<uint8_t> rgb({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+    py::array_t<double> error(n);
+    py::array_t<uint32_t> track_length(n);
+    for (size_t i = 0; i < n; ++i) {
+      const io::ColmapPoint3D& p = model.points3D[i];
+      id.mutable_at(i) = p.point3D_id;
+      for (int c = 0; c < 3; ++c) {
+        xyz.mutable_at(i, c) = p.xyz[c];
+        rgb.mutable_at(i, c) = p.rgb[c];
+      }
+      error.mutable_at(i) = p.error;
+      track_length.mutable_at(i) = static_cast<uint32_t>(p.track.size());
+    }
+    py::dict points;
+    points["point3D_id"] = id;
+    points["xyz"] = xyz;
+    points["rgb"] = rgb;
+    points["error"] = error;
+    points["track_length"] = track_length;
+    result["points3D"] = points;
+  }
+  return result;
+}
+
+// comic_sfm's intrinsics rule: --intrinsics, else the ground truth's, else f = 1.2 max(w, h).
+sfm::Camera ResolveCamera(const io::ImageSequence& sequence, const std::string& intrinsics,
+                          const std::optional<sfm::FrameGroundTruth>& truth) {
+  const cv::Size source_size = sequence.SourceFrameSize();
+  const cv::Size frame_size = sequence.FrameSize();
+  const double scale = static_cast<double>(frame_size.height) / source_size.height;
+  sfm::Camera camera;
+  if (!intrinsics.empty()) {
+    const sfm::Camera source_camera =
+        sfm::CameraFromK(io::ReadIntrinsicsFile(intrinsics), source_size.width, source_size.height);
+    camera = scale == 1.0 ? source_camera : source_camera.Scaled(scale);
+  } else if (truth && truth->camera) {
+    camera = *truth->camera;
+  } else {
+    camera = sfm::Camera::FromImageSize(frame_size.width, frame_size.height);
+  }
+  camera.width = frame_size.width;
+  camera.height = frame_size.height;
+  return camera;
+}
+
+PyReconstruction Reconstruct(const std::string& path, const std::string& detector_name,
+                             const py::dict& detector_options, const std::string& intrinsics,
+                             const std::string& gt, const std::string& gt_format,
+                             const py::dict& options, const py::object& callback) {
+  frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
+  sfm::SequenceReconstructionOptions sfm_options;
+  io::ImageSequenceOptions sequence_options;
+  OptionTable table;
+  // comic_sfm's option names, so that the same run is spelt the same way in both.
+  sfm::IncrementalPipelineOptions* m = &sfm_options.mapper;
+  AddSfmTrackerOptions(&sfm_options.tracker, &table);
+  table.insert({{"refine_focal", Field(&m->global_ba.refine_focal_length)},
+                {"retriangulate", Field(&m->mapper.retriangulate_incomplete_tracks)},
+                {"local_ba_images", Field(&m->local_ba_num_images)},
+                {"global_ba_growth", Field(&m->global_ba_growth_ratio)},
+                {"init_angle", Field(&m->mapper.init_tri_angle_deg)},
+                {"init_max_gap", Field(&m->mapper.init_max_frame_gap)}});
+  // As comic_sfm's --threads: detection only (0 = one per core); the bundle adjustments stay on
+  // one thread, as Ceres's sums depend on its thread scheduling.
+  int threads = 0;
+  table["threads"] = Field(&threads);
+  AddSequenceOptions(&sequence_options, &table);
+  ApplyOptions(options, table, "reconstruct");
+  COMIC_CHECK(threads >= 0, kInvalidArgument, "reconstruct: threads must be >= 0, got " << threads);
+  sfm_options.Check();
+  sequence_options.Check();
+
+  if (!detector_options.contains("threads")) made.comic.num_threads = threads;
+  const io::ImageSequence sequence = io::ImageSequence::Open(path, sequence_options);
+  std::optional<sfm::FrameGroundTruth> truth;
+  if (!gt.empty()) {
+    std::vector<int> source_indices;
+    for (size_t k = 0; k < sequence.NumFrames(); ++k) {
+      source_indices.push_back(sequence_options.first_frame +
+                               static_cast<int>(k) * sequence_options.stride);
+    }
+    truth = sfm::MatchGroundTruthToFrames(
+        io::ReadGroundTruthCameras(gt, io::ParseGroundTruthFormat(gt_format)),
+        sequence.FrameNames(), source_indices, sequence.SourceFrameSize(), sequence.FrameSize());
+  }
+  const sfm::Camera camera = ResolveCamera(sequence, intrinsics, truth);
+  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
+  const sfm::MapperProgressCallback progress = MapperCallback(callback);
+  PyReconstruction result;
+  {
+    py::gil_scoped_release release;
+    const sfm::SequenceReconstruction run =
+        sfm::ReconstructSequence(sequence, *detector, camera, sfm_options, {}, progress);
+    const sfm::Reconstruction& reconstruction = run.mapping.reconstruction;
+    std::optional<sfm::TrajectoryEvaluation> evaluation;
+    if (truth) {
+      evaluation =
+          sfm::EvaluateTrajectory(sfm::RegisteredPosesByName(reconstruction, sequence.FrameNames()),
+                                  truth->cams_from_world);
+    }
+    const sfm::SfmRunReport report =
+        sfm::MakeRunReport(run, sfm::ComputeReconstructionStats(reconstruction), evaluation);
+    result.report_json = sfm::RunReportToJson(report).dump();
+    result.status = sfm::ReconstructionStatusName(run.mapping.status);
+    if (run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
+      result.model = sfm::ToColmapTextModel(reconstruction);
+    }
+  }
+  return result;
+}
+
+// comic_export_colmap's image names: relative to image_path, which must be `frames` or above it.
+std::string ImageNamePrefix(const std::string& frames, const std::string& image_path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path relative =
+      fs::relative(fs::weakly_canonical(frames, ec), fs::weakly_canonical(image_path, ec), ec);
+  COMIC_CHECK(!ec && !relative.empty() && *relative.begin() != "..", kInvalidArgument,
+              "image_path " << image_path << " must be the frames' folder or a folder above it");
+  const std::string prefix = relative.generic_string();
+  return prefix == "." ? "" : prefix + "/";
+}
+
+py::dict ExportColmap(const std::string& frames, const std::string& database,
+                      const std::string& detector_name, const py::dict& detector_options,
+                      const std::string& intrinsics, const std::string& image_path_arg,
+                      bool overwrite, const py::dict& options) {
   frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
   // comic_export_colmap's defaults, which are comic_sfm's: the same tracks from the same folder.
   frontend::TrackerOptions tracker = sfm::SequenceReconstructionOptions().tracker;
@@ -520,8 +763,7 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
 PYBIND11_MODULE(_core, m) {
   using namespace comic::python;
   m.doc() = "comic-sfm's compiled core; use the package `comic` (python/comic/__init__.py).";
-  m.attr("__version__") =
-      comic::Version();  // project(VERSION) in CMakeLists.txt, via io/version.cc
+  m.attr("__version__") = comic::Version();  // project(VERSION), through io/version.cc
   m.attr("detector_names") = comic::frontend::DetectorNames();
   m.attr("patch_size") = comic::frontend::kPatchSize;
 
