@@ -154,27 +154,11 @@ frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py:
 }
 
 void AddMatcherOptions(frontend::PatchMatcherOptions* m, OptionTable* table) {
-  table->insert({{"radius", Field(&m->radius)},
+  // The apps' names (apps/common/shared_flags.h): --search-radius, --max-cost, ...
+  table->insert({{"search_radius", Field(&m->radius)},
                  {"cost", Parsed(&m->cost, frontend::ParseMatchCost)},
                  {"min_side_overlap", Field(&m->min_side_overlap)},
                  {"max_cost", Field(&m->max_cost)}});
-}
-
-void AddTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
-  AddMatcherOptions(&t->matcher, table);
-  table->insert({{"min_response", Field(&t->min_response)},
-                 {"max_features", Field(&t->max_features)},
-                 {"prediction", Parsed(&t->prediction, frontend::ParseMotionPrediction)},
-                 {"unpredicted_radius", Field(&t->unpredicted_radius)},
-                 {"velocity_neighbours", Field(&t->velocity_neighbours)},
-                 {"velocity_neighbour_radius", Field(&t->velocity_neighbour_radius)},
-                 {"coarse_factor", Field(&t->coarse_factor)},
-                 {"coarse_radius", Field(&t->coarse_radius)},
-                 {"coarse_features", Field(&t->coarse_features)},
-                 {"match_window", Field(&t->match_window)},
-                 {"track_conflicts", Parsed(&t->conflict_rule, frontend::ParseTrackConflictRule)},
-                 {"verify_min_gap", Field(&t->verify_min_gap)},
-                 {"match_turned", Field(&t->match_turned_180)}});
 }
 
 // The tracker options comic_sfm and comic_export_colmap share (apps/common/tracker_flags.h), by
@@ -190,6 +174,17 @@ void AddSfmTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
                  {"verify_min_gap", Field(&t->verify_min_gap)},
                  {"match_turned", Field(&t->match_turned_180)},
                  {"max_cost", Field(&t->matcher.max_cost)}});
+}
+
+// comic.track: the shared tracker options, the matcher's cost, and the tracker's finer fields.
+void AddTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
+  AddMatcherOptions(&t->matcher, table);
+  AddSfmTrackerOptions(t, table);
+  table->insert({{"min_response", Field(&t->min_response)},
+                 {"velocity_neighbours", Field(&t->velocity_neighbours)},
+                 {"velocity_neighbour_radius", Field(&t->velocity_neighbour_radius)},
+                 {"coarse_factor", Field(&t->coarse_factor)},
+                 {"coarse_features", Field(&t->coarse_features)}});
 }
 
 void AddSequenceOptions(io::ImageSequenceOptions* s, OptionTable* table) {

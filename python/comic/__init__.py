@@ -91,7 +91,7 @@ def detect(image, detector="comic", **options):
 def match(image1, features1, image2, features2, side_masks1=None, side_masks2=None, **options):
     """Mutual-best SSD patch matches between two feature sets (frontend/matching/patch_matcher.h).
 
-    Options: radius (px, gate around each feature's position), cost ("full", "split" or
+    Options: search_radius (px, gate around each feature's position), cost ("full", "split" or
     "like-sides"; the split costs use the side masks), min_side_overlap, max_cost (the SSD
     threshold T; float("inf") keeps every mutual-best match). Returns a MATCH_DTYPE array.
     """
@@ -147,7 +147,7 @@ def track(frames, detector="comic", detector_options=None, callback=None, **opti
     """Detects and tracks features through `frames`: a folder of images or a video (path), or a
     sequence of uint8 images of one size.
 
-    `options` are the tracker's (frontend/matching/tracker.h): radius, max_cost, cost,
+    `options` are the tracker's, named as the apps' flags: search_radius, max_cost, cost,
     max_features, min_response, prediction ("none", "velocity", "coarse-to-fine"),
     unpredicted_radius, match_window, ...; for a path also resize_height, first, last, stride.
     `callback(done, total)` is called after each frame. Returns a Tracks.

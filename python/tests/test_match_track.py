@@ -22,7 +22,7 @@ def test_matches_follow_a_known_shift():
     image2 = shifted(image1, 3, 2)
     features1, masks1 = comic.detect(image1, detector="harris")
     features2, masks2 = comic.detect(image2, detector="harris")
-    matches = comic.match(image1, features1, image2, features2, radius=10.0)
+    matches = comic.match(image1, features1, image2, features2, search_radius=10.0)
     assert matches.dtype == comic.MATCH_DTYPE
     assert len(matches) > 20
     dx = features2["x"][matches["index2"]] - features1["x"][matches["index1"]]
@@ -62,7 +62,7 @@ def test_bad_match_input_raises():
     with pytest.raises(ValueError, match="cost"):
         comic.match(image, features, image, features, cost="sad")
     with pytest.raises(ValueError):
-        comic.match(image, features, image, features, radius=-1.0)
+        comic.match(image, features, image, features, search_radius=-1.0)
     with pytest.raises(ValueError, match="no field 'scale'"):
         comic.match(image, features[["x", "y"]], image, features)
 
