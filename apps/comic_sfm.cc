@@ -479,14 +479,14 @@ int Run(int argc, char** argv) {
       "model), points.ply (coloured point cloud), report.json (every number and the options),\n"
       "trajectory.png (top view; with --gt, ours Sim(3)-aligned against the ground truth).");
   parser.AddPositional("FRAMES", "folder of images, or video file", &flags.frames);
-  parser.AddOption("detector", "NAME", "detector: comic, harris, hessian, mser or fast",
-                   &flags.detector);
+  parser.AddOption("detector", "NAME",
+                   "detector: comic, comic-paper, harris, hessian, mser or fast", &flags.detector);
   parser.AddFlag("compare",
                  "run every detector of --detectors on the same frames; writes --out/<detector>/ "
                  "and the table compare.md, compare.csv, compare.json",
                  &flags.compare);
   parser.AddOption("detectors", "LIST",
-                   "comma-separated detectors for --compare (default: all five)", &flags.detectors);
+                   "comma-separated detectors for --compare (default: all six)", &flags.detectors);
   parser.AddOption("intrinsics", "FILE",
                    "intrinsics of the frames as stored: 'fx fy cx cy', a 3x3 K or a 3x4 P (e.g. "
                    "KITTI calib.txt); default: from --gt if it has them, else f = 1.2 max(w, h) "
