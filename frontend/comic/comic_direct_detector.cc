@@ -49,6 +49,10 @@ ComicDirectDetector::ComicDirectDetector(const ComicDirectDetectorOptions& optio
 namespace {
 
 constexpr double kSqrt2 = 1.41421356237309504880;
+// A feature whose patch lies in the image but holds fewer pixels than this on one side of its
+// curve cannot be matched by the side-split matcher of paper §4 (Algorithm 2's d_min, the
+// PatchMatcherOptions::min_side_overlap default): it is a sliver of a region, not a corner of two.
+constexpr int kMinSidePixels = 40;
 
 // One κ maximum on the curve of one level.
 struct LevelCorner {
@@ -473,6 +477,16 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     const cv::Point centre(static_cast<int>(std::lround(f.x)), static_cast<int>(std::lround(f.y)));
     f.side_mask = ComputeSideMask(image, c.level + 0.5, c.apex, centre);
   });
+  features.erase(std::remove_if(features.begin(), features.end(),
+                                [&](const Feature& f) {
+                                  if (!PatchFits(f, gray.size())) return false;
+                                  const auto count = [&](PatchSide side) {
+                                    return std::count(f.side_mask.begin(), f.side_mask.end(), side);
+                                  };
+                                  return count(PatchSide::kPlus) < kMinSidePixels ||
+                                         count(PatchSide::kMinus) < kMinSidePixels;
+                                }),
+                 features.end());
   SortByResponse(&features);
   stats->output_ms = lap();
   return features;

@@ -41,8 +41,10 @@ struct ComicDirectDetectorOptions {
   // levels from the component's, since ρ of a segment peaks where its own edge is steepest).
   int level_radius = 5;
   // Two stable maxima of one lineage at most this many levels apart: the levels between them are
-  // traced too, so that a corner's run does not break where no maximum happened to be near.
-  int bridge_levels = 20;
+  // traced too, so that a corner's run does not break where no maximum happened to be near (255:
+  // always; on the cones at height 700 that adds 0.2 % to the curves traced, 20 levels would
+  // leave runs of rendered polygons broken at the foot of their edges).
+  int bridge_levels = 255;
   // κ maxima of consecutive levels (or, with none at the next level, of the one after it) closer
   // than this (px) are the same corner, linked into a run.
   double link_radius = 1.5;
