@@ -1,6 +1,7 @@
-// comic_bench: times the CoMIC detector against OpenCV's MSER (delta 5), FAST-9 and GFTT-Harris
-// on one real frame, in one run, and reports the median milliseconds per frame and the ratio
-// CoMIC / MSER. A plain program rather than a timed test: timings depend on the machine. With
+// comic_bench: times the CoMIC detectors (the default direct search "comic", and Algorithm 1,
+// "comic-paper") against OpenCV's MSER (delta 5), FAST-9 and GFTT-Harris on one real frame, in
+// one run, and reports the median milliseconds per frame and the ratios CoMIC / MSER. A plain
+// program rather than a timed test: timings depend on the machine. With
 // --perturbations it also measures how many features each detector finds again on the same
 // frame after one grey level of noise and after a 0.5 px shift.
 #include <algorithm>
@@ -130,10 +131,11 @@ int Run(int argc, char** argv) {
   std::string counts_list;
   comic::apps::ArgParser parser(
       "comic_bench", "[IMAGE] [options]",
-      "Times CoMIC (1 thread and N threads), OpenCV MSER (delta 5), FAST-9 and GFTT-Harris on\n"
-      "IMAGE resized to --resize-height, each run --runs times after one warm-up run, and prints\n"
-      "the median milliseconds per frame and the ratio CoMIC (1 thread) / MSER, then CoMIC's\n"
-      "one-thread time by stage (initialisation, convergence, output). OpenCV's own\n"
+      "Times CoMIC (the default direct search, 1 thread and N threads), OpenCV MSER (delta 5),\n"
+      "FAST-9, GFTT-Harris and CoMIC-paper (Algorithm 1, 1 thread) on IMAGE resized to\n"
+      "--resize-height, each run --runs times after one warm-up run, and prints the median\n"
+      "milliseconds per frame and the ratios CoMIC (1 thread) / MSER and CoMIC-paper / MSER,\n"
+      "then each CoMIC's one-thread time by stage. OpenCV's own\n"
       "thread pool is left as configured (cv::getNumThreads() is reported).");
   parser.AddPositional("IMAGE",
                        "a real frame [default: ../shared/data/middlebury2003_cones/im2.png]",
@@ -145,7 +147,8 @@ int Run(int argc, char** argv) {
   parser.AddOption("json", "FILE", "also write the table as JSON", &json_path);
   parser.AddFlag(
       "perturbations",
-      "also report, for CoMIC, Harris, Hessian and FAST at CoMIC's count, the\n"
+      "also report, for comic, comic-paper, Harris, Hessian and FAST at CoMIC's\n"
+      "                              count (or --count), the\n"
       "                              share of features found again within 1 px after noise\n"
       "                              of 1 grey level and after a 0.5 px shift",
       &perturbations);

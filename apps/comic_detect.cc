@@ -205,11 +205,9 @@ int Run(int argc, char** argv) {
   direct.min_cornerness = options.min_cornerness;
   direct.num_threads = options.num_threads;
   const bool paper = detector_name == "comic-paper";
-  if (paper) {
-    options.Check();
-  } else {
-    direct.Check();
-  }
+  // Both searches' options are checked whichever runs: a bad value is an error, not ignored.
+  options.Check();
+  if (!paper) direct.Check();
   if (!overlay_path.empty()) comic::io::CheckWritableFile(overlay_path);
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 
