@@ -18,6 +18,7 @@
 #include <string>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/shared_flags.h"
 #include "frontend/comic/comic_detector.h"
 #include "frontend/comic/comic_direct_detector.h"
 #include "frontend/detector_factory.h"
@@ -135,16 +136,16 @@ int Run(int argc, char** argv) {
       "FAST-9, GFTT-Harris and CoMIC-paper (Algorithm 1, 1 thread) on IMAGE resized to\n"
       "--resize-height, each run --runs times after one warm-up run, and prints the median\n"
       "milliseconds per frame and the ratios CoMIC (1 thread) / MSER and CoMIC-paper / MSER,\n"
-      "then each CoMIC's one-thread time by stage. OpenCV's own\n"
-      "thread pool is left as configured (cv::getNumThreads() is reported).");
+      "then each CoMIC's one-thread time by stage. --threads sets the worker count of the\n"
+      "second CoMIC run (and of --perturbations); OpenCV's own thread pool is left as\n"
+      "configured (cv::getNumThreads() is reported).");
   parser.AddPositional("IMAGE",
                        "a real frame [default: ../shared/data/middlebury2003_cones/im2.png]",
                        &input, /*required=*/false);
-  parser.AddOption("resize-height", "H", "resize to height H (0 = original)", &resize_height);
+  comic::apps::AddResizeHeightFlag(parser, &resize_height);
   parser.AddOption("runs", "N", "timed runs per detector (the median is reported)", &runs);
-  parser.AddOption("threads", "N", "threads for the multi-threaded CoMIC run (0 = all cores)",
-                   &threads);
-  parser.AddOption("json", "FILE", "also write the table as JSON", &json_path);
+  comic::apps::AddThreadsFlag(parser, &threads);
+  comic::apps::AddJsonFlag(parser, &json_path);
   parser.AddFlag(
       "perturbations",
       "also report, for comic, comic-paper, Harris, Hessian and FAST at CoMIC's\n"
