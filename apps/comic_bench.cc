@@ -149,14 +149,18 @@ int Run(int argc, char** argv) {
   parser.AddFlag(
       "perturbations",
       "also report, for comic, comic-paper, Harris, Hessian and FAST at CoMIC's\n"
-      "                              count (or --count), the\n"
+      "                              count (or --keep), the\n"
       "                              share of features found again within 1 px after noise\n"
       "                              of 1 grey level and after a 0.5 px shift",
       &perturbations);
-  parser.AddOption("count", "N[,N...]",
-                   "with --perturbations: cut every detector to its N strongest features (one\n"
-                   "                              table per N; default: CoMIC's count)",
-                   &counts_list);
+  // Not --count: comic_track_eval's --count is a target count on the object in frame 0, and one
+  // option name has one meaning across the apps (tests/apps/option_vocabulary_test.cc).
+  parser.AddOption(
+      "keep", "LIST",
+      "with --perturbations: cut every detector to its N strongest features, one\n"
+      "                              table per N of the comma-separated LIST (default: "
+      "CoMIC's count)",
+      &counts_list);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
   COMIC_CHECK(runs >= 1, kInvalidArgument, "--runs must be >= 1");
@@ -172,10 +176,10 @@ int Run(int argc, char** argv) {
       char* end = nullptr;
       const long value = std::strtol(item.c_str(), &end, 10);
       COMIC_CHECK(!item.empty() && *end == '\0' && value >= 1 && value <= 1000000, kInvalidArgument,
-                  "--count: expected positive integers, got '" << item << "'");
+                  "--keep: expected positive integers, got '" << item << "'");
       counts.push_back(static_cast<int>(value));
     }
-    COMIC_CHECK(counts.empty() || perturbations, kInvalidArgument, "--count needs --perturbations");
+    COMIC_CHECK(counts.empty() || perturbations, kInvalidArgument, "--keep needs --perturbations");
   }
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 

@@ -116,10 +116,9 @@ int Run(int argc, char** argv) {
   parser.AddDeprecatedAlias("out", "overlay");
   comic::apps::AddJsonFlag(parser, &json_path);
   comic::apps::AddResizeHeightFlag(parser, &resize_height);
-  parser.AddOption("detector", "NAME",
-                   "comic (direct search of the paper's definition, default) or comic-paper\n"
-                   "                              (Algorithm 1)",
-                   &detector_name);
+  // The shared --detector flag; comic_detect runs the two CoMIC searches only: comic (the direct
+  // search of the paper's definition) or comic-paper (Algorithm 1).
+  comic::apps::AddDetectorFlag(parser, &detector_name);
   parser.AddOption("scale", "S", "detection scale s in px (paper: 8.4; initialisation at 2s)",
                    &options.scale);
   parser.AddOption("block-size", "B",
@@ -191,7 +190,8 @@ int Run(int argc, char** argv) {
   options.seed_neighbouring_corners = !no_neighbour_seeds;
   options.skip_duplicate_paths = !every_path;
   COMIC_CHECK(detector_name == "comic" || detector_name == "comic-paper", kInvalidArgument,
-              "--detector: expected comic or comic-paper, got '" << detector_name << "'");
+              "--detector: comic_detect runs comic or comic-paper (CoMIC's two searches), got '"
+                  << detector_name << "'");
   direct.scale = options.scale;
   direct.delta = options.delta;
   direct.half_length = options.half_length;
