@@ -1,21 +1,26 @@
-// comic_bench: times the CoMIC detector against OpenCV's MSER (delta 5), FAST-9 and GFTT-Harris
-// on one real frame, in one run, and reports the median milliseconds per frame and the ratio
-// CoMIC / MSER. A plain program rather than a timed test: timings depend on the machine. With
+// comic_bench: times the CoMIC detectors (the default direct search "comic", and Algorithm 1,
+// "comic-paper") against OpenCV's MSER (delta 5), FAST-9 and GFTT-Harris on one real frame, in
+// one run, and reports the median milliseconds per frame and the ratios CoMIC / MSER. A plain
+// program rather than a timed test: timings depend on the machine. With
 // --perturbations it also measures how many features each detector finds again on the same
 // frame after one grey level of noise and after a 0.5 px shift.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <iomanip>
 #include <iostream>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <string>
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/shared_flags.h"
 #include "frontend/comic/comic_detector.h"
+#include "frontend/comic/comic_direct_detector.h"
 #include "frontend/detector_factory.h"
 #include "frontend/parallel_for.h"
 #include "io/error.h"
@@ -69,9 +74,10 @@ double Repeated(const comic::frontend::FeatureSet& features,
 
 // Repeatability on the same frame under two small changes that leave every corner where it is:
 // Gaussian noise of one grey level (seeded) and a shift by 0.5 px (bilinear). Every detector keeps
-// as many features as CoMIC finds, by one response cut chosen on the frame and applied unchanged
-// to the changed frames.
-void PrintPerturbations(const cv::Mat& gray, int threads) {
+// the same number of features, by one response cut chosen on the frame and applied unchanged to
+// the changed frames: its `count` strongest (0: as many as CoMIC finds). Repeatability falls with
+// the count for every detector, so it is comparable only at equal counts.
+void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
   cv::Mat noise(gray.size(), CV_32F);
   cv::RNG rng(7);
   rng.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
@@ -87,11 +93,12 @@ void PrintPerturbations(const cv::Mat& gray, int threads) {
                                 "0.5 px shift: repeated within 1 px %"});
   table.SetPrecision("noise 1 grey level: repeated within 1 px %", 1);
   table.SetPrecision("0.5 px shift: repeated within 1 px %", 1);
-  size_t count = 0;
-  for (const std::string name : {"comic", "harris", "hessian", "fast"}) {
+  size_t kept = count > 0 ? static_cast<size_t>(count) : 0;
+  for (const std::string name : {"comic", "comic-paper", "harris", "hessian", "fast"}) {
     comic::frontend::DetectorOptions options;
     options.name = name;
     options.comic.num_threads = threads;
+    options.comic_paper.num_threads = threads;
     const auto detector = comic::frontend::MakeDetector(options);
     auto keep = [&](comic::frontend::FeatureSet features, float cut) {
       features.erase(std::remove_if(features.begin(), features.end(),
@@ -100,8 +107,8 @@ void PrintPerturbations(const cv::Mat& gray, int threads) {
       return features;
     };
     comic::frontend::FeatureSet base = detector->Detect(gray);
-    if (name == "comic") count = base.size();
-    const float cut = base.size() > count && count > 0 ? base[count - 1].response : -1e30f;
+    if (kept == 0) kept = base.size();
+    const float cut = base.size() > kept && kept > 0 ? base[kept - 1].response : -1e30f;
     base = keep(std::move(base), cut);
     const auto on_noisy = keep(detector->Detect(noisy), cut);
     const auto on_shifted = keep(detector->Detect(shifted), cut);
@@ -109,7 +116,9 @@ void PrintPerturbations(const cv::Mat& gray, int threads) {
                   100.0 * Repeated(base, on_noisy, {0, 0}, gray.size()),
                   100.0 * Repeated(base, on_shifted, {0.5f, 0}, gray.size())});
   }
-  std::cout << "\nRepeatability on the same frame (features kept: CoMIC's count):\n\n"
+  std::cout << "\nRepeatability on the same frame (features kept: "
+            << (count > 0 ? "the " + std::to_string(count) + " strongest" : "CoMIC's count")
+            << "):\n\n"
             << table.ToMarkdown();
 }
 
@@ -120,14 +129,16 @@ int Run(int argc, char** argv) {
   int runs = 9;
   int threads = 0;
   bool perturbations = false;
+  std::string counts_list;
   comic::apps::ArgParser parser(
       "comic_bench", "[IMAGE] [options]",
-      "Times CoMIC (1 thread and N threads), OpenCV MSER (delta 5), FAST-9 and GFTT-Harris on\n"
-      "IMAGE resized to --resize-height, each run --runs times after one warm-up run, and prints\n"
-      "the median milliseconds per frame and the ratio CoMIC (1 thread) / MSER, then CoMIC's\n"
-      "one-thread time by stage (initialisation, convergence, output). --threads sets the\n"
-      "worker count of the second CoMIC run (and of --perturbations); OpenCV's own thread pool\n"
-      "is left as configured (cv::getNumThreads() is reported).");
+      "Times CoMIC (the default direct search, 1 thread and N threads), OpenCV MSER (delta 5),\n"
+      "FAST-9, GFTT-Harris and CoMIC-paper (Algorithm 1, 1 thread) on IMAGE resized to\n"
+      "--resize-height, each run --runs times after one warm-up run, and prints the median\n"
+      "milliseconds per frame and the ratios CoMIC (1 thread) / MSER and CoMIC-paper / MSER,\n"
+      "then each CoMIC's one-thread time by stage. --threads sets the worker count of the\n"
+      "second CoMIC run (and of --perturbations); OpenCV's own thread pool is left as\n"
+      "configured (cv::getNumThreads() is reported).");
   parser.AddPositional("IMAGE",
                        "a real frame [default: ../shared/data/middlebury2003_cones/im2.png]",
                        &input, /*required=*/false);
@@ -137,10 +148,19 @@ int Run(int argc, char** argv) {
   comic::apps::AddJsonFlag(parser, &json_path);
   parser.AddFlag(
       "perturbations",
-      "also report, for CoMIC, Harris, Hessian and FAST at CoMIC's count, the\n"
+      "also report, for comic, comic-paper, Harris, Hessian and FAST at CoMIC's\n"
+      "                              count (or --keep), the\n"
       "                              share of features found again within 1 px after noise\n"
       "                              of 1 grey level and after a 0.5 px shift",
       &perturbations);
+  // Not --count: comic_track_eval's --count is a target count on the object in frame 0, and one
+  // option name has one meaning across the apps (tests/apps/option_vocabulary_test.cc).
+  parser.AddOption(
+      "keep", "LIST",
+      "with --perturbations: cut every detector to its N strongest features, one\n"
+      "                              table per N of the comma-separated LIST (default: "
+      "CoMIC's count)",
+      &counts_list);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
   COMIC_CHECK(runs >= 1, kInvalidArgument, "--runs must be >= 1");
@@ -148,6 +168,19 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(comic::io::PathExists(input), kNotFound,
               input << ": no such file (pass a real frame as IMAGE, e.g. "
                        "../shared/data/middlebury2003_cones/im2.png)");
+  std::vector<int> counts;
+  {
+    std::stringstream stream(counts_list);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+      char* end = nullptr;
+      const long value = std::strtol(item.c_str(), &end, 10);
+      COMIC_CHECK(!item.empty() && *end == '\0' && value >= 1 && value <= 1000000, kInvalidArgument,
+                  "--keep: expected positive integers, got '" << item << "'");
+      counts.push_back(static_cast<int>(value));
+    }
+    COMIC_CHECK(counts.empty() || perturbations, kInvalidArgument, "--keep needs --perturbations");
+  }
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 
   const cv::Mat gray = comic::io::LoadImage(input, resize_height).gray;
@@ -155,12 +188,16 @@ int Run(int argc, char** argv) {
   std::cout << "image: " << input << " (" << gray.cols << "x" << gray.rows << "), " << runs
             << " runs per detector, OpenCV threads: " << cv::getNumThreads() << "\n\n";
 
-  comic::frontend::ComicDetectorOptions one_thread;
+  // "comic": the direct search (the default detector); "comic-paper": Algorithm 1.
+  comic::frontend::ComicDirectDetectorOptions one_thread;
   one_thread.num_threads = 1;
-  comic::frontend::ComicDetectorOptions n_threads;
+  comic::frontend::ComicDirectDetectorOptions n_threads;
   n_threads.num_threads = many;
-  const comic::frontend::ComicDetector comic_1(one_thread);
-  const comic::frontend::ComicDetector comic_n(n_threads);
+  const comic::frontend::ComicDirectDetector comic_1(one_thread);
+  const comic::frontend::ComicDirectDetector comic_n(n_threads);
+  comic::frontend::ComicDetectorOptions paper_one_thread;
+  paper_one_thread.num_threads = 1;
+  const comic::frontend::ComicDetector paper_1(paper_one_thread);
   const cv::Ptr<cv::MSER> mser = cv::MSER::create(/*delta=*/5);
   const cv::Ptr<cv::FastFeatureDetector> fast =
       cv::FastFeatureDetector::create(20, true, cv::FastFeatureDetector::TYPE_9_16);
@@ -174,9 +211,10 @@ int Run(int argc, char** argv) {
     Timing timing;
   };
   std::vector<Entry> entries;
-  std::vector<comic::frontend::ComicDetectionStats> stages;  // of the 1-thread runs
+  std::vector<comic::frontend::ComicDirectDetectionStats> stages;  // of the 1-thread runs
+  std::vector<comic::frontend::ComicDetectionStats> paper_stages;
   entries.push_back({"CoMIC", 1, Time(runs, [&] {
-                       comic::frontend::ComicDetectionStats stats;
+                       comic::frontend::ComicDirectDetectionStats stats;
                        const size_t count = comic_1.Detect(gray, &stats).size();
                        stages.push_back(stats);
                        return count;
@@ -198,6 +236,12 @@ int Run(int argc, char** argv) {
                        harris->detect(gray, keypoints);
                        return keypoints.size();
                      })});
+  entries.push_back({"CoMIC-paper (Algorithm 1)", 1, Time(runs, [&] {
+                       comic::frontend::ComicDetectionStats stats;
+                       const size_t count = paper_1.Detect(gray, &stats).size();
+                       paper_stages.push_back(stats);
+                       return count;
+                     })});
 
   comic::io::ReportTable table({"detector", "threads", "median ms", "min ms", "features"});
   table.SetPrecision("median ms", 1);
@@ -213,28 +257,44 @@ int Run(int argc, char** argv) {
             << " threads): " << entries[1].timing.median_ms / mser_ms << "\nCoMIC speed-up with "
             << many << " threads: " << entries[0].timing.median_ms / entries[1].timing.median_ms
             << "\n";
-  // Where CoMIC's one-thread time goes: medians of each stage over the timed runs (the warm-up
+  std::cout << "CoMIC-paper / MSER (median, 1 thread): " << entries[5].timing.median_ms / mser_ms
+            << "\n";
+  // Where each one-thread time goes: medians of each stage over the timed runs (the warm-up
   // run, first, left out).
   stages.erase(stages.begin());
-  auto median_of = [&](double comic::frontend::ComicDetectionStats::*field) {
+  paper_stages.erase(paper_stages.begin());
+  auto median_of = [](const auto& all, auto field) {
     std::vector<double> values;
-    for (const auto& stats : stages) values.push_back(stats.*field);
+    for (const auto& stats : all) values.push_back(stats.*field);
     std::sort(values.begin(), values.end());
     return values[values.size() / 2];
   };
-  const comic::frontend::ComicDetectionStats& counts = stages.front();
-  const double init_ms = median_of(&comic::frontend::ComicDetectionStats::initialisation_ms);
-  std::cout << std::fixed << std::setprecision(1)
-            << "CoMIC stages, 1 thread (medians): initialisation " << init_ms << " ms ("
+  using DirectStats = comic::frontend::ComicDirectDetectionStats;
+  const DirectStats& direct_counts = stages.front();
+  std::cout << std::fixed << std::setprecision(1) << "CoMIC stages, 1 thread (medians): trees "
+            << median_of(stages, &DirectStats::trees_ms) << " ms ("
+            << median_of(stages, &DirectStats::trees_ms) / mser_ms << " x MSER), curves "
+            << median_of(stages, &DirectStats::curves_ms) << " ms (" << direct_counts.num_curves
+            << " curves, " << direct_counts.num_maxima << " kappa maxima), stability "
+            << median_of(stages, &DirectStats::stability_ms) << " ms (" << direct_counts.num_runs
+            << " runs), side masks and output " << median_of(stages, &DirectStats::output_ms)
+            << " ms\n";
+  using PaperStats = comic::frontend::ComicDetectionStats;
+  const PaperStats& paper_counts = paper_stages.front();
+  const double init_ms = median_of(paper_stages, &PaperStats::initialisation_ms);
+  std::cout << "CoMIC-paper stages, 1 thread (medians): initialisation " << init_ms << " ms ("
             << init_ms / mser_ms << " x MSER), convergence "
-            << median_of(&comic::frontend::ComicDetectionStats::convergence_ms) << " ms ("
-            << counts.num_seeds << " seeds, " << counts.num_iterations << " iterations, "
-            << counts.num_settled << " settled), side masks and output "
-            << median_of(&comic::frontend::ComicDetectionStats::output_ms) << " ms\n";
+            << median_of(paper_stages, &PaperStats::convergence_ms) << " ms ("
+            << paper_counts.num_seeds << " seeds, " << paper_counts.num_iterations
+            << " iterations, " << paper_counts.num_settled << " settled), side masks and output "
+            << median_of(paper_stages, &PaperStats::output_ms) << " ms\n";
   if (!json_path.empty()) {
     comic::io::WriteFileAtomically(json_path, table.ToJson().dump(1) + "\n");
   }
-  if (perturbations) PrintPerturbations(gray, many);
+  if (perturbations) {
+    if (counts.empty()) counts.push_back(0);
+    for (int count : counts) PrintPerturbations(gray, many, count);
+  }
   return 0;
 }
 

@@ -1,13 +1,16 @@
-// comic_detect: runs the CoMIC detector on one image, draws the features and their maximally
+// comic_detect: runs a CoMIC detector (the direct search "comic", or Algorithm 1 "comic-paper")
+// on one image, draws the features and their maximally
 // stable iso-curve segments (both polarities in different colours) and writes them as JSON.
 #include <chrono>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/shared_flags.h"
 #include "frontend/comic/comic_detector.h"
+#include "frontend/comic/comic_direct_detector.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_io.h"
@@ -96,8 +99,12 @@ int Run(int argc, char** argv) {
   bool full_resolution_init = false;
   bool no_neighbour_seeds = false;
   bool every_path = false;
+  std::string detector_name = "comic";
+  // Options shared by both searches are parsed into `options` (Algorithm 1's) and copied to
+  // `direct`; the others belong to one search only.
   comic::frontend::ComicDetectorOptions options;
   options.num_threads = 0;  // all cores: the output does not depend on the thread count
+  comic::frontend::ComicDirectDetectorOptions direct;
   comic::apps::ArgParser parser(
       "comic_detect", "IMAGE [--overlay overlay.png] [--json features.json] [options]",
       "Detects CoMIC features (Corners on Maximally-stable Iso-intensity Curves, Ravindran &\n"
@@ -109,10 +116,13 @@ int Run(int argc, char** argv) {
   parser.AddDeprecatedAlias("out", "overlay");
   comic::apps::AddJsonFlag(parser, &json_path);
   comic::apps::AddResizeHeightFlag(parser, &resize_height);
+  // The shared --detector flag; comic_detect runs the two CoMIC searches only: comic (the direct
+  // search of the paper's definition) or comic-paper (Algorithm 1).
+  comic::apps::AddDetectorFlag(parser, &detector_name);
   parser.AddOption("scale", "S", "detection scale s in px (paper: 8.4; initialisation at 2s)",
                    &options.scale);
   parser.AddOption("block-size", "B",
-                   "block size B in px (paper: 100): B x B initialisation blocks, B/2 "
+                   "comic-paper: block size B in px (paper: 100): B x B initialisation blocks, B/2 "
                    "convergence blocks",
                    &options.block_size);
   parser.AddOption("delta", "D", "intensity offset delta of the Up/Down iso-curves, grey levels",
@@ -120,12 +130,13 @@ int Run(int argc, char** argv) {
   parser.AddOption("half-length", "K", "points on either side of the corner in a segment, k",
                    &options.half_length);
   parser.AddOption("max-iterations", "N",
-                   "feature-convergence iterations before a corner is dropped",
+                   "comic-paper: feature-convergence iterations before a corner is dropped",
                    &options.max_iterations);
-  parser.AddOption("convergence-tolerance", "PX", "a corner has settled when it moves at most this",
+  parser.AddOption("convergence-tolerance", "PX",
+                   "comic-paper: a corner has settled when it moves at most this",
                    &options.convergence_tolerance);
   parser.AddOption("stop-tolerance", "PX",
-                   "convergence iterations stop once a corner moves at most this",
+                   "comic-paper: convergence iterations stop once a corner moves at most this",
                    &options.stop_tolerance);
   parser.AddOption("merge-radius", "PX", "features closer than this are merged (higher rho kept)",
                    &options.merge_radius);
@@ -135,17 +146,31 @@ int Run(int argc, char** argv) {
                    &options.min_cornerness);
   parser.AddFlag(
       "no-neighbour-seeds",
-      "do not converge again from the other corners found on each MSICS (corners\n"
+      "comic-paper: do not converge again from the other corners found on each MSICS (corners\n"
       "                              closer than the initialisation scale 2s may be missed)",
       &no_neighbour_seeds);
-  parser.AddFlag("every-path",
-                 "converge every seed to the end (default: a seed that reaches another\n"
-                 "                              seed's state waits for that seed's outcome)",
-                 &every_path);
-  parser.AddFlag("full-resolution-init",
-                 "run the initialisation stage at full resolution (default: on the image\n"
-                 "                              halved, same physical scale, 4x fewer pixels)",
-                 &full_resolution_init);
+  parser.AddFlag(
+      "every-path",
+      "comic-paper: converge every seed to the end (default: a seed that reaches another\n"
+      "                              seed's state waits for that seed's outcome)",
+      &every_path);
+  parser.AddFlag(
+      "full-resolution-init",
+      "comic-paper: run the initialisation stage at full resolution (default: on the image\n"
+      "                              halved, same physical scale, 4x fewer pixels)",
+      &full_resolution_init);
+  parser.AddOption("presmoothing-sigma", "PX",
+                   "comic: Gaussian pre-smoothing of the image, px (0 = none)",
+                   &direct.presmoothing_sigma);
+  parser.AddOption("level-radius", "N",
+                   "comic: levels traced on either side of each stable maximum of the tree",
+                   &direct.level_radius);
+  parser.AddOption("link-radius", "PX",
+                   "comic: corners of consecutive levels closer than this form one run",
+                   &direct.link_radius);
+  parser.AddOption("consensus-fraction", "F",
+                   "comic: run members with rho >= F x the peak's vote for the position",
+                   &direct.consensus_fraction);
   comic::apps::AddThreadsFlag(parser, &options.num_threads);
   comic::apps::AddMaxFeaturesFlag(parser, &max_features);
   parser.AddEpilog(
@@ -164,14 +189,32 @@ int Run(int argc, char** argv) {
   options.coarse_initialisation = !full_resolution_init;
   options.seed_neighbouring_corners = !no_neighbour_seeds;
   options.skip_duplicate_paths = !every_path;
+  COMIC_CHECK(detector_name == "comic" || detector_name == "comic-paper", kInvalidArgument,
+              "--detector: comic_detect runs comic or comic-paper (CoMIC's two searches), got '"
+                  << detector_name << "'");
+  direct.scale = options.scale;
+  direct.delta = options.delta;
+  direct.half_length = options.half_length;
+  direct.merge_radius = options.merge_radius;
+  direct.min_stability = options.min_stability;
+  direct.min_cornerness = options.min_cornerness;
+  direct.num_threads = options.num_threads;
+  const bool paper = detector_name == "comic-paper";
+  // Both searches' options are checked whichever runs: a bad value is an error, not ignored.
   options.Check();
+  if (!paper) direct.Check();
   if (!overlay_path.empty()) comic::io::CheckWritableFile(overlay_path);
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 
   const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height);
-  const comic::frontend::ComicDetector detector(options);
+  std::unique_ptr<comic::frontend::Detector> detector;
+  if (paper) {
+    detector = std::make_unique<comic::frontend::ComicDetector>(options);
+  } else {
+    detector = std::make_unique<comic::frontend::ComicDirectDetector>(direct);
+  }
   const auto start = std::chrono::steady_clock::now();
-  FeatureSet features = detector.Detect(image.gray);
+  FeatureSet features = detector->Detect(image.gray);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (max_features > 0 && static_cast<int>(features.size()) > max_features) {
@@ -191,24 +234,35 @@ int Run(int argc, char** argv) {
   if (!json_path.empty()) {
     nlohmann::json features_json = nlohmann::json::array();
     for (const Feature& f : features) features_json.push_back(FeatureToJson(f));
+    const nlohmann::json options_json =
+        paper ? nlohmann::json{{"scale", options.scale},
+                               {"block_size", options.block_size},
+                               {"delta", options.delta},
+                               {"half_length", options.half_length},
+                               {"max_iterations", options.max_iterations},
+                               {"convergence_tolerance", options.convergence_tolerance},
+                               {"stop_tolerance", options.stop_tolerance},
+                               {"seed_neighbouring_corners", options.seed_neighbouring_corners},
+                               {"skip_duplicate_paths", options.skip_duplicate_paths},
+                               {"merge_radius", options.merge_radius},
+                               {"min_stability", options.min_stability},
+                               {"min_cornerness", options.min_cornerness},
+                               {"coarse_initialisation", options.coarse_initialisation}}
+              : nlohmann::json{{"scale", direct.scale},
+                               {"delta", direct.delta},
+                               {"half_length", direct.half_length},
+                               {"min_cornerness", direct.min_cornerness},
+                               {"level_radius", direct.level_radius},
+                               {"link_radius", direct.link_radius},
+                               {"consensus_fraction", direct.consensus_fraction},
+                               {"presmoothing_sigma", direct.presmoothing_sigma},
+                               {"merge_radius", direct.merge_radius},
+                               {"min_stability", direct.min_stability}};
     const nlohmann::json root = {{"image", input},
                                  {"width", image.gray.cols},
                                  {"height", image.gray.rows},
-                                 {"detector", detector.Name()},
-                                 {"options",
-                                  {{"scale", options.scale},
-                                   {"block_size", options.block_size},
-                                   {"delta", options.delta},
-                                   {"half_length", options.half_length},
-                                   {"max_iterations", options.max_iterations},
-                                   {"convergence_tolerance", options.convergence_tolerance},
-                                   {"stop_tolerance", options.stop_tolerance},
-                                   {"seed_neighbouring_corners", options.seed_neighbouring_corners},
-                                   {"skip_duplicate_paths", options.skip_duplicate_paths},
-                                   {"merge_radius", options.merge_radius},
-                                   {"min_stability", options.min_stability},
-                                   {"min_cornerness", options.min_cornerness},
-                                   {"coarse_initialisation", options.coarse_initialisation}}},
+                                 {"detector", detector->Name()},
+                                 {"options", options_json},
                                  {"features", features_json}};
     comic::io::WriteFileAtomically(json_path, root.dump(1) + "\n");
     std::cout << "json:     " << json_path << "\n";

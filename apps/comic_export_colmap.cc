@@ -95,6 +95,7 @@ int Run(int argc, char** argv) {
   comic::frontend::DetectorOptions detector_options;
   detector_options.name = detector_name;
   detector_options.comic.num_threads = threads;
+  detector_options.comic_paper.num_threads = threads;
   detector_options.Check();
   const comic::frontend::TrackerOptions tracker_options =
       comic::apps::ToTrackerOptions(tracker_flags);

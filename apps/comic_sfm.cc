@@ -296,6 +296,7 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   frontend::DetectorOptions detector_options;
   detector_options.name = detector_name;
   detector_options.comic.num_threads = flags.threads;
+  detector_options.comic_paper.num_threads = flags.threads;
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_options);
   const sfm::SequenceReconstructionOptions options = MakeOptions(flags);
   const std::string tag = "[" + detector_name + "] ";

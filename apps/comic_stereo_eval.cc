@@ -144,6 +144,7 @@ int Run(int argc, char** argv) {
       "  comic_stereo_eval --middlebury ../shared/data/middlebury2001_tsukuba,"
       "../shared/data/middlebury2003_cones -o stereo\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  options.detectors.comic_paper.num_threads = options.detectors.comic.num_threads;
 
   // Options first: a bad flag fails before any file is read.
   options.methods = fe::ParseStereoMethods(methods);

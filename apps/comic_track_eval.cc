@@ -220,6 +220,7 @@ int Run(int argc, char** argv) {
     options.comic_costs.push_back(fe::ParseMatchCost(name));
   }
   options.detector_options.comic.num_threads = threads;
+  options.detector_options.comic_paper.num_threads = threads;
   options.num_features = num_features;
   options.matcher.radius = radius;
   options.matcher.max_cost = max_cost;

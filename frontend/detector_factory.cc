@@ -22,7 +22,8 @@ void CheckName(const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& DetectorNames() {
-  static const std::vector<std::string> kNames = {"comic", "harris", "hessian", "mser", "fast"};
+  static const std::vector<std::string> kNames = {"comic",   "comic-paper", "harris",
+                                                  "hessian", "mser",        "fast"};
   return kNames;
 }
 
@@ -34,6 +35,7 @@ bool IsDetectorName(const std::string& name) {
 void DetectorOptions::Check() const {
   CheckName(name);
   if (name == "comic") comic.Check();
+  if (name == "comic-paper") comic_paper.Check();
   if (name == "harris") harris.Check();
   if (name == "hessian") hessian.Check();
   if (name == "mser") mser.Check();
@@ -42,7 +44,8 @@ void DetectorOptions::Check() const {
 
 std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options) {
   options.Check();
-  if (options.name == "comic") return std::make_unique<ComicDetector>(options.comic);
+  if (options.name == "comic") return std::make_unique<ComicDirectDetector>(options.comic);
+  if (options.name == "comic-paper") return std::make_unique<ComicDetector>(options.comic_paper);
   if (options.name == "harris") return std::make_unique<HarrisDetector>(options.harris);
   if (options.name == "hessian") return std::make_unique<HessianDetector>(options.hessian);
   if (options.name == "mser") return std::make_unique<MserDetector>(options.mser);

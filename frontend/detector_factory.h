@@ -22,6 +22,7 @@
 #include "frontend/baselines/hessian_detector.h"
 #include "frontend/baselines/mser_detector.h"
 #include "frontend/comic/comic_detector.h"
+#include "frontend/comic/comic_direct_detector.h"
 #include "frontend/detector.h"
 
 namespace comic::frontend {
@@ -29,8 +30,10 @@ namespace comic::frontend {
 struct DetectorOptions {
   // Which detector: one of DetectorNames().
   std::string name = "comic";
-  // The options of each detector; only the one named is used.
-  ComicDetectorOptions comic;
+  // The options of each detector; only the one named is used. `comic`: the direct search of the
+  // §2 definition (ComicDirectDetector); `comic_paper`: Algorithm 1 (ComicDetector, "comic-paper").
+  ComicDirectDetectorOptions comic;
+  ComicDetectorOptions comic_paper;
   HarrisDetectorOptions harris;
   HessianDetectorOptions hessian;
   MserDetectorOptions mser;
@@ -41,7 +44,8 @@ struct DetectorOptions {
   void Check() const;
 };
 
-// {"comic", "harris", "hessian", "mser", "fast"}, in the paper's table order.
+// {"comic", "comic-paper", "harris", "hessian", "mser", "fast"}: the paper's table order, with
+// CoMIC's two searches first.
 const std::vector<std::string>& DetectorNames();
 
 // True if `name` is one of DetectorNames().

@@ -78,7 +78,7 @@ class ComicDetector : public Detector {
  public:
   explicit ComicDetector(const ComicDetectorOptions& options = {});
 
-  std::string Name() const override { return "comic"; }
+  std::string Name() const override { return "comic-paper"; }
   FeatureSet Detect(const cv::Mat& gray) const override { return Detect(gray, nullptr); }
   // The same, filling `stats` when it is not null.
   FeatureSet Detect(const cv::Mat& gray, ComicDetectionStats* stats) const;

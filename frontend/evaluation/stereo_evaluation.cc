@@ -84,6 +84,7 @@ std::vector<StereoMethod> DefaultStereoMethods() {
   return {{"comic", MatchCost::kSplitMinOfFourPairings},
           {"comic", MatchCost::kSplitLikeSides},
           {"comic", MatchCost::kFullPatch},
+          {"comic-paper", MatchCost::kSplitMinOfFourPairings},
           {"harris", MatchCost::kFullPatch},
           {"hessian", MatchCost::kFullPatch},
           {"mser", MatchCost::kFullPatch},
@@ -100,8 +101,9 @@ std::vector<StereoMethod> ParseStereoMethods(const std::string& list) {
     const size_t slash = item.find('/');
     method.detector = item.substr(0, slash);
     COMIC_CHECK(IsDetectorName(method.detector), kInvalidArgument,
-                "methods: unknown detector '" << method.detector
-                                              << "' (valid: comic, harris, hessian, mser, fast)");
+                "methods: unknown detector '"
+                    << method.detector
+                    << "' (valid: comic, comic-paper, harris, hessian, mser, fast)");
     method.cost =
         slash == std::string::npos ? MatchCost::kFullPatch : ParseMatchCost(item.substr(slash + 1));
     COMIC_CHECK(std::find(methods.begin(), methods.end(), method) == methods.end(),

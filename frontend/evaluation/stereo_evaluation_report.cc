@@ -52,8 +52,18 @@ std::vector<double> ReportedThresholds(const StereoEvaluationOptions& options) {
   return thresholds;
 }
 
+// The paper's columns (Tables 1 and 2): CoMIC, Harris, Hessian, MSER, FAST. The default "comic"
+// fills the CoMIC column of the paper layout; "comic-paper" (Algorithm 1, the paper's own
+// search) is compared with the same printed CoMIC numbers.
+const std::vector<std::string>& PaperDetectors() {
+  static const std::vector<std::string> kPaperDetectors = {"comic", "harris", "hessian", "mser",
+                                                           "fast"};
+  return kPaperDetectors;
+}
+
 int DetectorIndex(const std::string& name) {
-  const auto& names = DetectorNames();
+  if (name == "comic-paper") return 0;
+  const auto& names = PaperDetectors();
   return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
@@ -336,7 +346,7 @@ io::ReportTable PaperLayout(const StereoPairEvaluation& pair, const StereoRun& r
   const auto paper = PaperStereoNumbersFor(pair.name);
   std::array<std::optional<RegionScores>, 5> ours;
   for (int d = 0; d < 5; ++d) {
-    const StereoMatching* m = PrimaryMatching(run, DetectorNames()[d]);
+    const StereoMatching* m = PrimaryMatching(run, PaperDetectors()[d]);
     if (m != nullptr) ours[d] = ScoreAt(run.DetectionFor(m->method.detector), *m, options.max_cost);
   }
   enum Measure { kM, kShare, kPrecision, kResM, kDetected };

@@ -24,7 +24,9 @@ void TrackEvaluationOptions::Check() const {
     }
   }
   const bool has_comic = std::find(detectors.begin(), detectors.end(), "comic") != detectors.end();
-  COMIC_CHECK(!has_comic || !comic_costs.empty(), kInvalidArgument,
+  const bool has_comic_paper =
+      std::find(detectors.begin(), detectors.end(), "comic-paper") != detectors.end();
+  COMIC_CHECK(!(has_comic || has_comic_paper) || !comic_costs.empty(), kInvalidArgument,
               "evaluation: no matcher for CoMIC's features");
   COMIC_CHECK(num_features >= 0, kInvalidArgument,
               "evaluation: num_features must be >= 0 (0 = CoMIC's count), got " << num_features);
@@ -52,8 +54,13 @@ void TrackEvaluationOptions::Check() const {
 
 namespace {
 
+// Both CoMIC searches ("comic", "comic-paper") fill side masks and are matched by comic_costs.
+bool IsComic(const std::string& detector) {
+  return detector == "comic" || detector == "comic-paper";
+}
+
 std::string RowLabel(const std::string& detector, MatchCost cost) {
-  return detector == "comic" ? detector + "/" + MatchCostName(cost) : detector;
+  return IsComic(detector) ? detector + "/" + MatchCostName(cost) : detector;
 }
 
 // The labels of frame `frame`'s region at the evaluated size, or an empty Mat without regions.
@@ -218,7 +225,7 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
   std::vector<std::vector<size_t>> rows_of_detector(detectors.size());
   std::vector<Tracker> trackers;
   for (size_t d = 0; d < detectors.size(); ++d) {
-    const std::vector<MatchCost> costs = options.detectors[d] == "comic"
+    const std::vector<MatchCost> costs = IsComic(options.detectors[d])
                                              ? options.comic_costs
                                              : std::vector<MatchCost>{MatchCost::kFullPatch};
     for (MatchCost cost : costs) {

@@ -44,7 +44,8 @@ namespace comic::frontend {
 
 struct TrackEvaluationOptions {
   // Detectors to compare, in row order (names of DetectorNames()).
-  std::vector<std::string> detectors = {"comic", "harris", "hessian", "mser", "fast"};
+  std::vector<std::string> detectors = {"comic",   "comic-paper", "harris",
+                                        "hessian", "mser",        "fast"};
   // Options of every detector (DetectorOptions::name is ignored).
   DetectorOptions detector_options;
   // Matchers evaluated on CoMIC's features, one row each (see above).

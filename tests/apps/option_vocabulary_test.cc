@@ -50,6 +50,7 @@ const std::map<std::string, std::string> kDefaultsDifferOnPurpose = {
     {"target-precision", "comic_stereo_eval's 0 takes --precision-reference's precision"},
     {"output", "each app's default folder is named after it (out/sfm, stereo_eval, track_eval)"},
     {"max-features", "comic_detect shows every feature of its image; the trackers keep 2000"},
+    {"detector", "comic_detect shows CoMIC (comic); the SfM apps default to harris"},
 };
 
 std::vector<std::string> AppNames() {

@@ -73,7 +73,7 @@ cv::Mat TexturedScene(uint64_t seed) {
 }
 
 TEST(ComicDetector, NameAndOptionValidation) {
-  EXPECT_EQ(ComicDetector().Name(), "comic");
+  EXPECT_EQ(ComicDetector().Name(), "comic-paper");
   auto rejects = [](auto mutate) {
     ComicDetectorOptions options;
     mutate(&options);

@@ -1,0 +1,495 @@
+#include "frontend/comic/comic_direct_detector.h"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <opencv2/imgproc.hpp>
+#include <unordered_map>
+#include <vector>
+
+#include "frontend/comic/component_tree.h"
+#include "frontend/comic/curve_cornerness.h"
+#include "frontend/comic/iso_curve.h"
+#include "frontend/comic/iso_curve_stability.h"
+#include "frontend/comic/side_mask.h"
+#include "frontend/parallel_for.h"
+#include "io/error.h"
+
+namespace comic::frontend {
+
+void ComicDirectDetectorOptions::Check() const {
+  COMIC_CHECK(scale > 0, kInvalidArgument, "comic: scale must be > 0, got " << scale);
+  COMIC_CHECK(delta >= 1, kInvalidArgument, "comic: delta must be >= 1, got " << delta);
+  COMIC_CHECK(half_length >= 2, kInvalidArgument,
+              "comic: half_length must be >= 2, got " << half_length);
+  COMIC_CHECK(min_cornerness >= 0 && min_cornerness <= 0.25, kInvalidArgument,
+              "comic: min_cornerness must be in [0, 0.25], got " << min_cornerness);
+  COMIC_CHECK(level_radius >= 0, kInvalidArgument,
+              "comic: level_radius must be >= 0, got " << level_radius);
+  COMIC_CHECK(bridge_levels >= 0, kInvalidArgument,
+              "comic: bridge_levels must be >= 0, got " << bridge_levels);
+  COMIC_CHECK(link_radius > 0, kInvalidArgument,
+              "comic: link_radius must be > 0, got " << link_radius);
+  COMIC_CHECK(consensus_fraction >= 0 && consensus_fraction <= 1, kInvalidArgument,
+              "comic: consensus_fraction must be in [0, 1], got " << consensus_fraction);
+  COMIC_CHECK(presmoothing_sigma >= 0, kInvalidArgument,
+              "comic: presmoothing_sigma must be >= 0, got " << presmoothing_sigma);
+  COMIC_CHECK(merge_radius >= 0, kInvalidArgument, "comic: merge_radius must be >= 0");
+  COMIC_CHECK(min_stability >= 0, kInvalidArgument, "comic: min_stability must be >= 0");
+  COMIC_CHECK(num_threads >= 0, kInvalidArgument, "comic: num_threads must be >= 0");
+}
+
+ComicDirectDetector::ComicDirectDetector(const ComicDirectDetectorOptions& options)
+    : options_(options) {
+  options_.Check();
+}
+
+namespace {
+
+constexpr double kSqrt2 = 1.41421356237309504880;
+// A feature whose patch lies in the image but holds fewer pixels than this on one side of its
+// curve cannot be matched by the side-split matcher of paper §4 (Algorithm 2's d_min, the
+// PatchMatcherOptions::min_side_overlap default): it is a sliver of a region, not a corner of two.
+constexpr int kMinSidePixels = 40;
+
+// One κ maximum on the curve of one level.
+struct LevelCorner {
+  int tree = 0;        // 0: lower level sets (dark components), 1: upper
+  int tree_level = 0;  // level in the tree's values (consecutive levels are linked)
+  int level = 0;       // grey level I of the image: the curve is at I + 0.5
+  cv::Point2f apex;
+  cv::Point2f vertex;
+  double cornerness = 0.0;
+  Polarity polarity = Polarity::kNone;
+  std::vector<cv::Point2f> segment;  // ±k samples at 1 px, dark side on the left
+  int segment_centre = 0;
+  double stability = 0.0;  // ρ_w, filled later
+};
+
+// A curve to trace: the outer boundary of tree node `node` at tree level `level`.
+struct CurveJob {
+  int tree;
+  int node;
+  int level;
+  bool operator<(const CurveJob& o) const {
+    if (tree != o.tree) return tree < o.tree;
+    if (node != o.node) return node < o.node;
+    return level < o.level;
+  }
+  bool operator==(const CurveJob& o) const {
+    return tree == o.tree && node == o.node && level == o.level;
+  }
+};
+
+// The component tree of one polarity and, per node, its first pixel in raster order (the
+// topmost, then leftmost): the pixel above it (or, on the first row, to its left) is outside the
+// component and not in one of its holes, so the edge between them lies on the outer boundary.
+struct PolarityTree {
+  ComponentTree tree;
+  std::vector<int> first_pixel;
+  std::vector<int> stable_level;
+  std::vector<CurveJob> jobs;
+};
+
+void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDetectorOptions& o,
+                       PolarityTree* out) {
+  ComponentTree& tree = out->tree;
+  tree.Build(image, tree_index == 1);
+  const int padded = tree.Stride() * (tree.height() + 2);
+  out->first_pixel.assign(padded, INT_MAX);
+  for (int y = 0; y < tree.height(); ++y) {
+    for (int x = 0; x < tree.width(); ++x) {
+      const int p = tree.PixelIndex(x, y);
+      int& first = out->first_pixel[tree.NodeOfPixel(p)];
+      first = std::min(first, p);
+    }
+  }
+  for (int node : tree.Nodes()) {  // descendants first
+    const int parent = tree.Parent(node);
+    if (parent >= 0) {
+      out->first_pixel[parent] = std::min(out->first_pixel[parent], out->first_pixel[node]);
+    }
+  }
+  // Stable lineage maxima (the unweighted ρ of §3 on the tree): the iso-curves that can hold a
+  // feature. Their segment must be complete, so the boundary needs 2k + 1 edges at least.
+  const int k = o.half_length;
+  const std::vector<StableComponent> stable =
+      FindMaximallyStableComponents(tree, o.delta, 2 * k + 1, 0.0, 1);
+  const int root = tree.Root();
+  // Per node: the level of its nearest stable ancestor-or-self (-1: none), so that the levels
+  // between two stable maxima of one lineage are traced too when they are close: a corner's run
+  // must not break at a level no maximum happened to be near.
+  std::vector<int>& stable_level = out->stable_level;
+  stable_level.assign(padded, -1);
+  for (const StableComponent& component : stable) stable_level[component.node] = component.level;
+  {
+    const std::vector<int>& nodes = tree.Nodes();
+    for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
+      const int parent = tree.Parent(*it);
+      if (stable_level[*it] < 0 && parent >= 0) stable_level[*it] = stable_level[parent];
+    }
+  }
+  out->jobs.clear();
+  auto add_job = [&](int from_node, int level) {
+    if (level < 0 || level > 254) return;
+    const int node = level >= tree.Level(from_node) ? tree.AncestorAtLevel(from_node, level)
+                                                    : tree.MainDescendantAtLevel(from_node, level);
+    if (node < 0 || node == root || tree.Perimeter(node) < 2 * k + 1) return;
+    out->jobs.push_back({tree_index, node, level});
+  };
+  for (const StableComponent& component : stable) {
+    const int parent = tree.Parent(component.node);
+    const int above = parent < 0 ? -1 : stable_level[parent];
+    if (above > component.level && above - component.level <= o.bridge_levels) {
+      for (int level = component.level + o.level_radius + 1; level < above - o.level_radius;
+           ++level) {
+        add_job(component.node, level);
+      }
+    }
+    for (int level = component.level - o.level_radius; level <= component.level + o.level_radius;
+         ++level) {
+      add_job(component.node, level);
+    }
+  }
+  std::sort(out->jobs.begin(), out->jobs.end());
+  out->jobs.erase(std::unique(out->jobs.begin(), out->jobs.end()), out->jobs.end());
+}
+
+struct CurveWorkspace {
+  IsoCurve curve;
+  std::vector<double> arc_lengths;
+  std::vector<double> kappa;
+  CornernessWorkspace cornerness;
+  WeightedStabilityEvaluator evaluator;
+};
+
+// Traces the outer boundary of `job` and appends its κ maxima to `corners`.
+void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const CurveJob& job,
+                    const ComicDirectDetectorOptions& o, const CurveCornerOptions& corner_options,
+                    CurveWorkspace* ws, std::vector<LevelCorner>* corners) {
+  const ComponentTree& tree = tree_data.tree;
+  const bool upper = job.tree == 1;
+  const int first = tree_data.first_pixel[job.node];
+  const int x = tree.PixelX(first);
+  const int y = tree.PixelY(first);
+  cv::Point in_pixel(x, y);
+  cv::Point out_pixel;
+  if (y > 0) {
+    out_pixel = cv::Point(x, y - 1);
+  } else if (x > 0) {
+    out_pixel = cv::Point(x - 1, y);
+  } else {
+    // The component holds the top-left pixel: walk the first row to its first outside pixel.
+    int end = 0;
+    while (end < tree.width() && tree.Value(tree.PixelIndex(end, 0)) <= job.level) ++end;
+    if (end == tree.width()) return;
+    in_pixel = cv::Point(end - 1, 0);
+    out_pixel = cv::Point(end, 0);
+  }
+  // In the tree's values the component is {value <= level}; in the image's grey values its curve
+  // is at 254.5 - level for upper sets (the component is {v >= 255 - level}). The tracer's inside
+  // is the dark side.
+  const double threshold = upper ? 254.5 - job.level : job.level + 0.5;
+  const IsoCurveTracer tracer(image, cv::Rect(0, 0, image.cols, image.rows), threshold);
+  const CurveEdge seed = upper ? CurveEdge{out_pixel, in_pixel} : CurveEdge{in_pixel, out_pixel};
+  tracer.Trace(seed, 4 * (image.cols + image.rows) + tree.Perimeter(job.node), &ws->curve);
+  const IsoCurve& curve = ws->curve;
+  const int k = o.half_length;
+  if (static_cast<int>(curve.points.size()) < 2 * k + 1) return;
+  PolylineArcLengths(curve.points, curve.closed, &ws->arc_lengths);
+  const double length = ws->arc_lengths.back();
+  // A closed curve must be long enough for a segment to be a proper part of it (at most half):
+  // on a small loop κ is near its maximum everywhere and the corner is arbitrary.
+  if (curve.closed && length < 4 * k + 1) return;
+  int origin = 0;
+  const std::vector<cv::Point2f> samples =
+      ResamplePolyline(curve.points, ws->arc_lengths, curve.closed, 1.0, 0.0, 0,
+                       static_cast<int>(length) + 1, &origin);
+  const int n = static_cast<int>(samples.size());
+  if (n < 2 * k + 1) return;
+  const double sigma = o.scale / kSqrt2;
+  CurveCornerness(samples, curve.closed, sigma, k, &ws->cornerness, &ws->kappa);
+  const int nms_radius = std::max(1, static_cast<int>(std::lround(sigma)));
+  for (int index : CornernessMaxima(ws->kappa, curve.closed, nms_radius, o.min_cornerness)) {
+    const CurveCorner refined =
+        RefineCurveCorner(samples, curve.closed, ws->kappa, index, corner_options);
+    LevelCorner corner;
+    corner.tree = job.tree;
+    corner.tree_level = job.level;
+    corner.level = upper ? 254 - job.level : job.level;
+    corner.apex = refined.apex;
+    corner.vertex = refined.vertex;
+    corner.cornerness = refined.cornerness;
+    corner.polarity = refined.polarity;
+    for (int j = index - k; j <= index + k; ++j) {
+      if (!curve.closed && (j < 0 || j >= n)) continue;
+      if (j == index) corner.segment_centre = static_cast<int>(corner.segment.size());
+      corner.segment.push_back(samples[((j % n) + n) % n]);
+    }
+    corners->push_back(std::move(corner));
+  }
+}
+
+// Links each κ maximum to the mutually nearest maximum of the next tree level of the same tree
+// and corner polarity within `radius`: next[i] is the index linked after i, or -1.
+std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, double radius) {
+  const int n = static_cast<int>(corners.size());
+  const double cell = std::max(radius, 1.0);
+  auto cell_of = [cell](float v) { return static_cast<int64_t>(std::floor(v / cell)); };
+  auto key = [](int tree, int level, int64_t cx, int64_t cy) {
+    return (((static_cast<int64_t>(tree) * 512 + level) * 65536 + (cx & 0xffff)) << 16) |
+           (cy & 0xffff);
+  };
+  std::unordered_map<int64_t, std::vector<int>> grid;
+  for (int i = 0; i < n; ++i) {
+    const LevelCorner& c = corners[i];
+    grid[key(c.tree, c.tree_level, cell_of(c.apex.x), cell_of(c.apex.y))].push_back(i);
+  }
+  // The nearest maximum at tree level + step (ties: the lower index, the grid lists ascend).
+  auto nearest = [&](int i, int step) {
+    const LevelCorner& c = corners[i];
+    const int64_t cx = cell_of(c.apex.x), cy = cell_of(c.apex.y);
+    int best = -1;
+    double best_distance = radius;
+    for (int64_t dy = -1; dy <= 1; ++dy) {
+      for (int64_t dx = -1; dx <= 1; ++dx) {
+        auto it = grid.find(key(c.tree, c.tree_level + step, cx + dx, cy + dy));
+        if (it == grid.end()) continue;
+        for (int j : it->second) {
+          if (corners[j].polarity != c.polarity) continue;
+          const double d = std::hypot(corners[j].apex.x - c.apex.x, corners[j].apex.y - c.apex.y);
+          if (d < best_distance || (d == best_distance && best >= 0 && j < best)) {
+            best_distance = d;
+            best = j;
+          }
+        }
+      }
+    }
+    return best;
+  };
+  // A κ maximum may vanish at one level (noise, a saddle of the curve): with none at the next
+  // level, the one after it is linked.
+  auto following = [&](int i, int direction) {
+    const int j = nearest(i, direction);
+    return j >= 0 ? j : nearest(i, 2 * direction);
+  };
+  std::vector<int> next(n, -1);
+  for (int i = 0; i < n; ++i) {
+    const int j = following(i, 1);
+    if (j >= 0 && following(j, -1) == i) next[i] = j;
+  }
+  return next;
+}
+
+// Greedy suppression in the given order of candidates closer than `radius` to a kept one.
+template <typename T, typename Position>
+std::vector<T> SuppressNeighbours(std::vector<T> items, double radius, Position position) {
+  std::vector<T> kept;
+  const double cell = std::max(radius, 1.0);
+  std::unordered_map<int64_t, std::vector<cv::Point2f>> grid;
+  auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); };
+  for (T& item : items) {
+    const cv::Point2f p = position(item);
+    const int64_t cx = static_cast<int64_t>(std::floor(p.x / cell));
+    const int64_t cy = static_cast<int64_t>(std::floor(p.y / cell));
+    bool suppressed = false;
+    for (int64_t dy = -1; dy <= 1 && !suppressed; ++dy) {
+      for (int64_t dx = -1; dx <= 1 && !suppressed; ++dx) {
+        auto it = grid.find(key(cx + dx, cy + dy));
+        if (it == grid.end()) continue;
+        for (const cv::Point2f& q : it->second) {
+          if (std::hypot(q.x - p.x, q.y - p.y) < radius) {
+            suppressed = true;
+            break;
+          }
+        }
+      }
+    }
+    if (suppressed) continue;
+    grid[key(cx, cy)].push_back(p);
+    kept.push_back(std::move(item));
+  }
+  return kept;
+}
+
+struct RunFeature {
+  cv::Point2f position;
+  double stability = 0.0;
+  int member = -1;  // the member whose curve, level and κ the feature carries
+};
+
+}  // namespace
+
+FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
+                                       ComicDirectDetectionStats* stats) const {
+  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
+              "comic: expected a non-empty 8-bit single-channel image");
+  const ComicDirectDetectorOptions& o = options_;
+  ComicDirectDetectionStats local_stats;
+  if (stats == nullptr) stats = &local_stats;
+  *stats = ComicDirectDetectionStats();
+  const int k = o.half_length;
+  if (gray.cols < 2 * k + 1 || gray.rows < 2 * k + 1) return {};
+  auto stage_start = std::chrono::steady_clock::now();
+  auto lap = [&stage_start] {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
+    stage_start = now;
+    return ms;
+  };
+
+  // ---- Trees of both polarities and their stable lineage maxima. ----
+  // A new buffer: `gray` is the caller's and must not be written.
+  cv::Mat image;
+  if (o.presmoothing_sigma > 0) {
+    // 8-bit Gaussian filtering is bit-exact in OpenCV (fixed point), whatever the threads.
+    cv::GaussianBlur(gray, image, cv::Size(0, 0), o.presmoothing_sigma, o.presmoothing_sigma,
+                     cv::BORDER_REPLICATE);
+  } else {
+    image = gray;
+  }
+  PolarityTree trees[2];
+  ParallelFor(2, o.num_threads, [&](int t, int) { BuildPolarityTree(image, t, o, &trees[t]); });
+  std::vector<CurveJob> jobs = trees[0].jobs;
+  jobs.insert(jobs.end(), trees[1].jobs.begin(), trees[1].jobs.end());
+  stats->trees_ms = lap();
+
+  // ---- κ maxima on every curve to trace (Algorithm 1's segment and corner at scale s). ----
+  CurveCornerOptions corner_options;
+  corner_options.arm_end = k;
+  corner_options.arm_begin = std::min(4.0, 0.5 * k);
+  corner_options.max_vertex_shift = 0.25 * k;
+  const int num_workers = ResolveNumThreads(o.num_threads, 1 << 20);
+  std::vector<CurveWorkspace> workspaces(num_workers);
+  std::vector<std::vector<LevelCorner>> per_job(jobs.size());
+  ParallelFor(static_cast<int>(jobs.size()), o.num_threads, [&](int j, int worker) {
+    CornersOfCurve(image, trees[jobs[j].tree], jobs[j], o, corner_options, &workspaces[worker],
+                   &per_job[j]);
+  });
+  std::vector<LevelCorner> corners;
+  for (auto& list : per_job) {
+    for (LevelCorner& c : list) corners.push_back(std::move(c));
+  }
+  per_job.clear();
+  stats->num_curves = static_cast<int>(jobs.size());
+  stats->num_maxima = static_cast<int>(corners.size());
+  stats->curves_ms = lap();
+
+  // ---- ρ_w of every maximum (Eq. 1, §2.1 weights), on its own segment. ----
+  WeightedStabilityOptions stability_options;
+  stability_options.half_length = k;
+  stability_options.sigma = o.scale / kSqrt2;
+  stability_options.delta = o.delta;
+  ParallelFor(static_cast<int>(corners.size()), o.num_threads, [&](int i, int worker) {
+    LevelCorner& c = corners[i];
+    WeightedStabilityEvaluator& evaluator = workspaces[worker].evaluator;
+    c.stability = 0.0;
+    if (c.segment_centre < 1 || c.segment_centre + 1 >= static_cast<int>(c.segment.size())) return;
+    if (!evaluator.Prepare(image, c.segment, c.segment_centre, stability_options)) return;
+    const int l = c.level - evaluator.first_level();
+    if (l >= 0 && l < evaluator.NumLevels()) c.stability = std::max(0.0, evaluator.Stability(l));
+  });
+
+  // ---- Runs: one corner seen at consecutive levels; one feature per run. ----
+  const std::vector<int> next = LinkAcrossLevels(corners, o.link_radius);
+  std::vector<uint8_t> has_previous(corners.size(), 0);
+  for (int j : next) {
+    if (j >= 0) has_previous[j] = 1;
+  }
+  std::vector<RunFeature> features_of_runs;
+  std::vector<int> run;
+  std::vector<double> smoothed;
+  for (int start = 0; start < static_cast<int>(corners.size()); ++start) {
+    if (has_previous[start]) continue;
+    run.clear();
+    for (int i = start; i >= 0; i = next[i]) run.push_back(i);
+    ++stats->num_runs;
+    const int m = static_cast<int>(run.size());
+    // ρ_w smoothed across levels ([1 2 1] / 4, ends replicated): one grey level of noise moves a
+    // single level's ρ_w, not the run's peak.
+    smoothed.assign(m, 0.0);
+    for (int r = 0; r < m; ++r) {
+      const double before = corners[run[std::max(0, r - 1)]].stability;
+      const double after = corners[run[std::min(m - 1, r + 1)]].stability;
+      smoothed[r] = 0.25 * before + 0.5 * corners[run[r]].stability + 0.25 * after;
+    }
+    int peak = 0;
+    for (int r = 1; r < m; ++r) {
+      if (smoothed[r] > smoothed[peak]) peak = r;
+    }
+    if (!(smoothed[peak] > 0.0)) continue;
+    // Consensus: the levels around the peak that are equally stable (smoothed ρ_w within
+    // consensus_fraction of the peak's; ρ_w is nearly flat across the steep part of an edge) form
+    // a window; the feature is the mean of the vertices over the window, cut symmetric about its
+    // centre. Across levels the vertex drifts along the corner's bisector (the iso-curves of a
+    // blurred edge are offsets of it), linearly near the middle of the edge, so the symmetric mean
+    // is the vertex at the window's centre, the middle of the edge, with the noise of the single
+    // levels averaged out; the window's ends, not the flat peak, decide where it is.
+    const double floor = o.consensus_fraction * smoothed[peak];
+    int begin = peak;
+    int end = peak;
+    while (begin > 0 && smoothed[begin - 1] >= floor) --begin;
+    while (end + 1 < m && smoothed[end + 1] >= floor) ++end;
+    const int centre = (begin + end) / 2;
+    const int half = std::min(centre - begin, end - centre);
+    double sum_x = 0.0, sum_y = 0.0;
+    for (int r = centre - half; r <= centre + half; ++r) {
+      sum_x += corners[run[r]].vertex.x;
+      sum_y += corners[run[r]].vertex.y;
+    }
+    const int member = centre;
+    const double sum_w = 2 * half + 1;
+    RunFeature f;
+    f.position = cv::Point2f(static_cast<float>(sum_x / sum_w), static_cast<float>(sum_y / sum_w));
+    f.stability = smoothed[peak];
+    f.member = run[member];
+    // On the response as stored (float), so that a threshold equals a cut of the full output.
+    if (static_cast<float>(f.stability) < o.min_stability) continue;
+    features_of_runs.push_back(f);
+  }
+  stats->stability_ms = lap();
+
+  // ---- Merge duplicates (both polarities, neighbouring runs), side masks, order. ----
+  std::sort(features_of_runs.begin(), features_of_runs.end(),
+            [&](const RunFeature& a, const RunFeature& b) {
+              if (a.stability != b.stability) return a.stability > b.stability;
+              if (a.position.y != b.position.y) return a.position.y < b.position.y;
+              if (a.position.x != b.position.x) return a.position.x < b.position.x;
+              return a.member < b.member;
+            });
+  features_of_runs = SuppressNeighbours(std::move(features_of_runs), o.merge_radius,
+                                        [](const RunFeature& f) { return f.position; });
+  FeatureSet features(features_of_runs.size());
+  ParallelFor(static_cast<int>(features.size()), o.num_threads, [&](int i, int) {
+    const RunFeature& r = features_of_runs[i];
+    const LevelCorner& c = corners[r.member];
+    Feature& f = features[i];
+    f.x = r.position.x;
+    f.y = r.position.y;
+    f.scale = static_cast<float>(o.scale);
+    f.response = static_cast<float>(r.stability);
+    f.cornerness = static_cast<float>(c.cornerness);
+    f.level = c.level;
+    f.polarity = c.polarity;
+    f.curve = c.segment;
+    const cv::Point centre(static_cast<int>(std::lround(f.x)), static_cast<int>(std::lround(f.y)));
+    f.side_mask = ComputeSideMask(image, c.level + 0.5, c.apex, centre);
+  });
+  features.erase(std::remove_if(features.begin(), features.end(),
+                                [&](const Feature& f) {
+                                  if (!PatchFits(f, gray.size())) return false;
+                                  const auto count = [&](PatchSide side) {
+                                    return std::count(f.side_mask.begin(), f.side_mask.end(), side);
+                                  };
+                                  return count(PatchSide::kPlus) < kMinSidePixels ||
+                                         count(PatchSide::kMinus) < kMinSidePixels;
+                                }),
+                 features.end());
+  SortByResponse(&features);
+  stats->output_ms = lap();
+  return features;
+}
+
+}  // namespace comic::frontend

@@ -1,0 +1,95 @@
+// CoMIC by direct search of the paper's definition (§2, "Corner Definition"): p is a corner at
+// scale s if ICS(I, p, c·s) is maximally stable according to ρ (Eq. 1, Gaussian weights of
+// §2.1) and p is a local maximum of κ (§2.2, §3's iterated box filter) along ICS(I). No seeds and
+// no fixed-point iterations (Algorithm 1, ComicDetector, is the paper's approximation of this
+// search and stays as the detector "comic-paper"):
+//
+//   1. one component tree per polarity of the (lightly smoothed) image; its maximally stable
+//      lineage maxima (unweighted ρ, §3) say which iso-curves can hold a feature;
+//   2. on those curves, at the levels around each stable maximum, κ maxima at scale s (with the
+//      straight-arm vertex correction of curve_cornerness.h);
+//   3. κ maxima linked across consecutive levels into runs: one run is one corner seen at
+//      several levels. ρ_w (Eq. 1 with §2.1's weights) of every member, smoothed across levels;
+//      the run's ρ_w peak is its MSICS wherever it lies in the run, and the position is the
+//      mean vertex of the levels around the peak that are equally stable (robust to one grey
+//      level of noise, docs/comic_detector.md).
+//
+//   comic::frontend::ComicDirectDetectorOptions options;  // paper defaults: s = 8.4, δ = 5
+//   comic::frontend::ComicDirectDetector detector(options);
+//   comic::frontend::FeatureSet features = detector.Detect(gray);  // strongest ρ_w first
+#pragma once
+
+#include <string>
+
+#include "frontend/detector.h"
+
+namespace comic::frontend {
+
+struct ComicDirectDetectorOptions {
+  // Detection scale s in pixels (paper §3: s = 8.4). The along-curve Gaussians (ρ weights, κ
+  // window) have σ = s/√2 samples, ≈ k/2 at the defaults.
+  double scale = 8.4;
+  // Intensity offset δ of the Up/Down iso-curves in grey levels (paper Fig. 3: δ = 5).
+  int delta = 5;
+  // Points on either side of the centre of an iso-curve segment, k (≈25 points per ICS, §3).
+  int half_length = 12;
+  // Cornerness floor κ >= this (as ComicDetectorOptions::min_cornerness: 0.03 keeps turns of
+  // more than ~35°; without it the noise wiggles of straight edges would be corners).
+  double min_cornerness = 0.03;
+  // Levels traced on either side of each stable lineage maximum of the tree: the levels whose
+  // curves can carry the same corner as the component's MSICS (a run's ρ_w peak may lie a few
+  // levels from the component's, since ρ of a segment peaks where its own edge is steepest).
+  int level_radius = 5;
+  // Two stable maxima of one lineage at most this many levels apart: the levels between them are
+  // traced too, so that a corner's run does not break where no maximum happened to be near (255:
+  // always; on the cones at height 700 that adds 0.2 % to the curves traced, 20 levels would
+  // leave runs of rendered polygons broken at the foot of their edges).
+  int bridge_levels = 255;
+  // κ maxima of consecutive levels (or, with none at the next level, of the one after it) closer
+  // than this (px) are the same corner, linked into a run.
+  double link_radius = 1.5;
+  // The levels of a run whose smoothed ρ_w is at least this fraction of the peak's, contiguous
+  // with the peak, are equally stable: the feature is the mean of their vertices over a window
+  // symmetric about the middle of those levels.
+  double consensus_fraction = 0.9;
+  // Standard deviation of the Gaussian pre-smoothing of the image, px (0: none). Harris and
+  // Hessian smooth internally too; it keeps one grey level of noise off the iso-curves.
+  double presmoothing_sigma = 1.0;
+  // Features closer than this (px) are duplicates; the one with the higher ρ_w is kept.
+  double merge_radius = 2.0;
+  // Stability threshold on ρ_w (Eq. 1): features below it are not returned (0: all).
+  double min_stability = 0.0;
+  // Worker threads (0 = all hardware threads). Output is identical for any value.
+  int num_threads = 1;
+
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+// Where one detection spent its work (the features do not depend on whether it is asked for).
+struct ComicDirectDetectionStats {
+  double trees_ms = 0.0;      // smoothing, both component trees, stable maxima
+  double curves_ms = 0.0;     // traced curves, κ maxima
+  double stability_ms = 0.0;  // linking, ρ_w of every run member, consensus
+  double output_ms = 0.0;     // merge, side masks, sorting
+  int num_curves = 0;         // curves traced
+  int num_maxima = 0;         // κ maxima over all levels
+  int num_runs = 0;           // runs of linked maxima
+};
+
+class ComicDirectDetector : public Detector {
+ public:
+  explicit ComicDirectDetector(const ComicDirectDetectorOptions& options = {});
+
+  std::string Name() const override { return "comic"; }
+  FeatureSet Detect(const cv::Mat& gray) const override { return Detect(gray, nullptr); }
+  // The same, filling `stats` when it is not null.
+  FeatureSet Detect(const cv::Mat& gray, ComicDirectDetectionStats* stats) const;
+
+  const ComicDirectDetectorOptions& options() const { return options_; }
+
+ private:
+  ComicDirectDetectorOptions options_;
+};
+
+}  // namespace comic::frontend
