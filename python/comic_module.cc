@@ -98,7 +98,22 @@ void ApplyOptions(const py::dict& options, const OptionTable& table, const std::
 
 OptionTable DetectorOptionTable(frontend::DetectorOptions* o) {
   if (o->name == "comic") {
-    frontend::ComicDetectorOptions* c = &o->comic;
+    frontend::ComicDirectDetectorOptions* c = &o->comic;
+    return {{"scale", Field(&c->scale)},
+            {"delta", Field(&c->delta)},
+            {"half_length", Field(&c->half_length)},
+            {"min_cornerness", Field(&c->min_cornerness)},
+            {"level_radius", Field(&c->level_radius)},
+            {"bridge_levels", Field(&c->bridge_levels)},
+            {"link_radius", Field(&c->link_radius)},
+            {"consensus_fraction", Field(&c->consensus_fraction)},
+            {"presmoothing_sigma", Field(&c->presmoothing_sigma)},
+            {"merge_radius", Field(&c->merge_radius)},
+            {"min_stability", Field(&c->min_stability)},
+            {"threads", Field(&c->num_threads)}};
+  }
+  if (o->name == "comic-paper") {
+    frontend::ComicDetectorOptions* c = &o->comic_paper;
     return {{"scale", Field(&c->scale)},
             {"block_size", Field(&c->block_size)},
             {"delta", Field(&c->delta)},
@@ -147,7 +162,7 @@ frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py:
   frontend::DetectorOptions detector_options;
   detector_options.name = name;
   COMIC_CHECK(frontend::IsDetectorName(name), kInvalidArgument,
-              "unknown detector '" << name << "' (expected comic, harris, hessian, mser or fast)");
+              "unknown detector '" << name << "' (expected one of comic.detector_names)");
   ApplyOptions(options, DetectorOptionTable(&detector_options), "detector '" + name + "'");
   detector_options.Check();
   return detector_options;
@@ -632,7 +647,10 @@ PyReconstruction Reconstruct(const std::string& path, const std::string& detecto
   sfm_options.Check();
   sequence_options.Check();
 
-  if (!detector_options.contains("threads")) made.comic.num_threads = threads;
+  if (!detector_options.contains("threads")) {
+    made.comic.num_threads = threads;
+    made.comic_paper.num_threads = threads;
+  }
   const io::ImageSequence sequence = io::ImageSequence::Open(path, sequence_options);
   std::optional<sfm::FrameGroundTruth> truth;
   if (!gt.empty()) {
@@ -703,7 +721,10 @@ py::dict ExportColmap(const std::string& frames, const std::string& database,
   COMIC_CHECK(threads >= 0, kInvalidArgument,
               "export_colmap: threads must be >= 0, got " << threads);
   export_options.num_threads = threads;
-  if (!detector_options.contains("threads")) made.comic.num_threads = threads;
+  if (!detector_options.contains("threads")) {
+    made.comic.num_threads = threads;
+    made.comic_paper.num_threads = threads;
+  }
   sequence_options.Check();
   export_options.Check();
   tracker.Check();
