@@ -72,7 +72,7 @@ struct Flags {
   double max_cost = 400.0;
   bool refine_focal = false;
   bool retriangulate = false;
-  int local_ba_images = 8;
+  int local_ba_images = sfm::IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
   double init_angle = 4.0;
   int init_max_gap = 20;
