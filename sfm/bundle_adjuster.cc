@@ -28,8 +28,8 @@ void BundleAdjustmentOptions::Check() const {
 }
 
 bool EvaluateReprojection(const double* pose, const double* point, const double* intrinsics,
-                          const Eigen::Vector2d& observed, double* residuals,
-                          double* jacobian_pose, double* jacobian_point) {
+                          const Eigen::Vector2d& observed, double* residuals, double* jacobian_pose,
+                          double* jacobian_point) {
   // Eigen's rotation of v by q = (u, w): v + 2w (u × v) + 2 u × (u × v), the formula the
   // automatically differentiated cost goes through; differentiated as written (not assuming
   // |q| = 1), so the Jacobian is that of the residual Ceres evaluates.
@@ -65,9 +65,9 @@ bool EvaluateReprojection(const double* pose, const double* point, const double*
   if (jacobian_pose != nullptr) {
     // d/du: −2w [v]x + 2 ((u·v) I + u vᵀ − 2 v uᵀ); d/dw: 2 (u × v); d/dt: I.
     Eigen::Matrix<double, 3, 7> d_pose;
-    d_pose.block<3, 3>(0, 0) = -2.0 * w * skew(v) +
-                               2.0 * (u.dot(v) * Eigen::Matrix3d::Identity() + u * v.transpose() -
-                                      2.0 * v * u.transpose());
+    d_pose.block<3, 3>(0, 0) =
+        -2.0 * w * skew(v) + 2.0 * (u.dot(v) * Eigen::Matrix3d::Identity() + u * v.transpose() -
+                                    2.0 * v * u.transpose());
     d_pose.col(3) = uv;
     d_pose.block<3, 3>(0, 4).setIdentity();
     Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>> jacobian(jacobian_pose);

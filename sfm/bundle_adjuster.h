@@ -74,8 +74,8 @@ struct BundleAdjustmentSummary {
 // 2x3 with respect to the point; either may be null): the cost the adjuster minimises when the
 // intrinsics are constant. Returns true. Exposed so that the analytic Jacobian can be tested.
 bool EvaluateReprojection(const double* pose, const double* point, const double* intrinsics,
-                          const Eigen::Vector2d& observed, double* residuals,
-                          double* jacobian_pose, double* jacobian_point);
+                          const Eigen::Vector2d& observed, double* residuals, double* jacobian_pose,
+                          double* jacobian_point);
 
 // CPU time consumed by this process so far (all threads), seconds.
 double ProcessCpuSeconds();

@@ -47,9 +47,9 @@ IncrementalPipelineOptions::IncrementalPipelineOptions() {
   // Weak-perspective scenes (the Middlebury dino, f = 3310 px) otherwise crawl along a nearly flat
   // valley for all iterations, gaining 1e-6 per step. On KITTI 06 with Harris tracks (process CPU
   // time of the mapper; docs/sfm.md "Speed"): a 6-image window with global 1e-4 instead of 8 images
-  // and 1e-5 gives 8.8 instead of 10.9 s (ATE 0.0283 vs 0.0278 m; global 1e-3: 0.0329 m); local 1e-3
-  // on top halves the local adjustments (3.4 -> 1.8 s) at the same ATE (0.0284 m), since the next
-  // window and the global adjustments go on refining the same poses.
+  // and 1e-5 gives 8.8 instead of 10.9 s (ATE 0.0283 vs 0.0278 m; global 1e-3: 0.0329 m); local
+  // 1e-3 on top halves the local adjustments (3.4 -> 1.8 s) at the same ATE (0.0284 m), since the
+  // next window and the global adjustments go on refining the same poses.
   local_ba.function_tolerance = 1e-3;
   global_ba.function_tolerance = 1e-4;
 }
@@ -60,6 +60,8 @@ void IncrementalPipelineOptions::Check() const {
   global_ba.Check();
   COMIC_CHECK(local_ba_num_images >= 2, kInvalidArgument,
               "pipeline local_ba_num_images must be >= 2, got " << local_ba_num_images);
+  COMIC_CHECK(final_global_ba_function_tolerance >= 0, kInvalidArgument,
+              "pipeline final_global_ba_function_tolerance must be >= 0");
   COMIC_CHECK(global_ba_growth_ratio > 1.0, kInvalidArgument,
               "pipeline global_ba_growth_ratio must be > 1, got " << global_ba_growth_ratio);
   COMIC_CHECK(max_registration_trials >= 1, kInvalidArgument,
@@ -112,8 +114,11 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
     }
     return std::move(result);
   };
-  const auto global_ba = [&]() {
-    const BundleAdjustmentSummary summary = mapper.AdjustGlobalBundle(options.global_ba);
+  BundleAdjustmentOptions final_global_ba = options.global_ba;
+  final_global_ba.function_tolerance = options.final_global_ba_function_tolerance;
+  const auto global_ba = [&](bool final = false) {
+    const BundleAdjustmentSummary summary =
+        mapper.AdjustGlobalBundle(final ? final_global_ba : options.global_ba);
     ++result.num_global_ba;
     result.global_ba_time_s += summary.wall_time_s;
     result.global_ba_cpu_time_s += summary.cpu_time_s;
@@ -200,8 +205,8 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
   }
 
   // Final refinement: adjust, recover tracks the improved poses now explain, adjust again.
-  global_ba();
-  if (mapper.TriangulateAllTracks() > 0) global_ba();
+  global_ba(/*final=*/true);
+  if (mapper.TriangulateAllTracks() > 0) global_ba(/*final=*/true);
   return finish(ReconstructionStatus::kSuccess);
 }
 

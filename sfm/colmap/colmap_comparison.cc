@@ -100,8 +100,8 @@ void ColmapComparisonOptions::Check() const {
 io::ReportTable ColmapComparison::Table() const {
   io::ReportTable table({"method", "registered frames", "3-D points", "mean track length",
                          "mean reprojection error (px)", "ATE RMSE", "ATE % of path",
-                         "rotation error (deg)", "wall time (s)", "local BA (s)",
-                         "global BA (s)", "CPU time (s)"});
+                         "rotation error (deg)", "wall time (s)", "local BA (s)", "global BA (s)",
+                         "CPU time (s)"});
   table.SetPrecision("mean track length", 2);
   table.SetPrecision("mean reprojection error (px)", 3);
   table.SetPrecision("ATE RMSE", 3);

@@ -102,9 +102,9 @@ io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
   bool regions = false;
   for (const SfmRunReport& report : reports) regions = regions || report.stats.boundary.has_value();
   std::vector<std::string> columns = {
-      "detector",         "status", "registered",    "frames",         "points",     "track length",
-      "reproj. error px", "ATE m",  "ATE % of path", "rot. error deg", "wall time s",
-      "tracking s",       "mapping s", "local BA s", "global BA s"};
+      "detector",     "status",           "registered", "frames",        "points",
+      "track length", "reproj. error px", "ATE m",      "ATE % of path", "rot. error deg",
+      "wall time s",  "tracking s",       "mapping s",  "local BA s",    "global BA s"};
   if (regions) {
     for (const char* column : {"boundary points", "boundary track length", "boundary reproj. px",
                                "interior points", "interior reproj. px"}) {
@@ -118,7 +118,8 @@ io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
   table.SetPrecision("ATE % of path", 3);
   table.SetPrecision("rot. error deg", 3);
   // Per stage, to see where the time goes: the mapper's bundle adjustments are part of mapping.
-  for (const char* column : {"wall time s", "tracking s", "mapping s", "local BA s", "global BA s"}) {
+  for (const char* column :
+       {"wall time s", "tracking s", "mapping s", "local BA s", "global BA s"}) {
     table.SetPrecision(column, 1);
   }
   if (regions) {

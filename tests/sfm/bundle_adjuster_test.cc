@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <random>
 #include <set>
@@ -91,8 +90,13 @@ BundleAdjustmentConfig FullConfig(const Reconstruction& reconstruction) {
 TEST(BundleAdjuster, AnalyticReprojectionJacobianMatchesCentralDifferences) {
   const Eigen::Quaterniond rotation =
       Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()));
-  double pose[7] = {1.1 * rotation.x(), 1.1 * rotation.y(), 1.1 * rotation.z(), 1.1 * rotation.w(),
-                    0.3, -0.2, 1.5};
+  double pose[7] = {1.1 * rotation.x(),
+                    1.1 * rotation.y(),
+                    1.1 * rotation.z(),
+                    1.1 * rotation.w(),
+                    0.3,
+                    -0.2,
+                    1.5};
   double point[3] = {0.7, -0.4, 6.0};
   const double intrinsics[4] = {700.0, 710.0, 320.0, 240.0};
   const Eigen::Vector2d observed(330.0, 250.0);

@@ -139,14 +139,13 @@ TEST(ParseColmapBundleAdjustmentTimes, SumsReportsByHeadingOfTheLastMapperRun) {
            "\n    Residuals : 100\n         Time : " + std::to_string(seconds) +
            " [s]\n Initial cost : 0.5 [px]\n";
   };
-  const std::string first_run = "$ colmap mapper --database_path a.db\n" +
-                                heading("Global bundle adjustment") + ba(100.0);
-  const std::string last_run = "$ colmap mapper --database_path b.db\n" +
-                               heading("Initializing with image pair #1 and #2") +
-                               heading("Global bundle adjustment") + ba(0.5) +
-                               heading("Registering image #3 (3)") + ba(0.25) + ba(0.125) +
-                               heading("Retriangulation") + heading("Global bundle adjustment") +
-                               ba(1.0) + "$ colmap model_analyzer --path x\nTime : 9 [s]\n";
+  const std::string first_run =
+      "$ colmap mapper --database_path a.db\n" + heading("Global bundle adjustment") + ba(100.0);
+  const std::string last_run =
+      "$ colmap mapper --database_path b.db\n" + heading("Initializing with image pair #1 and #2") +
+      heading("Global bundle adjustment") + ba(0.5) + heading("Registering image #3 (3)") +
+      ba(0.25) + ba(0.125) + heading("Retriangulation") + heading("Global bundle adjustment") +
+      ba(1.0) + "$ colmap model_analyzer --path x\nTime : 9 [s]\n";
   const ColmapBundleAdjustmentTimes times = ParseColmapBundleAdjustmentTimes(first_run + last_run);
   EXPECT_EQ(times.num_global, 2);
   EXPECT_DOUBLE_EQ(times.global_s, 1.5);
