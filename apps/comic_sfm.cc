@@ -497,7 +497,7 @@ int Run(int argc, char** argv) {
   parser.AddFlag("no-retriangulate",
                  "do not triangulate a track again from all its registered views when its point "
                  "misses some of them (on by default: the new point must explain more views within "
-                 "2 px and keep the old one's)",
+                 "2 px)",
                  &flags.no_retriangulate);
   parser.AddFlag("refine-focal", "refine the focal length in the global bundle adjustments",
                  &flags.refine_focal);

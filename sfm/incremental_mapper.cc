@@ -313,17 +313,6 @@ bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id, bool retriangul
     retriangulation.max_reprojection_error_px = options_.retriangulate_max_reprojection_error_px;
     const auto point = TriangulateMultiView(views, retriangulation);
     if (!point || point->inlier_views.size() <= num_observations) return false;
-    // The new point must explain every observation the old one has (COLMAP's track merging
-    // likewise accepts a merged point only if all observations of both reproject within the
-    // threshold): a hypothesis that trades observations for others is a different point, e.g.
-    // one fitted to the drifting end of a track whose feature slid along an edge (MSER's region
-    // centres on KITTI), and replacing the refined point by it makes the model worse.
-    size_t num_kept = 0;
-    for (int i : point->inlier_views) {
-      const Image& image = reconstruction_.image(elements[i].image_id);
-      num_kept += image.points2D[elements[i].point2D_idx].point3D_id == point3D_id;
-    }
-    if (options_.retriangulate_keeps_observations && num_kept < num_observations) return false;
     reconstruction_.DeletePoint3D(point3D_id);
     std::vector<TrackElement> inlier_elements;
     for (int i : point->inlier_views) inlier_elements.push_back(elements[i]);

@@ -64,7 +64,8 @@ class IncrementalMapper {
     // When a track's point misses some of the track's registered views (beyond
     // complete_max_reprojection_error_px), the track is triangulated again from all of them
     // (TriangulateMultiView) and the new point replaces the old one if it has more inlier views
-    // within retriangulate_max_reprojection_error_px and keeps all of the old one's. Without this,
+    // within retriangulate_max_reprojection_error_px (it may leave out a wrong observation the old
+    // point was made from). Without this,
     // a point made early from a few close frames and lying off keeps later views out, which would
     // give it the baseline to be corrected. On KITTI 06 (docs/sfm.md "Re-triangulation"): CoMIC
     // ATE 0.061 -> 0.056 m, Harris 0.0284 -> 0.0280 m, MSER 0.0654 -> 0.0660 m.
@@ -73,10 +74,6 @@ class IncrementalMapper {
     // then PnP's, not yet adjusted); otherwise only in TriangulateAllTracks, after a global
     // bundle adjustment (COLMAP re-triangulates there).
     bool retriangulate_on_registration = true;
-    // A re-triangulated point replaces the old one only if it keeps all of its observations (as
-    // COLMAP merges tracks only if every observation of both fits). Not what fixes MSER (at 4 px
-    // it gave 0.161 instead of 0.154 m), but a replacement must not lose what the point explained.
-    bool retriangulate_keeps_observations = true;
     // A re-triangulated point's views must reproject within this distance (pixels). With the 4 px
     // of first triangulation MSER's tracks on KITTI went from 0.065 to 0.154 m ATE (3 px: 0.073;
     // 2 px: 0.066): an MSER region's centre slides along the track as the region changes shape,
