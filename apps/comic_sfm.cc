@@ -71,8 +71,8 @@ struct Flags {
   io::ImageSequenceOptions sequence;
   comic::apps::TrackerFlags tracker;  // sfm::SequenceReconstructionOptions' tracker defaults
   bool refine_focal = false;
-  bool retriangulate = false;
-  int local_ba_images = 8;
+  bool no_retriangulate = false;
+  int local_ba_images = sfm::IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
   double init_angle = 4.0;
   int init_max_gap = 20;
@@ -101,7 +101,7 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   sfm::SequenceReconstructionOptions options;
   options.tracker = comic::apps::ToTrackerOptions(flags.tracker);
   options.mapper.global_ba.refine_focal_length = flags.refine_focal;
-  options.mapper.mapper.retriangulate_incomplete_tracks = flags.retriangulate;
+  options.mapper.mapper.retriangulate_incomplete_tracks = !flags.no_retriangulate;
   options.mapper.local_ba_num_images = flags.local_ba_images;
   options.mapper.global_ba_growth_ratio = flags.global_ba_growth;
   options.mapper.mapper.init_tri_angle_deg = flags.init_angle;
@@ -144,7 +144,7 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"match_turned", tracker.match_turned_180},
           {"max_cost", tracker.matcher.max_cost},
           {"refine_focal", flags.refine_focal},
-          {"retriangulate", flags.retriangulate},
+          {"retriangulate", !flags.no_retriangulate},
           {"local_ba_images", flags.local_ba_images},
           {"global_ba_growth", flags.global_ba_growth},
           {"init_angle_deg", flags.init_angle},
@@ -522,10 +522,11 @@ int Run(int argc, char** argv) {
   comic::apps::AddResizeHeightFlag(parser, &flags.sequence.resize_height);
   comic::apps::AddFrameRangeFlags(parser, &flags.sequence);
   comic::apps::AddTrackerFlags(parser, &flags.tracker);
-  parser.AddFlag("retriangulate",
-                 "triangulate a track again from all its registered views when its point misses "
-                 "some of them, keeping the point that explains more views",
-                 &flags.retriangulate);
+  parser.AddFlag("no-retriangulate",
+                 "do not triangulate a track again from all its registered views when its point "
+                 "misses some of them (on by default: the new point must explain more views within "
+                 "2 px)",
+                 &flags.no_retriangulate);
   parser.AddFlag("refine-focal", "refine the focal length in the global bundle adjustments",
                  &flags.refine_focal);
   parser.AddOption("local-ba-images", "N", "images in each local bundle adjustment",

@@ -63,8 +63,22 @@ struct BundleAdjustmentSummary {
   double initial_rmse_px = 0.0;  // RMS reprojection error (no loss) before
   double final_rmse_px = 0.0;    // and after
   double wall_time_s = 0.0;
+  // CPU time of the whole process during the solve (all threads): unlike the wall time it does
+  // not grow when other jobs share the machine.
+  double cpu_time_s = 0.0;
   std::string termination;  // Ceres's termination type and message
 };
+
+// The reprojection residual of one observation with fixed intrinsics (fx, fy, cx, cy), in
+// pixels, and optionally its Jacobians (row-major 2x7 with respect to the pose x y z w tx ty tz,
+// 2x3 with respect to the point; either may be null): the cost the adjuster minimises when the
+// intrinsics are constant. Returns true. Exposed so that the analytic Jacobian can be tested.
+bool EvaluateReprojection(const double* pose, const double* point, const double* intrinsics,
+                          const Eigen::Vector2d& observed, double* residuals, double* jacobian_pose,
+                          double* jacobian_point);
+
+// CPU time consumed by this process so far (all threads), seconds.
+double ProcessCpuSeconds();
 
 // Registered images outside `image_ids` that observe one of `point_ids`: an adjustment of
 // `image_ids` (and of the points they see) holds these images' poses constant.

@@ -29,6 +29,8 @@ void IncrementalMapper::Options::Check() const {
   triangulation.Check();
   COMIC_CHECK(complete_max_reprojection_error_px > 0, kInvalidArgument,
               "mapper complete_max_reprojection_error_px must be > 0");
+  COMIC_CHECK(retriangulate_max_reprojection_error_px > 0, kInvalidArgument,
+              "mapper retriangulate_max_reprojection_error_px must be > 0");
   COMIC_CHECK(filter_max_reprojection_error_px > 0, kInvalidArgument,
               "mapper filter_max_reprojection_error_px must be > 0");
   COMIC_CHECK(filter_min_tri_angle_deg >= 0, kInvalidArgument,
@@ -271,7 +273,7 @@ bool IncrementalMapper::RegisterNextImage(image_t image_id) {
   return true;
 }
 
-bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id) {
+bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id, bool retriangulate) {
   const frontend::Track& track = tracks_->tracks[track_id];
   const point3D_t point3D_id = TrackPoint(track_id);
   // The track's registered views.
@@ -306,7 +308,10 @@ bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id) {
     if (!options_.retriangulate_incomplete_tracks || num_observations >= elements.size()) {
       return false;
     }
-    const auto point = TriangulateMultiView(views, options_.triangulation);
+    if (!retriangulate) return false;
+    TriangulationOptions retriangulation = options_.triangulation;
+    retriangulation.max_reprojection_error_px = options_.retriangulate_max_reprojection_error_px;
+    const auto point = TriangulateMultiView(views, retriangulation);
     if (!point || point->inlier_views.size() <= num_observations) return false;
     reconstruction_.DeletePoint3D(point3D_id);
     std::vector<TrackElement> inlier_elements;
@@ -329,7 +334,7 @@ size_t IncrementalMapper::TriangulateImage(image_t image_id) {
               "mapper: image " << image_id << " is not registered");
   size_t num_new = 0;
   for (int t : track_of_feature_[FrameOfImageId(image_id)]) {
-    if (t >= 0) num_new += TriangulateOrCompleteTrack(t);
+    if (t >= 0) num_new += TriangulateOrCompleteTrack(t, options_.retriangulate_on_registration);
   }
   return num_new;
 }
@@ -337,7 +342,7 @@ size_t IncrementalMapper::TriangulateImage(image_t image_id) {
 size_t IncrementalMapper::TriangulateAllTracks() {
   size_t num_new = 0;
   for (size_t t = 0; t < tracks_->tracks.size(); ++t) {
-    num_new += TriangulateOrCompleteTrack(static_cast<int>(t));
+    num_new += TriangulateOrCompleteTrack(static_cast<int>(t), /*retriangulate=*/true);
   }
   return num_new;
 }

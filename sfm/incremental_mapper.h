@@ -63,13 +63,24 @@ class IncrementalMapper {
     TriangulationOptions triangulation;
     // When a track's point misses some of the track's registered views (beyond
     // complete_max_reprojection_error_px), the track is triangulated again from all of them
-    // (TriangulateMultiView) and the new point replaces the old one if it has more inlier views.
-    // Without this, a point made early from a few close frames and lying off keeps later views
-    // out, which would give it the baseline to be corrected (on KITTI with CoMIC's tracks
-    // ATE 0.063 m without, 0.047 m with; Harris 0.028 -> 0.018 m). Off by default: it is not a
-    // win everywhere (KITTI with MSER 0.071 -> 0.150 m, the dino ring with Hessian 0.0039 ->
-    // 0.0050 m; docs/sfm.md).
-    bool retriangulate_incomplete_tracks = false;
+    // (TriangulateMultiView) and the new point replaces the old one if it has more inlier views
+    // within retriangulate_max_reprojection_error_px (it may leave out a wrong observation the old
+    // point was made from). Without this,
+    // a point made early from a few close frames and lying off keeps later views out, which would
+    // give it the baseline to be corrected. On KITTI 06 (docs/sfm.md "Re-triangulation"): CoMIC
+    // ATE 0.061 -> 0.056 m, Harris 0.0284 -> 0.0280 m, MSER 0.0654 -> 0.0660 m.
+    bool retriangulate_incomplete_tracks = true;
+    // Re-triangulate also in TriangulateImage, right after a frame's registration (its pose is
+    // then PnP's, not yet adjusted); otherwise only in TriangulateAllTracks, after a global
+    // bundle adjustment (COLMAP re-triangulates there).
+    bool retriangulate_on_registration = true;
+    // A re-triangulated point's views must reproject within this distance (pixels). With the 4 px
+    // of first triangulation MSER's tracks on KITTI went from 0.065 to 0.154 m ATE (3 px: 0.073;
+    // 2 px: 0.066): an MSER region's centre slides along the track as the region changes shape,
+    // and a point fitted to all of a sliding track within 4 px joins what are really different
+    // points, with errors that all lean one way. CoMIC gains more at 3 px (0.053 m), but only
+    // 2 px is safe for every detector.
+    double retriangulate_max_reprojection_error_px = 2.0;
     // Extend an existing point to a newly registered view whose observation reprojects within
     // this distance (pixels).
     double complete_max_reprojection_error_px = 4.0;
@@ -181,7 +192,8 @@ class IncrementalMapper {
   // The 3-D point of a track, or kInvalidPoint3DId.
   point3D_t TrackPoint(int track_id) const;
   // Triangulates a track without point, or completes the point of a track with one.
-  bool TriangulateOrCompleteTrack(int track_id);
+  // `retriangulate`: also re-triangulate incomplete tracks (if retriangulate_incomplete_tracks).
+  bool TriangulateOrCompleteTrack(int track_id, bool retriangulate);
   // Sets the gauge of a problem: the first initial image constant, the second's scale fixed.
   void FixGauge(BundleAdjustmentConfig* config) const;
 

@@ -1,5 +1,7 @@
 #include "sfm/colmap/colmap_comparison.h"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <filesystem>
 
@@ -14,6 +16,16 @@ namespace comic::sfm {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// User and system CPU time of the terminated and waited-for child processes (all threads).
+double ChildrenCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  const auto seconds = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -88,13 +100,17 @@ void ColmapComparisonOptions::Check() const {
 io::ReportTable ColmapComparison::Table() const {
   io::ReportTable table({"method", "registered frames", "3-D points", "mean track length",
                          "mean reprojection error (px)", "ATE RMSE", "ATE % of path",
-                         "rotation error (deg)", "wall time (s)"});
+                         "rotation error (deg)", "wall time (s)", "local BA (s)", "global BA (s)",
+                         "CPU time (s)"});
   table.SetPrecision("mean track length", 2);
   table.SetPrecision("mean reprojection error (px)", 3);
   table.SetPrecision("ATE RMSE", 3);
   table.SetPrecision("ATE % of path", 2);
   table.SetPrecision("rotation error (deg)", 3);
   table.SetPrecision("wall time (s)", 1);
+  table.SetPrecision("local BA (s)", 1);
+  table.SetPrecision("global BA (s)", 1);
+  table.SetPrecision("CPU time (s)", 1);
   const auto optional_cell = [](const std::optional<double>& value,
                                 double scale) -> io::ReportTable::Cell {
     if (!value) return std::monostate();
@@ -105,7 +121,9 @@ io::ReportTable ColmapComparison::Table() const {
                   std::to_string(row.num_registered) + "/" + std::to_string(row.num_frames),
                   row.num_points3D, row.mean_track_length, row.mean_reprojection_error_px,
                   optional_cell(row.ate_rmse, 1.0), optional_cell(row.ate_fraction_of_path, 100.0),
-                  optional_cell(row.rotation_error_deg, 1.0), optional_cell(row.wall_time_s, 1.0)});
+                  optional_cell(row.rotation_error_deg, 1.0), optional_cell(row.wall_time_s, 1.0),
+                  optional_cell(row.local_ba_time_s, 1.0), optional_cell(row.global_ba_time_s, 1.0),
+                  optional_cell(row.cpu_time_s, 1.0)});
   }
   return table;
 }
@@ -145,6 +163,9 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
   our_row.method = "comic-sfm";
   our_row.num_frames = num_frames;
   our_row.wall_time_s = ours->wall_time_s;
+  our_row.local_ba_time_s = ours->local_ba_time_s;
+  our_row.global_ba_time_s = ours->global_ba_time_s;
+  our_row.cpu_time_s = ours->cpu_time_s;
   if (ours->status == ReconstructionStatus::kSuccess) {
     const Reconstruction& reconstruction = ours->reconstruction;
     our_row.num_registered = static_cast<int>(reconstruction.NumRegisteredImages());
@@ -170,9 +191,11 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
   command.insert(command.end(), mapper_args.begin(), mapper_args.end());
   comparison.colmap_mapper_command = ShellCommandLine(command);
   const auto mapper_start = Clock::now();
+  const double children_cpu_start = ChildrenCpuSeconds();
   comparison.colmap_model_path = RunColmapMapper(database, image_path, sparse, mapper_options,
                                                  comparison.log_path, options.colmap_executable);
   const double mapper_time = SecondsSince(mapper_start);
+  const double mapper_cpu_time = ChildrenCpuSeconds() - children_cpu_start;
   const std::vector<std::string> colmap_names =
       ColmapImageNames(tracks, options.export_options.image_name_prefix);
   ColmapComparisonRow colmap_row;
@@ -188,6 +211,15 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
     Evaluate(ModelPoses(path("sparse_text"), colmap_names), ground_truth, &colmap_row);
   }
   colmap_row.wall_time_s = mapper_time;
+  colmap_row.cpu_time_s = mapper_cpu_time;
+  if (io::PathExists(comparison.log_path)) {
+    const ColmapBundleAdjustmentTimes times =
+        ParseColmapBundleAdjustmentTimes(io::ReadFileToString(comparison.log_path));
+    if (times.num_local + times.num_global > 0) {
+      colmap_row.local_ba_time_s = times.local_s;
+      colmap_row.global_ba_time_s = times.global_s;
+    }
+  }
   comparison.rows.push_back(colmap_row);
 
   // Our model read back through COLMAP: our text model, converted to binary by COLMAP, measured

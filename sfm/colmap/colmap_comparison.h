@@ -56,6 +56,13 @@ struct ColmapComparisonRow {
   std::optional<double> ate_fraction_of_path;  // ate_rmse / path length
   std::optional<double> rotation_error_deg;    // mean
   std::optional<double> wall_time_s;           // the mapper alone (not tracking or export)
+  // Of wall_time_s: local and global bundle adjustment (ours: measured; COLMAP's: the sum of the
+  // solver times its log reports, when it reports them).
+  std::optional<double> local_ba_time_s;
+  std::optional<double> global_ba_time_s;
+  // CPU time of the mapper (ours: the process during mapping; COLMAP's: the child process, user
+  // and system), all threads: robust to other jobs on the machine, unlike the wall time.
+  std::optional<double> cpu_time_s;
 };
 
 struct ColmapComparison {
@@ -69,7 +76,8 @@ struct ColmapComparison {
   std::string log_path;                          // every COLMAP run's output
 
   // One table: method, registered frames, 3-D points, mean track length, mean reprojection
-  // error, ATE RMSE, ATE as % of the path, rotation error, wall time.
+  // error, ATE RMSE, ATE as % of the path, rotation error, wall time, and of it local and global
+  // bundle adjustment.
   io::ReportTable Table() const;
 };
 

@@ -348,4 +348,43 @@ void ConvertColmapModel(const std::string& input_path, const std::string& output
             log_path, executable);
 }
 
+ColmapBundleAdjustmentTimes ParseColmapBundleAdjustmentTimes(const std::string& log_text) {
+  ColmapBundleAdjustmentTimes times;
+  // The last mapper run of the log.
+  size_t begin = 0;
+  for (size_t pos = 0; (pos = log_text.find("$ ", pos)) != std::string::npos; ++pos) {
+    const size_t end_of_line = log_text.find('\n', pos);
+    const std::string command = log_text.substr(pos, end_of_line - pos);
+    if ((pos == 0 || log_text[pos - 1] == '\n') && command.find(" mapper ") != std::string::npos) {
+      begin = pos;
+    }
+  }
+  // ... up to the next command of the log.
+  const size_t end = log_text.find("\n$ ", begin);
+  std::istringstream lines(
+      log_text.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
+  std::string line, previous, heading;
+  while (std::getline(lines, line)) {
+    // PrintHeading1: the title between two lines of '='.
+    if (!line.empty() && line.find_first_not_of('=') == std::string::npos && !previous.empty() &&
+        previous.find_first_not_of('=') != std::string::npos &&
+        previous.find_first_not_of(' ') != std::string::npos) {
+      heading = previous;
+    }
+    const size_t time = line.find("Time : ");
+    if (time != std::string::npos && line.find("[s]") != std::string::npos) {
+      const double seconds = std::strtod(line.c_str() + time + 7, nullptr);
+      if (heading.find("Global bundle adjustment") != std::string::npos) {
+        times.global_s += seconds;
+        ++times.num_global;
+      } else {
+        times.local_s += seconds;
+        ++times.num_local;
+      }
+    }
+    previous = line;
+  }
+  return times;
+}
+
 }  // namespace comic::sfm

@@ -100,6 +100,19 @@ int64_t NumRegisteredImagesOfColmapModel(const std::string& model_path);
 // finishes them, so sparse/0 is not always the largest. std::nullopt if there is none.
 std::optional<std::string> FindLargestColmapModel(const std::string& output_path);
 
+// The time COLMAP's mapper spent in bundle adjustment, from its log: the sum of the "Time : x [s]"
+// lines of its bundle adjustment reports, those under the heading "Global bundle adjustment" as
+// global and the others (printed after each image registration) as local. `log_text` is the output
+// of one `colmap mapper` run (for a log holding several runs, the part after its last
+// "$ ... mapper" line is used). Zero when the log holds no report.
+struct ColmapBundleAdjustmentTimes {
+  double local_s = 0.0;
+  double global_s = 0.0;
+  int num_local = 0;
+  int num_global = 0;
+};
+ColmapBundleAdjustmentTimes ParseColmapBundleAdjustmentTimes(const std::string& log_text);
+
 // What `colmap model_analyzer` reports.
 struct ColmapModelStats {
   int64_t num_cameras = 0;

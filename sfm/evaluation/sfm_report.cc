@@ -26,6 +26,11 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.wall_time_s = run.wall_time_s;
   report.local_ba_time_s = run.mapping.local_ba_time_s;
   report.global_ba_time_s = run.mapping.global_ba_time_s;
+  report.mapping_cpu_time_s = run.mapping.cpu_time_s;
+  report.local_ba_cpu_time_s = run.mapping.local_ba_cpu_time_s;
+  report.global_ba_cpu_time_s = run.mapping.global_ba_cpu_time_s;
+  report.num_local_ba = run.mapping.num_local_ba;
+  report.num_global_ba = run.mapping.num_global_ba;
   return report;
 }
 
@@ -82,6 +87,12 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
       {"local_bundle_adjustment", report.local_ba_time_s},
       {"global_bundle_adjustment", report.global_ba_time_s},
       {"total", report.wall_time_s},
+      {"cpu",
+       {{"mapping", report.mapping_cpu_time_s},
+        {"local_bundle_adjustment", report.local_ba_cpu_time_s},
+        {"global_bundle_adjustment", report.global_ba_cpu_time_s}}},
+      {"num_local_bundle_adjustments", report.num_local_ba},
+      {"num_global_bundle_adjustments", report.num_global_ba},
       {"per_frame",
        report.num_frames > 0 ? report.wall_time_s / static_cast<double>(report.num_frames) : 0.0}};
   return json;
@@ -91,8 +102,9 @@ io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
   bool regions = false;
   for (const SfmRunReport& report : reports) regions = regions || report.stats.boundary.has_value();
   std::vector<std::string> columns = {
-      "detector",         "status", "registered",    "frames",         "points",     "track length",
-      "reproj. error px", "ATE m",  "ATE % of path", "rot. error deg", "wall time s"};
+      "detector",     "status",           "registered", "frames",        "points",
+      "track length", "reproj. error px", "ATE m",      "ATE % of path", "rot. error deg",
+      "wall time s",  "tracking s",       "mapping s",  "local BA s",    "global BA s"};
   if (regions) {
     for (const char* column : {"boundary points", "boundary track length", "boundary reproj. px",
                                "interior points", "interior reproj. px"}) {
@@ -105,7 +117,11 @@ io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
   table.SetPrecision("ATE m", 3);
   table.SetPrecision("ATE % of path", 3);
   table.SetPrecision("rot. error deg", 3);
-  table.SetPrecision("wall time s", 1);
+  // Per stage, to see where the time goes: the mapper's bundle adjustments are part of mapping.
+  for (const char* column :
+       {"wall time s", "tracking s", "mapping s", "local BA s", "global BA s"}) {
+    table.SetPrecision(column, 1);
+  }
   if (regions) {
     table.SetPrecision("boundary track length", 2);
     table.SetPrecision("boundary reproj. px", 3);
@@ -132,6 +148,10 @@ io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
       row.insert(row.end(), 3, std::monostate{});
     }
     row.push_back(report.wall_time_s);
+    row.push_back(report.tracking_time_s);
+    row.push_back(report.mapping_time_s);
+    row.push_back(report.local_ba_time_s);
+    row.push_back(report.global_ba_time_s);
     if (regions) {
       if (report.stats.boundary && report.stats.interior) {
         row.push_back(static_cast<int64_t>(report.stats.boundary->num_points));

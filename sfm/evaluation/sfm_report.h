@@ -35,6 +35,12 @@ struct SfmRunReport {
   double wall_time_s = 0.0;
   double local_ba_time_s = 0.0;
   double global_ba_time_s = 0.0;
+  // CPU time of the mapper and of its bundle adjustments (process, all threads).
+  double mapping_cpu_time_s = 0.0;
+  double local_ba_cpu_time_s = 0.0;
+  double global_ba_cpu_time_s = 0.0;
+  int num_local_ba = 0;
+  int num_global_ba = 0;
 };
 
 SfmRunReport MakeRunReport(const SequenceReconstruction& run, const ReconstructionStats& stats,

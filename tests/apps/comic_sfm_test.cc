@@ -50,7 +50,7 @@ TEST(ComicSfm, HelpDocumentsEveryOption) {
                              "--coarse-radius",
                              "--max-cost",
                              "--refine-focal",
-                             "--retriangulate",
+                             "--no-retriangulate",
                              "--local-ba-images",
                              "--init-angle",
                              "--init-max-gap",

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 #include <set>
@@ -82,6 +83,53 @@ BundleAdjustmentConfig FullConfig(const Reconstruction& reconstruction) {
   config.constant_pose_ids.insert(1);
   config.fixed_scale_image_ids.insert(2);
   return config;
+}
+
+// The analytic Jacobians of the fixed-intrinsics residual against central differences, at a
+// quaternion that is not of unit length (Ceres evaluates the ambient 7-vector as stored).
+TEST(BundleAdjuster, AnalyticReprojectionJacobianMatchesCentralDifferences) {
+  const Eigen::Quaterniond rotation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()));
+  double pose[7] = {1.1 * rotation.x(),
+                    1.1 * rotation.y(),
+                    1.1 * rotation.z(),
+                    1.1 * rotation.w(),
+                    0.3,
+                    -0.2,
+                    1.5};
+  double point[3] = {0.7, -0.4, 6.0};
+  const double intrinsics[4] = {700.0, 710.0, 320.0, 240.0};
+  const Eigen::Vector2d observed(330.0, 250.0);
+  double residuals[2], jacobian_pose[14], jacobian_point[6];
+  ASSERT_TRUE(EvaluateReprojection(pose, point, intrinsics, observed, residuals, jacobian_pose,
+                                   jacobian_point));
+  // The residual itself: Eigen's rotation formula, v + 2w (u × v) + 2 u × (u × v), is quadratic in
+  // q, so with q = s q0 (s = 1.1) it gives v + s^2 (R0 v - v), projected.
+  const Eigen::Vector3d v(point[0], point[1], point[2]);
+  const Eigen::Vector3d cam = v + 1.21 * (rotation * v - v) + Eigen::Vector3d(0.3, -0.2, 1.5);
+  EXPECT_NEAR(residuals[0], 700.0 * cam.x() / cam.z() + 320.0 - 330.0, 1e-9);
+  EXPECT_NEAR(residuals[1], 710.0 * cam.y() / cam.z() + 240.0 - 250.0, 1e-9);
+  const double step = 1e-6;
+  const auto numeric = [&](double* parameter, int row) {
+    const double saved = *parameter;
+    double plus[2], minus[2];
+    *parameter = saved + step;
+    EvaluateReprojection(pose, point, intrinsics, observed, plus, nullptr, nullptr);
+    *parameter = saved - step;
+    EvaluateReprojection(pose, point, intrinsics, observed, minus, nullptr, nullptr);
+    *parameter = saved;
+    return (plus[row] - minus[row]) / (2 * step);
+  };
+  for (int row = 0; row < 2; ++row) {
+    for (int c = 0; c < 7; ++c) {
+      EXPECT_NEAR(jacobian_pose[7 * row + c], numeric(&pose[c], row), 1e-4)
+          << "pose row " << row << " column " << c;
+    }
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(jacobian_point[3 * row + c], numeric(&point[c], row), 1e-4)
+          << "point row " << row << " column " << c;
+    }
+  }
 }
 
 TEST(BundleAdjuster, ReducesThePerturbedCostToTheNoiseLevel) {

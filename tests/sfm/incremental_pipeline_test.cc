@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "io/error.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/synthetic_scene.h"
@@ -53,6 +55,49 @@ TEST(IncrementalPipeline, ForwardMotionRegistersEveryFrameAccurately) {
   scene_options.num_frames = 25;
   scene_options.num_points = 800;
   ExpectAccurate(scene_options);
+}
+
+// A video whose first third is weakly textured: there, only every `keep_every`-th track is
+// seen (the others start at the first rich frame). The initial pair comes from the rich part, so
+// the model has to grow backwards into the weak frames from few points.
+TEST(IncrementalPipeline, WeakStartStillEndsInOneModelWithEveryFrame) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kHandHeld;
+  scene_options.num_frames = 24;
+  scene_options.num_points = 1200;
+  SyntheticScene scene = MakeSyntheticScene(scene_options);
+  const int weak_frames = scene_options.num_frames / 3;
+  constexpr size_t kKeepEvery = 12;
+  std::vector<size_t> observations_per_frame(scene.tracks.NumFrames(), 0);
+  for (size_t t = 0; t < scene.tracks.tracks.size(); ++t) {
+    auto& observations = scene.tracks.tracks[t].observations;
+    if (t % kKeepEvery != 0) {
+      observations.erase(std::remove_if(observations.begin(), observations.end(),
+                                        [&](const frontend::TrackObservation& obs) {
+                                          return obs.frame < weak_frames;
+                                        }),
+                         observations.end());
+    }
+    for (const auto& obs : observations) ++observations_per_frame[obs.frame];
+  }
+  scene.tracks.tracks.erase(
+      std::remove_if(scene.tracks.tracks.begin(), scene.tracks.tracks.end(),
+                     [](const frontend::Track& track) { return track.Length() < 2; }),
+      scene.tracks.tracks.end());
+  // The weak frames really are weak: an order of magnitude fewer tracked features.
+  ASSERT_LT(8 * observations_per_frame[0], observations_per_frame[weak_frames + 1]);
+  ASSERT_GT(observations_per_frame[weak_frames - 1], 40u);
+
+  const IncrementalReconstruction result =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  ASSERT_EQ(result.status, ReconstructionStatus::kSuccess);
+  EXPECT_GE(result.initial_frame1, weak_frames) << "the initial pair should be in the rich part";
+  EXPECT_TRUE(result.unregistered_frames.empty())
+      << result.unregistered_frames.size() << " frames left out, the first "
+      << result.unregistered_frames.front();
+  const auto evaluation = Evaluate(result, scene);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_LT(evaluation->ate_fraction_of_path, 0.01);
 }
 
 TEST(IncrementalPipeline, PureRotationReportsNoInitialPair) {

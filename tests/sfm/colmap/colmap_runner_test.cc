@@ -126,6 +126,35 @@ TEST(ParseColmapModelAnalyzerOutput, ReadsEveryFieldWithOrWithoutGlogPrefixes) {
   EXPECT_THROW(ParseColmapModelAnalyzerOutput("Cameras: 1\n"), Error);
 }
 
+// A log in COLMAP 3.8's layout (PrintHeading1 titles between lines of '=', a "Time : x [s]" line
+// per bundle adjustment report): reports under "Global bundle adjustment" are global, the others
+// local; only the last mapper run counts.
+TEST(ParseColmapBundleAdjustmentTimes, SumsReportsByHeadingOfTheLastMapperRun) {
+  const std::string bar(78, '=');
+  const auto heading = [&](const std::string& title) {
+    return "\n" + bar + "\n" + title + "\n" + bar + "\n";
+  };
+  const auto ba = [](double seconds) {
+    return "\nBundle adjustment report\n" + std::string(78, '-') +
+           "\n    Residuals : 100\n         Time : " + std::to_string(seconds) +
+           " [s]\n Initial cost : 0.5 [px]\n";
+  };
+  const std::string first_run =
+      "$ colmap mapper --database_path a.db\n" + heading("Global bundle adjustment") + ba(100.0);
+  const std::string last_run =
+      "$ colmap mapper --database_path b.db\n" + heading("Initializing with image pair #1 and #2") +
+      heading("Global bundle adjustment") + ba(0.5) + heading("Registering image #3 (3)") +
+      ba(0.25) + ba(0.125) + heading("Retriangulation") + heading("Global bundle adjustment") +
+      ba(1.0) + "$ colmap model_analyzer --path x\nTime : 9 [s]\n";
+  const ColmapBundleAdjustmentTimes times = ParseColmapBundleAdjustmentTimes(first_run + last_run);
+  EXPECT_EQ(times.num_global, 2);
+  EXPECT_DOUBLE_EQ(times.global_s, 1.5);
+  EXPECT_EQ(times.num_local, 2);
+  EXPECT_DOUBLE_EQ(times.local_s, 0.375);
+  const ColmapBundleAdjustmentTimes none = ParseColmapBundleAdjustmentTimes("no reports\n");
+  EXPECT_EQ(none.num_local + none.num_global, 0);
+}
+
 TEST(FindLargestColmapModel, PicksTheModelWithMostRegisteredImagesNotSparse0) {
   ScopedTempDir dir;
   EXPECT_FALSE(FindLargestColmapModel(dir.path()));
@@ -203,6 +232,13 @@ TEST(RunColmapMapper, ReconstructsASyntheticForwardSequenceWithTheRecommendedOpt
   EXPECT_EQ(stats.num_registered_images, 10);
   EXPECT_LT(stats.mean_reprojection_error, 1.0);
   EXPECT_GT(stats.num_points3D, 500);
+  // The real mapper's log holds local and global bundle adjustment reports with their times.
+  const ColmapBundleAdjustmentTimes ba_times =
+      ParseColmapBundleAdjustmentTimes(io::ReadFileToString(log));
+  EXPECT_GT(ba_times.num_local, 0);
+  EXPECT_GT(ba_times.num_global, 0);
+  EXPECT_GE(ba_times.local_s, 0.0);
+  EXPECT_GE(ba_times.global_s, 0.0);
 
   // Read back as text; the camera is ours, held fixed; poses match the truth up to Sim(3).
   ConvertColmapModel(*model, dir.File("text"), "TXT", log);
