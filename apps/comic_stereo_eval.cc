@@ -85,8 +85,8 @@ int Run(int argc, char** argv) {
   double scale = 0.0;
   fe::StereoEvaluationOptions options;
   std::string methods =
-      "comic/split,comic/like-sides,comic/full,harris/full,hessian/full,"
-      "mser/full,fast/full";
+      "comic/split,comic/like-sides,comic/full,comic/calibrated,harris/full,harris/calibrated,"
+      "hessian/full,hessian/calibrated,mser/full,fast/full,fast/calibrated";
   std::string counts = "0,1000";
   std::string sensitivity = "200,400,800";
   std::string repeatability = "1,1.5,2.5";
@@ -126,7 +126,8 @@ int Run(int argc, char** argv) {
   parser.AddOption("out", "DIR", "output folder (created if missing)", &out_dir);
   parser.AddOption("height", "H", "working height in px (paper: 700; 0 = original size)",
                    &options.working_height);
-  parser.AddOption("methods", "LIST", "detector/matcher pairs (matchers: full, split, like-sides)",
+  parser.AddOption("methods", "LIST",
+                   "detector/matcher pairs (matchers: full, split, like-sides, calibrated)",
                    &methods);
   parser.AddOption("counts", "LIST",
                    "target counts N of valid left features, one run each; 0 = the count "
@@ -151,6 +152,12 @@ int Run(int argc, char** argv) {
   parser.AddOption("min-side-overlap", "PX",
                    "split costs: fewest pixels a side pairing must share (of 529)",
                    &options.min_side_overlap);
+  parser.AddOption("min-side-fraction", "F",
+                   "calibrated cost: smallest share of the patch a side pairing must hold",
+                   &options.min_side_fraction);
+  parser.AddOption("side-noise-sigma", "S",
+                   "calibrated cost: noise sigma (grey levels) that calibrates side costs",
+                   &options.side_noise_sigma);
   parser.AddOption("repeatability", "LIST", "repeatability tolerances in px", &repeatability);
   parser.AddOption("precision-reference", "METHOD",
                    "matched precision target = this method's overall precision at T",

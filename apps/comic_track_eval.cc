@@ -125,7 +125,8 @@ cv::Mat OverlayMosaic(const fe::TrackEvaluation& evaluation, const comic::io::Fr
 int Run(int argc, char** argv) {
   std::string frames_path, masks_dir, boxes_file, region_format = "auto";
   std::string detector_list = "comic,harris,hessian,mser,fast";
-  std::string comic_matchers = "split,like-sides,full";
+  std::string comic_matchers = "split,like-sides,full,calibrated";
+  std::string baseline_matchers = "full";
   std::string poses_file, calib_file, out_dir = "track_eval";
   std::string sweep_list = "100,200,400,800,1600,inf";
   int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 1;
@@ -162,8 +163,12 @@ int Run(int argc, char** argv) {
                    &detector_list);
   parser.AddOption("comic-matchers", "LIST",
                    "matchers for CoMIC's features, one row each: split (Algorithm 2), "
-                   "like-sides, full",
+                   "like-sides, full, calibrated",
                    &comic_matchers);
+  parser.AddOption("baseline-matchers", "LIST",
+                   "matchers for the other detectors' features, one row each: full, calibrated "
+                   "(side-aware, issue 15), split, like-sides",
+                   &baseline_matchers);
   parser.AddOption("n", "N",
                    "frames a feature must be matched through (M_score(n)); n = 1 is "
                    "always reported too",
@@ -185,6 +190,12 @@ int Run(int argc, char** argv) {
   parser.AddOption("min-side-overlap", "PX",
                    "split matching: fewest shared pixels for a side pairing to count",
                    &min_side_overlap);
+  parser.AddOption("min-side-fraction", "F",
+                   "calibrated cost: smallest share of the patch a side pairing must hold",
+                   &options.matcher.min_side_fraction);
+  parser.AddOption("side-noise-sigma", "S",
+                   "calibrated cost: noise sigma (grey levels) that calibrates side costs",
+                   &options.matcher.side_noise_sigma);
   parser.AddOption("band", "PX",
                    "boundary band: features within PX pixels of the region edge (either side)",
                    &band);
@@ -207,7 +218,8 @@ int Run(int argc, char** argv) {
   parser.AddEpilog(
       "Outputs in DIR: scores_n<n>.{md,csv,json} (Table 1/2 layout), scores_n<n>.png (bar\n"
       "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
-      "precision_n<n>.{md,csv,json} with --poses, evaluation.json (everything, with\n"
+      "precision_n<n>.{md,csv,json} with --poses, precision_equal_count.{md,csv,json} with\n"
+      "--poses and a matcher other than full, evaluation.json (everything, with\n"
       "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n\n"
       "Example:\n"
       "  comic_track_eval ../shared/data/otb_Crossing/img --boxes "
@@ -223,6 +235,10 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(overlay_frames >= 0, kInvalidArgument, "--overlay-frames must be >= 0");
   COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0");
   options.detectors = comic::frontend::ParseDetectorList(detector_list);
+  options.baseline_costs.clear();
+  for (const std::string& name : SplitList(baseline_matchers)) {
+    options.baseline_costs.push_back(fe::ParseMatchCost(name));
+  }
   options.comic_costs.clear();
   for (const std::string& name : SplitList(comic_matchers)) {
     options.comic_costs.push_back(fe::ParseMatchCost(name));
@@ -352,6 +368,16 @@ int Run(int argc, char** argv) {
       report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
              << "\n\n"
              << precision.ToMarkdown() << "\n";
+    }
+  }
+  if (ground_truth) {
+    const ReportTable equal_count = fe::EqualCountPrecisionTable(evaluation);
+    if (equal_count.NumRows() > 0) {
+      WriteTable(out_dir, "precision_equal_count", equal_count);
+      report << "## Epipolar precision at the full patch's number of accepted matches per pair "
+                "(tolerance "
+             << epipolar_tolerance << " px)\n\n"
+             << equal_count.ToMarkdown() << "\n";
     }
   }
   nlohmann::json json = fe::EvaluationToJson(evaluation);
