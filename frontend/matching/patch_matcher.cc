@@ -103,8 +103,8 @@ float SplitCost(const Patch& a, const Patch& b, bool like_sides_only, int min_ov
 }
 
 // kCalibratedSides: one pass gives the full-patch sum and the sums and counts of at most two side
-// pairings (the object sides, or both like pairings), each side cost calibrated to full-patch
-// units before the minimum is taken.
+// pairings (the object sides, or both like pairings), each over the union of its two sides and
+// calibrated to full-patch units before the minimum is taken.
 float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& options) {
   int pairings[2][2];
   int num_pairings = 0;
@@ -112,7 +112,7 @@ float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& 
     if (a.object_side != PatchSide::kNone && b.object_side != PatchSide::kNone) {
       pairings[num_pairings][0] = SideIndex(a.object_side);
       pairings[num_pairings++][1] = SideIndex(b.object_side);
-    } else {
+    } else if (options.like_sides_without_object) {
       pairings[num_pairings][0] = 0;
       pairings[num_pairings++][1] = 0;
       pairings[num_pairings][0] = 1;
@@ -127,12 +127,13 @@ float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& 
   const int32_t* b1 = num_pairings > 1 ? b.SideWords(pairings[1][1]) : kZeros.data();
   const int32_t* va = a.WideValues();
   const int32_t* vb = b.WideValues();
-  int32_t full = 0, sum0 = 0, sum1 = 0, count0 = 0, count1 = 0;  // 529 · 255² < 2³¹
+  // 529 · 255² < 2³¹. m0, m1: all ones where pixel k is on the pairing's side in either patch.
+  int32_t full = 0, sum0 = 0, sum1 = 0, count0 = 0, count1 = 0;
   for (int k = 0; k < kPatchPixels; ++k) {
     const int32_t d = va[k] - vb[k];
     const int32_t d2 = d * d;
-    const int32_t m0 = a0[k] & b0[k];
-    const int32_t m1 = a1[k] & b1[k];
+    const int32_t m0 = a0[k] | b0[k];
+    const int32_t m1 = a1[k] | b1[k];
     full += d2;
     sum0 += d2 & m0;
     sum1 += d2 & m1;

@@ -26,17 +26,21 @@
 //                           cost is the minimum over pairings whose overlap has at least
 //                           min_side_overlap pixels (d_min of Algorithm 2).
 //   kSplitLikeSides         the same, over the pairings (ic+, ic+) and (ic−, ic−) only.
-//   kCalibratedSides        issue 15: the lowest of the full-patch cost and the costs of the
-//                           side pairings, each side cost first made to mean what a full-patch
-//                           cost means (CalibratedSideCost: the same noise gives the same
-//                           distribution whatever the pixel count). Pairings: the object side
-//                           with the object side when both features say which side that is
-//                           (level_line_sides.h: CoMIC's polarity, otherwise the corner's
-//                           geometry; this also follows a contrast reversal), otherwise
-//                           (ic+, ic+) and (ic−, ic−); each must hold at least
-//                           min_side_fraction of the patch. Features without a side mask (every
-//                           detector but CoMIC) get one from the level line through the point
-//                           (ComputeLevelLineSides), computed only for this cost.
+//   kCalibratedSides        issue 15: the lower of the full-patch cost and the object sides'
+//                           cost, the latter first made to mean what a full-patch cost means
+//                           (CalibratedSideCost: the same noise gives the same distribution
+//                           whatever the pixel count). The object side is the side the corner
+//                           points into (level_line_sides.h: CoMIC's polarity, otherwise the
+//                           corner's geometry), so a contrast reversal still pairs object with
+//                           object. The side cost is the mean over the UNION of the two object
+//                           sides: where the two objects' shapes disagree, a pixel on one object
+//                           and the other's background is compared too, so a flat side cannot
+//                           match any flat region that merely contains it. The union must hold
+//                           at least min_side_fraction of the patch. A pair in which either
+//                           object side is unknown (a straight edge, no level line) costs the
+//                           full patch, unless like_sides_without_object. Features without a
+//                           side mask (every detector but CoMIC) get one from the level line
+//                           through the point (ComputeLevelLineSides), only for this cost.
 // A split mode falls back to kFullPatch for a pair in which either feature has no side mask, so
 // one options struct serves CoMIC and the baselines. Caution when comparing modes: a split cost
 // averages over fewer pixels and takes a minimum over pairings, so it is lower than the
@@ -85,16 +89,22 @@ struct PatchMatcherOptions {
   MatchCost cost = MatchCost::kFullPatch;
   // Split costs: fewest pixels two sides must share for their pairing to count (of 529).
   int min_side_overlap = 40;
-  // kCalibratedSides: a side pairing counts only if the two sides share at least this fraction of
+  // kCalibratedSides: a side pairing counts only if the two sides cover at least this fraction of
   // the kPatchSize² pixels (a side of a few pixels says little about the match). 0.15 = 80 px: a
   // right-angle corner at the centre holds 11 x 11 = 121 px (23 %) once the curve's own pixels
   // are left out, so corners down to about 60° keep their object side.
   double min_side_fraction = 0.15;
-  // kCalibratedSides: σ of the noise model, grey levels: the per-pixel differences of unrelated
-  // patches are taken as N(0, 2σ²), so a mean of n squared differences has mean 2σ² and spread
-  // 2σ²·√(2/n). 2σ² = 1600 is about the full-patch cost of a wrong match on the Middlebury pairs
-  // (median of the wrong mutual-best costs of harris/full, 1400–2200).
-  double side_noise_sigma = 28.0;
+  // kCalibratedSides: σ of the noise model, grey levels: per-pixel differences are taken as
+  // N(0, 2σ²), so a mean of n squared differences has mean 2σ² and spread 2σ²·√(2/n). 2σ² = 800
+  // puts the noise level at twice the protocol's T = 400. Chosen on Tsukuba and Cones against
+  // σ = 10, which lets small sides through at low costs and loses boundary matches at matched
+  // precision (docs/side_aware_matching.md).
+  double side_noise_sigma = 20.0;
+  // kCalibratedSides: when a feature's object side is unknown (a straight edge), also try the
+  // like pairings (ic+, ic+) and (ic−, ic−), each over the union of its two sides; false = the
+  // full patch only (the default: at σ = 10, Harris's boundary M_score(1) at matched precision on
+  // Tsukuba was 34.2 % with them and 37.2 % without; an edge's side matches along the edge).
+  bool like_sides_without_object = false;
   // SSD threshold T: a mutual-best match is accepted if its cost <= max_cost (mean squared
   // difference, grey levels²). +infinity accepts every mutual-best match.
   double max_cost = 400.0;

@@ -387,5 +387,37 @@ TEST(CalibratedSideCost, FeaturesWithoutSidesCostTheFullPatch) {
   EXPECT_THROW(options.Check(), Error);
 }
 
+TEST(CalibratedSideCost, ObjectSidesOfDifferentShapesAreComparedOverTheirUnion) {
+  // Flat images: object 200 on background 40. Patch 1's object is the quadrant x, y >= 32;
+  // patch 2's reaches 6 rows higher. Where both are object the values agree exactly, so a cost
+  // over the shared pixels alone (Algorithm 2) is 0; over the union the 6 x 12 pixels that are
+  // object in one patch and background in the other differ by 160.
+  cv::Mat image1(64, 64, CV_8UC1, cv::Scalar(40)), image2(64, 64, CV_8UC1, cv::Scalar(40));
+  image1(cv::Rect(32, 32, 32, 32)).setTo(200);
+  image2(cv::Rect(32, 26, 32, 38)).setTo(200);
+  auto masked = [](const cv::Mat& image) {
+    Feature f = At(32, 32);
+    f.polarity = Polarity::kBright;
+    f.side_mask.resize(kPatchSize * kPatchSize);
+    for (int v = 0; v < kPatchSize; ++v) {
+      for (int u = 0; u < kPatchSize; ++u) {
+        const bool object = image.at<uint8_t>(32 - kPatchRadius + v, 32 - kPatchRadius + u) == 200;
+        f.side_mask[v * kPatchSize + u] = object ? PatchSide::kPlus : PatchSide::kMinus;
+      }
+    }
+    return f;
+  };
+  const Feature f1 = masked(image1), f2 = masked(image2);
+  PatchMatcherOptions options;
+  options.cost = MatchCost::kSplitLikeSides;
+  EXPECT_LT(PatchCost(image1, f1, image2, f2, options), 1.0f);
+  options.cost = MatchCost::kFullPatch;
+  const float full = PatchCost(image1, f1, image2, f2, options);
+  EXPECT_NEAR(full, 72 * 160.0 * 160.0 / 529, 1.0);
+  options.cost = MatchCost::kCalibratedSides;
+  EXPECT_EQ(PatchCost(image1, f1, image2, f2, options), full);  // the side is no cheaper
+  EXPECT_GT(full, options.max_cost);
+}
+
 }  // namespace
 }  // namespace comic::frontend
