@@ -102,9 +102,34 @@ float SplitCost(const Patch& a, const Patch& b, bool like_sides_only, int min_ov
   return best;
 }
 
-// kCalibratedSides: one pass gives the full-patch sum and the sums and counts of at most two side
-// pairings (the object sides, or both like pairings), each over the union of its two sides and
-// calibrated to full-patch units before the minimum is taken.
+// The full-patch sum of squared differences and, over the union of side `side_a` of `a` and side
+// `side_b` of `b`, the sum and the pixel count, in one branch-free pass (529 · 255² < 2³¹).
+struct SideSums {
+  int32_t full = 0;
+  int32_t side = 0;
+  int32_t count = 0;
+};
+
+SideSums SumOverSideUnion(const Patch& a, int side_a, const Patch& b, int side_b) {
+  const int32_t* va = a.WideValues();
+  const int32_t* vb = b.WideValues();
+  const int32_t* ma = a.SideWords(side_a);
+  const int32_t* mb = b.SideWords(side_b);
+  int32_t full = 0, side = 0, count = 0;
+  for (int k = 0; k < kPatchPixels; ++k) {
+    const int32_t d = va[k] - vb[k];
+    const int32_t d2 = d * d;
+    const int32_t m = ma[k] | mb[k];  // all ones where pixel k is on the side in either patch
+    full += d2;
+    side += d2 & m;
+    count -= m;
+  }
+  return {full, side, count};
+}
+
+// kCalibratedSides: the full-patch cost and the calibrated cost of the object sides' union (or,
+// with like_sides_without_object, of both like pairings for a pair without object sides), the
+// lowest of them.
 float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& options) {
   int pairings[2][2];
   int num_pairings = 0;
@@ -120,36 +145,16 @@ float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& 
     }
   }
   if (num_pairings == 0) return FullCost(a, b);
-  static const std::array<int32_t, kPatchPixels> kZeros{};
-  const int32_t* a0 = a.SideWords(pairings[0][0]);
-  const int32_t* b0 = b.SideWords(pairings[0][1]);
-  const int32_t* a1 = num_pairings > 1 ? a.SideWords(pairings[1][0]) : kZeros.data();
-  const int32_t* b1 = num_pairings > 1 ? b.SideWords(pairings[1][1]) : kZeros.data();
-  const int32_t* va = a.WideValues();
-  const int32_t* vb = b.WideValues();
-  // 529 · 255² < 2³¹. m0, m1: all ones where pixel k is on the pairing's side in either patch.
-  int32_t full = 0, sum0 = 0, sum1 = 0, count0 = 0, count1 = 0;
-  for (int k = 0; k < kPatchPixels; ++k) {
-    const int32_t d = va[k] - vb[k];
-    const int32_t d2 = d * d;
-    const int32_t m0 = a0[k] | b0[k];
-    const int32_t m1 = a1[k] | b1[k];
-    full += d2;
-    sum0 += d2 & m0;
-    sum1 += d2 & m1;
-    count0 -= m0;
-    count1 -= m1;
-  }
-  double best = static_cast<double>(full) / kPatchPixels;
   const int min_pixels =
       std::max(options.min_side_overlap,
                static_cast<int>(std::ceil(options.min_side_fraction * kPatchPixels)));
-  const int32_t sums[2] = {sum0, sum1};
-  const int32_t counts[2] = {count0, count1};
+  double best = kInfinity;
   for (int p = 0; p < num_pairings; ++p) {
-    if (counts[p] < min_pixels) continue;
-    best = std::min(best, CalibratedSideCost(static_cast<double>(sums[p]) / counts[p], counts[p],
-                                             options.side_noise_sigma));
+    const SideSums sums = SumOverSideUnion(a, pairings[p][0], b, pairings[p][1]);
+    best = std::min(best, static_cast<double>(sums.full) / kPatchPixels);
+    if (sums.count < min_pixels) continue;
+    best = std::min(best, CalibratedSideCost(static_cast<double>(sums.side) / sums.count,
+                                             sums.count, options.side_noise_sigma));
   }
   return static_cast<float>(best);
 }
