@@ -1,10 +1,11 @@
 // comic_sfm: structure from motion on a frame sequence. Detects and tracks features with the
 // chosen detector, reconstructs the cameras and points incrementally (two-view initialisation,
-// PnP, triangulation, Ceres bundle adjustment), and writes a COLMAP text model, a coloured PLY
-// point cloud, report.json and a top-view trajectory plot; with ground-truth cameras it also
-// reports the Sim(3)-aligned trajectory error. --compare runs several detectors on the same frames
-// and writes one table. All the work is done by the libraries (sfm/sequence_reconstruction.h,
-// sfm/evaluation/sfm_report.h, ...); this file only wires flags to them.
+// PnP, triangulation, Ceres bundle adjustment), and writes a COLMAP model (text, and binary under
+// sparse/0/), a coloured PLY point cloud, report.json and a top-view trajectory plot; with
+// ground-truth cameras it also reports the Sim(3)-aligned trajectory error. --compare runs several
+// detectors on the same frames and writes one table. All the work is done by the libraries
+// (sfm/sequence_reconstruction.h, sfm/evaluation/sfm_report.h, ...); this file only wires flags to
+// them.
 #include <algorithm>
 #include <iostream>
 #include <map>
@@ -24,6 +25,7 @@
 #include "frontend/detector_factory.h"
 #include "frontend/evaluation/region_labels.h"
 #include "frontend/matching/tracker.h"
+#include "io/colmap_binary_model.h"
 #include "io/colmap_text_model.h"
 #include "io/error.h"
 #include "io/file_utils.h"
@@ -64,6 +66,8 @@ struct Flags {
   std::string gt;
   std::string gt_format = "auto";
   std::string out = "out/sfm";
+  std::string model_format = "both";  // txt, bin or both
+  std::string ply_format = "binary";
   io::ImageSequenceOptions sequence;
   comic::apps::TrackerFlags tracker;  // sfm::SequenceReconstructionOptions' tracker defaults
   bool refine_focal = false;
@@ -331,17 +335,30 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
                             {"features_dropped", building.num_dropped_features},
                             {"matches_refused", building.num_refused_matches}};
   if (result.run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
-    io::WriteColmapTextModel(sfm::ToColmapTextModel(reconstruction), out_dir);
+    const io::ColmapTextModel model = sfm::ToColmapTextModel(reconstruction);
+    std::vector<std::string> outputs;
+    if (flags.model_format != "bin") {
+      io::WriteColmapTextModel(model, out_dir);
+      outputs = {"cameras.txt", "images.txt", "points3D.txt"};
+    }
+    if (flags.model_format != "txt") {
+      // sparse/0/: where COLMAP's mapper puts its first model, and where nerfstudio and the
+      // Gaussian-splatting tools look for it.
+      io::WriteColmapBinaryModel(model, io::JoinPaths(out_dir, "sparse/0"));
+      outputs.insert(outputs.end(),
+                     {"sparse/0/cameras.bin", "sparse/0/images.bin", "sparse/0/points3D.bin"});
+    }
     std::vector<io::PlyPoint> cloud;
     for (const auto& [point3D_id, point] : reconstruction.points3D()) {
       cloud.push_back({point.xyz, point.color});
     }
-    io::WritePly(io::JoinPaths(out_dir, "points.ply"), cloud);
+    io::WritePly(io::JoinPaths(out_dir, "points.ply"), cloud, io::ParsePlyFormat(flags.ply_format));
     io::WriteImageAtomically(
         io::JoinPaths(out_dir, "trajectory.png"),
         RenderPlot(inputs, reconstruction, evaluation,
                    "comic_sfm --detector " + detector_name + "  " + flags.frames));
-    json["outputs"] = {"cameras.txt", "images.txt", "points3D.txt", "points.ply", "trajectory.png"};
+    outputs.insert(outputs.end(), {"points.ply", "trajectory.png"});
+    json["outputs"] = outputs;
   }
   io::WriteFileAtomically(io::JoinPaths(out_dir, "report.json"), json.dump(2) + "\n");
   return result;
@@ -472,8 +489,10 @@ int Run(int argc, char** argv) {
       "Structure from motion on a frame sequence (folder of images or video): tracks features\n"
       "with the chosen detector, reconstructs cameras and points incrementally with Ceres bundle\n"
       "adjustment, and writes into --output: cameras.txt, images.txt, points3D.txt (a COLMAP text\n"
-      "model), points.ply (coloured point cloud), report.json (every number and the options),\n"
-      "trajectory.png (top view; with --gt, ours Sim(3)-aligned against the ground truth).");
+      "model; --model-format), sparse/0/{cameras,images,points3D}.bin (the same model in\n"
+      "COLMAP's binary format), points.ply (coloured point cloud; --ply-format), report.json\n"
+      "(every number and the options), trajectory.png (top view; with --gt, ours Sim(3)-aligned\n"
+      "against the ground truth).");
   parser.AddPositional("FRAMES", "folder of images, or video file", &flags.frames);
   comic::apps::AddDetectorFlag(parser, &flags.detector);
   parser.AddFlag(
@@ -491,6 +510,14 @@ int Run(int argc, char** argv) {
   parser.AddOption("gt-format", "F", "format of --gt: auto, kitti, middlebury or strecha",
                    &flags.gt_format);
   comic::apps::AddOutputFolderFlag(parser, &flags.out);
+  parser.AddOption("model-format", "F",
+                   "COLMAP model written: txt (cameras.txt ... in --output), bin (cameras.bin ... "
+                   "in --output/sparse/0/) or both",
+                   &flags.model_format);
+  parser.AddOption("ply-format", "F",
+                   "points.ply as binary (little-endian, float xyz, uchar rgb) or ascii (exact "
+                   "doubles)",
+                   &flags.ply_format);
   comic::apps::AddResizeHeightFlag(parser, &flags.sequence.resize_height);
   comic::apps::AddFrameRangeFlags(parser, &flags.sequence);
   comic::apps::AddTrackerFlags(parser, &flags.tracker);
@@ -551,6 +578,13 @@ int Run(int argc, char** argv) {
     detectors = {flags.detector};
   }
   MakeOptions(flags);  // validates the numeric options before any work
+  COMIC_CHECK(
+      flags.model_format == "txt" || flags.model_format == "bin" || flags.model_format == "both",
+      kInvalidArgument,
+      "--model-format: unknown format '" << flags.model_format << "' (expected txt, bin or both)");
+  COMIC_CHECK(
+      flags.ply_format == "binary" || flags.ply_format == "ascii", kInvalidArgument,
+      "--ply-format: unknown format '" << flags.ply_format << "' (expected binary or ascii)");
   CheckColmapFlags(flags);
   io::EnsureWritableDirectory(flags.out);
   const Inputs inputs = ResolveInputs(flags);

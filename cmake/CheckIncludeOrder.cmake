@@ -3,7 +3,7 @@
 #
 #   cmake -DSOURCE_DIR=<tree to check> -P cmake/CheckIncludeOrder.cmake
 #
-# Every #include "x/y.h" in a .h/.cc under io/, frontend/, sfm/ or apps/ is looked up: the
+# Every #include "x/y.h" in a .h/.cc under io/, frontend/, sfm/, apps/ or python/ is looked up: the
 # including file's layer (longest matching path prefix below) must list the included file's layer.
 # Fails with one line per violation. In the spirit of Chromium's DEPS include_rules / checkdeps.
 
@@ -15,7 +15,7 @@ endif()
 # common room that may see the detectors it constructs.
 set(layers
   frontend/detector_factory frontend/comic frontend/baselines frontend/matching
-  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm apps io)
+  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm apps python io)
 
 # What each layer may include (besides itself).
 set(allowed_io "")
@@ -33,6 +33,8 @@ set(allowed_sfm io ${frontend_all})
 set(allowed_sfm/evaluation io ${frontend_all} sfm)
 set(allowed_sfm/colmap io ${frontend_all} sfm sfm/evaluation)
 set(allowed_apps io ${frontend_all} sfm sfm/evaluation sfm/colmap)
+# The Python bindings sit where the apps do: over every library, under nothing.
+set(allowed_python io ${frontend_all} sfm sfm/evaluation sfm/colmap)
 
 function(layer_of path out)
   foreach(layer ${layers})
@@ -53,7 +55,8 @@ file(GLOB_RECURSE sources RELATIVE ${SOURCE_DIR}
   ${SOURCE_DIR}/io/*.h ${SOURCE_DIR}/io/*.cc
   ${SOURCE_DIR}/frontend/*.h ${SOURCE_DIR}/frontend/*.cc
   ${SOURCE_DIR}/sfm/*.h ${SOURCE_DIR}/sfm/*.cc
-  ${SOURCE_DIR}/apps/*.h ${SOURCE_DIR}/apps/*.cc)
+  ${SOURCE_DIR}/apps/*.h ${SOURCE_DIR}/apps/*.cc
+  ${SOURCE_DIR}/python/*.h ${SOURCE_DIR}/python/*.cc)
 list(SORT sources)
 
 set(violations 0)

@@ -12,7 +12,14 @@ set(COMIC_WARNING_FLAGS -Wall -Wextra)
 function(comic_add_library)
   cmake_parse_arguments(ARG "" "NAME" "SRCS;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(${ARG_NAME} STATIC ${ARG_SRCS})
-  target_include_directories(${ARG_NAME} PUBLIC ${PROJECT_SOURCE_DIR})
+  # In the tree, headers are found as "io/...", "frontend/...", "sfm/..."; once installed they live
+  # under include/comic/ (cmake/ComicInstall.cmake), so a consumer's -I<prefix>/include never lets
+  # our io/error.h shadow one of its own.
+  target_include_directories(${ARG_NAME} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                                                $<INSTALL_INTERFACE:include>)
+  # Position-independent, so the archives link into the Python module (python/) and into a
+  # consumer's shared library.
+  set_target_properties(${ARG_NAME} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   target_compile_options(${ARG_NAME} PRIVATE ${COMIC_WARNING_FLAGS})
   target_link_libraries(${ARG_NAME} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
 endfunction()

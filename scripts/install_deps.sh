@@ -18,6 +18,11 @@ PACKAGES=(
   nlohmann-json3-dev  # JSON reports
   libgtest-dev   # GoogleTest (CMake finds GTest::gtest_main)
   colmap         # the real COLMAP 3.8 binary, used by tests and --compare-colmap
+  python3-dev    # the Python module comic (python/): headers for the interpreter
+  pybind11-dev   # its C++/Python bindings (CMake finds pybind11)
+  python3-pybind11
+  python3-numpy  # its arrays
+  python3-pytest # its test suite (ctest python/pytest)
 )
 
 missing=()

@@ -1,4 +1,5 @@
-// comic_sfm end to end on the bundled KITTI example: outputs (COLMAP model, PLY, report, plot),
+// comic_sfm end to end on the bundled KITTI example: outputs (COLMAP text and binary models, the
+// latter also read by the real `colmap model_analyzer`; binary and ASCII PLY; report, plot),
 // progress lines, bit-for-bit repeatable results, --compare, and bad input failing early with
 // one line.
 #include <gtest/gtest.h>
@@ -6,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/colmap_binary_model.h"
 #include "io/colmap_text_model.h"
 #include "io/file_utils.h"
 #include "io/ply.h"
@@ -57,6 +59,8 @@ TEST(ComicSfm, HelpDocumentsEveryOption) {
                              "--masks",
                              "--boundary-band",
                              "--plot-plane",
+                             "--model-format",
+                             "--ply-format",
                              "--quiet"}) {
     EXPECT_NE(result.output.find(option), std::string::npos) << option;
   }
@@ -82,6 +86,28 @@ TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {
   EXPECT_GT(model.points3D.size(), 500u);
   const std::vector<comic::io::PlyPoint> cloud = comic::io::ReadPly(dir.File("a/points.ply"));
   EXPECT_EQ(cloud.size(), model.points3D.size());
+  // By default the PLY is binary (float xyz, uchar rgb) and the model is also in COLMAP's binary
+  // format under sparse/0/, with exactly the text model's numbers.
+  EXPECT_EQ(comic::io::ReadFileToString(dir.File("a/points.ply"))
+                .rfind("ply\nformat binary_little_endian 1.0\n", 0),
+            0u);
+  const comic::io::ColmapTextModel binary =
+      comic::io::ReadColmapBinaryModel(dir.File("a/sparse/0"));
+  EXPECT_EQ(comic::io::ColmapCamerasText(binary), comic::io::ColmapCamerasText(model));
+  EXPECT_EQ(comic::io::ColmapImagesText(binary), comic::io::ColmapImagesText(model));
+  EXPECT_EQ(comic::io::ColmapPoints3DText(binary), comic::io::ColmapPoints3DText(model));
+  if (RunCommand("command -v colmap").exit_code == 0) {
+    // The real COLMAP reads the binary model (only the .bin files are in sparse/0/).
+    EXPECT_FALSE(comic::io::PathExists(dir.File("a/sparse/0/cameras.txt")));
+    const auto analyzed = RunCommand("QT_QPA_PLATFORM=offscreen colmap model_analyzer --path " +
+                                     dir.File("a/sparse/0"));
+    ASSERT_EQ(analyzed.exit_code, 0) << analyzed.output;
+    EXPECT_NE(analyzed.output.find("Cameras: 1"), std::string::npos) << analyzed.output;
+    EXPECT_NE(analyzed.output.find("Registered images: 12"), std::string::npos) << analyzed.output;
+    EXPECT_NE(analyzed.output.find("Points: " + std::to_string(model.points3D.size())),
+              std::string::npos)
+        << analyzed.output;
+  }
   const cv::Mat plot = cv::imread(dir.File("a/trajectory.png"));
   EXPECT_EQ(plot.cols, 900);
 
@@ -97,10 +123,50 @@ TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {
   // Same input and options: the same model, bit for bit, with any --threads (the default, 0, is
   // one per core; 1 here).
   ASSERT_EQ(RunCommand(command + dir.File("b") + " --quiet --threads 1").exit_code, 0);
-  for (const char* file : {"cameras.txt", "images.txt", "points3D.txt", "points.ply"}) {
+  for (const char* file :
+       {"cameras.txt", "images.txt", "points3D.txt", "points.ply", "sparse/0/cameras.bin",
+        "sparse/0/images.bin", "sparse/0/points3D.bin"}) {
     EXPECT_EQ(comic::io::ReadFileToString(dir.File(std::string("a/") + file)),
               comic::io::ReadFileToString(dir.File(std::string("b/") + file)))
         << file;
+  }
+}
+
+TEST(ComicSfm, ModelAndPlyFormatsAreChosenByFlags) {
+  ScopedTempDir dir;
+  const std::string command = AppPath("comic_sfm") + " " + Example() + "/image_l --last 5 --gt " +
+                              Example() + "/poses.txt --quiet --output ";
+  const auto text =
+      RunCommand(command + dir.File("txt") + " --model-format txt --ply-format ascii");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_TRUE(comic::io::IsRegularFile(dir.File("txt/cameras.txt")));
+  EXPECT_FALSE(comic::io::PathExists(dir.File("txt/sparse")));
+  EXPECT_EQ(
+      comic::io::ReadFileToString(dir.File("txt/points.ply")).rfind("ply\nformat ascii 1.0\n", 0),
+      0u);
+  const auto binary = RunCommand(command + dir.File("bin") + " --model-format bin");
+  ASSERT_EQ(binary.exit_code, 0) << binary.output;
+  EXPECT_FALSE(comic::io::PathExists(dir.File("bin/cameras.txt")));
+  const comic::io::ColmapTextModel model =
+      comic::io::ReadColmapBinaryModel(dir.File("bin/sparse/0"));
+  // Same run, same numbers: the binary model holds what the text one holds.
+  EXPECT_EQ(comic::io::ColmapImagesText(model),
+            comic::io::ColmapImagesText(comic::io::ReadColmapTextModel(dir.File("txt"))));
+  const nlohmann::json report =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("bin/report.json")));
+  EXPECT_EQ(report["outputs"],
+            nlohmann::json({"sparse/0/cameras.bin", "sparse/0/images.bin", "sparse/0/points3D.bin",
+                            "points.ply", "trajectory.png"}));
+  // The PLYs hold the same points, the binary one to float precision.
+  const auto ascii_cloud = comic::io::ReadPly(dir.File("txt/points.ply"));
+  const auto binary_cloud = comic::io::ReadPly(dir.File("bin/points.ply"));
+  ASSERT_EQ(ascii_cloud.size(), binary_cloud.size());
+  ASSERT_FALSE(ascii_cloud.empty());
+  for (size_t i = 0; i < ascii_cloud.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(binary_cloud[i].xyz[k], static_cast<float>(ascii_cloud[i].xyz[k]));
+    }
+    EXPECT_EQ(binary_cloud[i].rgb, ascii_cloud[i].rgb);
   }
 }
 
@@ -187,6 +253,8 @@ TEST(ComicSfm, BadInputGivesOneLineErrorAndNonZeroExit) {
       {frames + out + " --intrinsics " + dir.File("bad_intrinsics.txt"), 1, "expected intrinsics"},
       {frames + " --output " + dir.File("a_file"), 1, "a_file"},
       {frames + out + " --plot-plane up", 2, "--plot-plane"},
+      {frames + out + " --model-format json", 2, "--model-format"},
+      {frames + out + " --ply-format binary_big_endian", 2, "--ply-format"},
       {frames + out + " --prediction psychic", 2, "psychic"},
       {frames + out + " --local-ba-images 1", 2, "local_ba_num_images"},
       {frames + out + " --threads -1", 2, "--threads must be >= 0"},

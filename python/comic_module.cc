@@ -1,0 +1,810 @@
+// The compiled half of the Python module `comic` (python/comic/__init__.py is the other half):
+// thin wrappers that turn numpy arrays and keyword dicts into the libraries' Options and types,
+// release the GIL around the heavy calls, and hand results back as plain numpy columns, which
+// __init__.py packs into structured arrays. comic::Error becomes ValueError (kInvalidArgument) or
+// RuntimeError (every other kind), with the C++ message.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frontend/detector_factory.h"
+#include "frontend/matching/patch_matcher.h"
+#include "frontend/matching/tracker.h"
+#include "io/colmap_binary_model.h"
+#include "io/colmap_text_model.h"
+#include "io/error.h"
+#include "io/file_utils.h"
+#include "io/ground_truth_cameras.h"
+#include "io/image_io.h"
+#include "io/image_sequence.h"
+#include "io/ply.h"
+#include "io/version.h"
+#include "sfm/colmap/colmap_export.h"
+#include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/colmap/colmap_runner.h"
+#include "sfm/evaluation/ground_truth.h"
+#include "sfm/evaluation/reconstruction_stats.h"
+#include "sfm/evaluation/sfm_report.h"
+#include "sfm/sequence_reconstruction.h"
+#include "sfm/trajectory_evaluation.h"
+
+namespace py = pybind11;
+
+namespace comic::python {
+namespace {
+
+using frontend::Feature;
+using frontend::FeatureSet;
+using frontend::kPatchSize;
+
+// ---- keyword options -> Options fields ---------------------------------------------------------
+
+using Setter = std::function<void(py::handle)>;
+using OptionTable = std::map<std::string, Setter>;
+
+template <typename T>
+Setter Field(T* field) {
+  return [field](py::handle value) {
+    // A bool is an int to Python: refuse it for numbers, and numbers for a bool, so that a
+    // swapped argument is an error rather than a silent 1 or true.
+    if constexpr (std::is_same_v<T, bool>) {
+      if (!py::isinstance<py::bool_>(value)) throw py::type_error("expects a bool");
+    } else {
+      if (py::isinstance<py::bool_>(value)) throw py::type_error("expects a number, not a bool");
+    }
+    *field = py::cast<T>(value);
+  };
+}
+
+template <typename Parse, typename T>
+Setter Parsed(T* field, Parse parse) {
+  return [field, parse](py::handle value) { *field = parse(py::cast<std::string>(value)); };
+}
+
+// Sets every (name, value) of `options` through `table`; unknown names raise ValueError listing the
+// valid ones, values of the wrong type TypeError, both naming `context` and the option.
+void ApplyOptions(const py::dict& options, const OptionTable& table, const std::string& context) {
+  for (const auto& [key, value] : options) {
+    const std::string name = py::cast<std::string>(key);
+    const auto it = table.find(name);
+    if (it == table.end()) {
+      std::string valid;
+      for (const auto& entry : table) valid += (valid.empty() ? "" : ", ") + entry.first;
+      throw Error(ErrorKind::kInvalidArgument,
+                  context + ": unknown option '" + name + "' (valid: " + valid + ")");
+    }
+    try {
+      it->second(value);
+    } catch (const py::cast_error&) {
+      throw py::type_error(context + ": option '" + name + "' has the wrong type (" +
+                           py::cast<std::string>(py::str(value.get_type())) + ")");
+    } catch (const py::type_error& e) {
+      throw py::type_error(context + ": option '" + name + "' " + e.what());
+    }
+  }
+}
+
+OptionTable DetectorOptionTable(frontend::DetectorOptions* o) {
+  if (o->name == "comic") {
+    frontend::ComicDetectorOptions* c = &o->comic;
+    return {{"scale", Field(&c->scale)},
+            {"block_size", Field(&c->block_size)},
+            {"delta", Field(&c->delta)},
+            {"half_length", Field(&c->half_length)},
+            {"max_iterations", Field(&c->max_iterations)},
+            {"convergence_tolerance", Field(&c->convergence_tolerance)},
+            {"stop_tolerance", Field(&c->stop_tolerance)},
+            {"merge_radius", Field(&c->merge_radius)},
+            {"min_stability", Field(&c->min_stability)},
+            {"threads", Field(&c->num_threads)},
+            {"min_cornerness", Field(&c->min_cornerness)},
+            {"coarse_initialisation", Field(&c->coarse_initialisation)},
+            {"seed_neighbouring_corners", Field(&c->seed_neighbouring_corners)},
+            {"skip_duplicate_paths", Field(&c->skip_duplicate_paths)}};
+  }
+  if (o->name == "harris") {
+    frontend::HarrisDetectorOptions* h = &o->harris;
+    return {{"derivative_sigma", Field(&h->derivative_sigma)},
+            {"integration_sigma", Field(&h->integration_sigma)},
+            {"k", Field(&h->k)},
+            {"nms_radius", Field(&h->nms_radius)},
+            {"border", Field(&h->border)},
+            {"min_response", Field(&h->min_response)}};
+  }
+  if (o->name == "hessian") {
+    frontend::HessianDetectorOptions* h = &o->hessian;
+    return {{"sigma", Field(&h->sigma)},
+            {"nms_radius", Field(&h->nms_radius)},
+            {"border", Field(&h->border)},
+            {"min_response", Field(&h->min_response)}};
+  }
+  if (o->name == "mser") {
+    frontend::MserDetectorOptions* m = &o->mser;
+    return {{"delta", Field(&m->delta)},
+            {"min_area", Field(&m->min_area)},
+            {"max_area", Field(&m->max_area)},
+            {"max_variation", Field(&m->max_variation)},
+            {"merge_radius", Field(&m->merge_radius)}};
+  }
+  frontend::FastDetectorOptions* f = &o->fast;
+  return {{"min_threshold", Field(&f->min_threshold)},
+          {"nonmax_suppression", Field(&f->nonmax_suppression)}};
+}
+
+frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py::dict& options) {
+  frontend::DetectorOptions detector_options;
+  detector_options.name = name;
+  COMIC_CHECK(frontend::IsDetectorName(name), kInvalidArgument,
+              "unknown detector '" << name << "' (expected comic, harris, hessian, mser or fast)");
+  ApplyOptions(options, DetectorOptionTable(&detector_options), "detector '" + name + "'");
+  detector_options.Check();
+  return detector_options;
+}
+
+void AddMatcherOptions(frontend::PatchMatcherOptions* m, OptionTable* table) {
+  // The apps' names (apps/common/shared_flags.h): --search-radius, --max-cost, ...
+  table->insert({{"search_radius", Field(&m->radius)},
+                 {"cost", Parsed(&m->cost, frontend::ParseMatchCost)},
+                 {"min_side_overlap", Field(&m->min_side_overlap)},
+                 {"max_cost", Field(&m->max_cost)}});
+}
+
+// The tracker options comic_sfm and comic_export_colmap share (apps/common/tracker_flags.h), by
+// their flag names.
+void AddSfmTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
+  table->insert({{"max_features", Field(&t->max_features)},
+                 {"search_radius", Field(&t->matcher.radius)},
+                 {"unpredicted_radius", Field(&t->unpredicted_radius)},
+                 {"prediction", Parsed(&t->prediction, frontend::ParseMotionPrediction)},
+                 {"coarse_radius", Field(&t->coarse_radius)},
+                 {"match_window", Field(&t->match_window)},
+                 {"track_conflicts", Parsed(&t->conflict_rule, frontend::ParseTrackConflictRule)},
+                 {"verify_min_gap", Field(&t->verify_min_gap)},
+                 {"match_turned", Field(&t->match_turned_180)},
+                 {"max_cost", Field(&t->matcher.max_cost)}});
+}
+
+// comic.track: the shared tracker options, the matcher's cost, and the tracker's finer fields.
+void AddTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
+  AddMatcherOptions(&t->matcher, table);
+  AddSfmTrackerOptions(t, table);
+  table->insert({{"min_response", Field(&t->min_response)},
+                 {"velocity_neighbours", Field(&t->velocity_neighbours)},
+                 {"velocity_neighbour_radius", Field(&t->velocity_neighbour_radius)},
+                 {"coarse_factor", Field(&t->coarse_factor)},
+                 {"coarse_features", Field(&t->coarse_features)}});
+}
+
+void AddSequenceOptions(io::ImageSequenceOptions* s, OptionTable* table) {
+  table->insert({{"resize_height", Field(&s->resize_height)},
+                 {"first", Field(&s->first_frame)},
+                 {"last", Field(&s->last_frame)},
+                 {"stride", Field(&s->stride)}});
+}
+
+// ---- images and features ----------------------------------------------------------------------
+
+// An 8-bit numpy image, H x W (grey) or H x W x 3 (BGR, as cv2 reads it), copied into a grey
+// cv::Mat.
+cv::Mat GrayFromArray(const py::array& image, const std::string& what) {
+  COMIC_CHECK(image.dtype().is(py::dtype::of<uint8_t>()), kInvalidArgument,
+              what << ": expected a uint8 image, got dtype "
+                   << py::cast<std::string>(py::str(image.dtype())));
+  COMIC_CHECK(image.ndim() == 2 || (image.ndim() == 3 && image.shape(2) == 3), kInvalidArgument,
+              what << ": expected an H x W (grey) or H x W x 3 (BGR) image, got " << image.ndim()
+                   << " dimensions");
+  COMIC_CHECK(image.shape(0) > 0 && image.shape(1) > 0, kInvalidArgument, what << ": empty image");
+  const auto contiguous =
+      py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image);
+  const int rows = static_cast<int>(image.shape(0));
+  const int cols = static_cast<int>(image.shape(1));
+  if (image.ndim() == 2) {
+    return cv::Mat(rows, cols, CV_8UC1, const_cast<uint8_t*>(contiguous.data())).clone();
+  }
+  const cv::Mat bgr(rows, cols, CV_8UC3, const_cast<uint8_t*>(contiguous.data()));
+  cv::Mat gray;
+  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+template <typename T>
+py::array_t<T> Column(const FeatureSet& features, T (*get)(const Feature&)) {
+  py::array_t<T> column(static_cast<py::ssize_t>(features.size()));
+  T* out = column.mutable_data();
+  for (size_t i = 0; i < features.size(); ++i) out[i] = get(features[i]);
+  return column;
+}
+
+// The features as columns (x, y, scale, response, cornerness, level, polarity), the side masks
+// as an N x 23 x 23 uint8 array (0: neither side, 1: ic+, 2: ic−; all 0 without side information)
+// and has_side_mask.
+py::dict FeaturesToColumns(const FeatureSet& features) {
+  py::dict columns;
+  columns["x"] = Column<float>(features, [](const Feature& f) { return f.x; });
+  columns["y"] = Column<float>(features, [](const Feature& f) { return f.y; });
+  columns["scale"] = Column<float>(features, [](const Feature& f) { return f.scale; });
+  columns["response"] = Column<float>(features, [](const Feature& f) { return f.response; });
+  columns["cornerness"] = Column<float>(features, [](const Feature& f) { return f.cornerness; });
+  columns["level"] = Column<int32_t>(features, [](const Feature& f) { return int32_t{f.level}; });
+  columns["polarity"] =
+      Column<int8_t>(features, [](const Feature& f) { return static_cast<int8_t>(f.polarity); });
+  columns["has_side_mask"] =
+      Column<bool>(features, [](const Feature& f) { return f.HasSideMask(); });
+  py::array_t<uint8_t> masks({static_cast<py::ssize_t>(features.size()),
+                              static_cast<py::ssize_t>(kPatchSize),
+                              static_cast<py::ssize_t>(kPatchSize)});
+  uint8_t* out = masks.mutable_data();
+  std::memset(out, 0, features.size() * kPatchSize * kPatchSize);
+  for (size_t i = 0; i < features.size(); ++i) {
+    if (!features[i].HasSideMask()) continue;
+    for (int k = 0; k < kPatchSize * kPatchSize; ++k) {
+      out[i * kPatchSize * kPatchSize + k] = static_cast<uint8_t>(features[i].side_mask[k]);
+    }
+  }
+  columns["side_masks"] = masks;
+  return columns;
+}
+
+template <typename T>
+py::array_t<T, py::array::c_style | py::array::forcecast> ColumnOf(const py::dict& columns,
+                                                                   const char* name, size_t size,
+                                                                   const std::string& what) {
+  COMIC_CHECK(columns.contains(name), kInvalidArgument, what << ": no field '" << name << "'");
+  auto column = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(columns[name]);
+  COMIC_CHECK(column && column.ndim() == 1 && static_cast<size_t>(column.shape(0)) == size,
+              kInvalidArgument, what << ": field '" << name << "' must hold " << size << " values");
+  return column;
+}
+
+// The inverse of FeaturesToColumns (the masks may be None: no side information).
+FeatureSet FeaturesFromColumns(const py::dict& columns, const py::object& side_masks,
+                               const std::string& what) {
+  COMIC_CHECK(columns.contains("x"), kInvalidArgument, what << ": no field 'x'");
+  const size_t n = static_cast<size_t>(py::len(columns["x"]));
+  const auto x = ColumnOf<float>(columns, "x", n, what);
+  const auto y = ColumnOf<float>(columns, "y", n, what);
+  const auto scale = ColumnOf<float>(columns, "scale", n, what);
+  const auto response = ColumnOf<float>(columns, "response", n, what);
+  const auto cornerness = ColumnOf<float>(columns, "cornerness", n, what);
+  const auto level = ColumnOf<int32_t>(columns, "level", n, what);
+  const auto polarity = ColumnOf<int8_t>(columns, "polarity", n, what);
+  FeatureSet features(n);
+  for (size_t i = 0; i < n; ++i) {
+    Feature& f = features[i];
+    f.x = x.at(i);
+    f.y = y.at(i);
+    COMIC_CHECK(std::isfinite(f.x) && std::isfinite(f.y), kInvalidArgument,
+                what << ": feature " << i << " has a non-finite position");
+    f.scale = scale.at(i);
+    f.response = response.at(i);
+    f.cornerness = cornerness.at(i);
+    f.level = level.at(i);
+    COMIC_CHECK(polarity.at(i) >= -1 && polarity.at(i) <= 1, kInvalidArgument,
+                what << ": feature " << i << " has polarity " << int{polarity.at(i)});
+    f.polarity = static_cast<frontend::Polarity>(polarity.at(i));
+  }
+  if (!side_masks.is_none()) {
+    const auto masks =
+        py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(side_masks);
+    COMIC_CHECK(masks && masks.ndim() == 3 && static_cast<size_t>(masks.shape(0)) == n &&
+                    masks.shape(1) == kPatchSize && masks.shape(2) == kPatchSize,
+                kInvalidArgument,
+                what << ": side masks must be an array of shape (" << n << ", 23, 23)");
+    const uint8_t* data = masks.data();
+    for (size_t i = 0; i < n; ++i) {
+      const uint8_t* mask = data + i * kPatchSize * kPatchSize;
+      bool any = false;
+      for (int k = 0; k < kPatchSize * kPatchSize; ++k) {
+        COMIC_CHECK(mask[k] <= 2, kInvalidArgument,
+                    what << ": side mask values are 0, 1 or 2, got " << int{mask[k]});
+        any = any || mask[k] != 0;
+      }
+      if (!any) continue;  // all 0: no side information for this feature
+      features[i].side_mask.assign(
+          reinterpret_cast<const frontend::PatchSide*>(mask),
+          reinterpret_cast<const frontend::PatchSide*>(mask) + kPatchSize * kPatchSize);
+    }
+  }
+  return features;
+}
+
+py::dict MatchesToColumns(const std::vector<frontend::PatchMatch>& matches) {
+  py::array_t<int32_t> index1(static_cast<py::ssize_t>(matches.size()));
+  py::array_t<int32_t> index2(static_cast<py::ssize_t>(matches.size()));
+  py::array_t<float> cost(static_cast<py::ssize_t>(matches.size()));
+  for (size_t i = 0; i < matches.size(); ++i) {
+    index1.mutable_at(i) = matches[i].index1;
+    index2.mutable_at(i) = matches[i].index2;
+    cost.mutable_at(i) = matches[i].cost;
+  }
+  py::dict columns;
+  columns["index1"] = index1;
+  columns["index2"] = index2;
+  columns["cost"] = cost;
+  return columns;
+}
+
+py::dict TracksToPython(const frontend::FeatureTracks& tracks) {
+  py::list features;
+  for (const FeatureSet& frame : tracks.features) features.append(FeaturesToColumns(frame));
+  size_t num_observations = 0;
+  for (const frontend::Track& track : tracks.tracks) num_observations += track.Length();
+  py::array_t<int32_t> track_ids(static_cast<py::ssize_t>(num_observations));
+  py::array_t<int32_t> frames(static_cast<py::ssize_t>(num_observations));
+  py::array_t<int32_t> feature_ids(static_cast<py::ssize_t>(num_observations));
+  size_t k = 0;
+  for (size_t t = 0; t < tracks.tracks.size(); ++t) {
+    for (const frontend::TrackObservation& obs : tracks.tracks[t].observations) {
+      track_ids.mutable_at(k) = static_cast<int32_t>(t);
+      frames.mutable_at(k) = obs.frame;
+      feature_ids.mutable_at(k) = obs.feature;
+      ++k;
+    }
+  }
+  py::dict result;
+  result["detector"] = tracks.detector_name;
+  result["image_size"] = py::make_tuple(tracks.image_size.width, tracks.image_size.height);
+  result["frame_names"] = tracks.frame_names;
+  result["features"] = features;
+  result["track"] = track_ids;
+  result["frame"] = frames;
+  result["feature"] = feature_ids;
+  return result;
+}
+
+// A Python progress callback called from C++ code running without the GIL: it takes the GIL for
+// the call. It captures a pointer to the caller's py::object (alive for the whole call), so that
+// copying the std::function inside the libraries touches no Python reference count without the
+// GIL.
+frontend::TrackingProgress TrackingCallback(const py::object& callback) {
+  if (callback.is_none()) return {};
+  const py::object* function = &callback;
+  return [function](size_t done, size_t total) {
+    py::gil_scoped_acquire gil;
+    (*function)(done, total);
+  };
+}
+
+sfm::MapperProgressCallback MapperCallback(const py::object& callback) {
+  if (callback.is_none()) return {};
+  const py::object* function = &callback;
+  return [function](const sfm::MapperProgress& p) {
+    py::gil_scoped_acquire gil;
+    py::dict event;
+    event["frame"] = p.frame;
+    event["frame_name"] = p.frame_name;
+    event["model"] = p.attempt;
+    event["initial_pair"] = p.initial_pair;
+    event["merged"] = p.merged;
+    event["num_registered"] = p.num_registered;
+    event["num_frames"] = p.num_frames;
+    event["num_points3D"] = p.num_points3D;
+    (*function)(event);
+  };
+}
+
+// ---- the functions ----------------------------------------------------------------------------
+
+py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool color) {
+  const io::LoadedImage image = io::LoadImage(path, resize_height);
+  const cv::Mat& mat = color ? image.color : image.gray;
+  std::vector<py::ssize_t> shape = {mat.rows, mat.cols};
+  if (color) shape.push_back(3);
+  py::array_t<uint8_t> array(shape);
+  const size_t row_bytes = static_cast<size_t>(mat.cols) * mat.channels();
+  for (int r = 0; r < mat.rows; ++r) {
+    std::memcpy(array.mutable_data() + r * row_bytes, mat.ptr<uint8_t>(r), row_bytes);
+  }
+  return array;
+}
+
+py::dict Detect(const py::array& image, const std::string& detector_name, const py::dict& options) {
+  const frontend::DetectorOptions detector_options = MakeDetectorOptions(detector_name, options);
+  const cv::Mat gray = GrayFromArray(image, "detect");
+  FeatureSet features;
+  {
+    py::gil_scoped_release release;
+    features = frontend::MakeDetector(detector_options)->Detect(gray);
+  }
+  return FeaturesToColumns(features);
+}
+
+py::dict Match(const py::array& image1, const py::dict& features1, const py::object& masks1,
+               const py::array& image2, const py::dict& features2, const py::object& masks2,
+               const py::dict& options) {
+  frontend::PatchMatcherOptions matcher;
+  OptionTable table;
+  AddMatcherOptions(&matcher, &table);
+  ApplyOptions(options, table, "match");
+  matcher.Check();
+  const cv::Mat gray1 = GrayFromArray(image1, "match: image1");
+  const cv::Mat gray2 = GrayFromArray(image2, "match: image2");
+  const FeatureSet set1 = FeaturesFromColumns(features1, masks1, "match: features1");
+  const FeatureSet set2 = FeaturesFromColumns(features2, masks2, "match: features2");
+  std::vector<frontend::PatchMatch> matches;
+  {
+    py::gil_scoped_release release;
+    matches = frontend::MatchFeatures(gray1, set1, gray2, set2, matcher);
+  }
+  return MatchesToColumns(matches);
+}
+
+py::dict Track(const py::object& frames, const std::string& detector_name,
+               const py::dict& detector_options, const py::dict& options,
+               const py::object& callback) {
+  const frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
+  frontend::TrackerOptions tracker;
+  io::ImageSequenceOptions sequence_options;
+  OptionTable table;
+  AddTrackerOptions(&tracker, &table);
+  const bool from_path = py::isinstance<py::str>(frames);
+  if (from_path) AddSequenceOptions(&sequence_options, &table);
+  ApplyOptions(options, table, "track");
+  tracker.Check();
+  sequence_options.Check();
+  const frontend::TrackingProgress progress = TrackingCallback(callback);
+  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
+  frontend::TrackingResult result;
+  if (from_path) {
+    const io::ImageSequence sequence =
+        io::ImageSequence::Open(py::cast<std::string>(frames), sequence_options);
+    py::gil_scoped_release release;
+    result = frontend::TrackSequence(sequence, *detector, tracker, progress);
+  } else {
+    std::vector<cv::Mat> grays;
+    for (const py::handle frame : frames) {
+      COMIC_CHECK(py::isinstance<py::array>(frame), kInvalidArgument,
+                  "track: frames must be a path or a sequence of uint8 numpy images");
+      grays.push_back(GrayFromArray(py::reinterpret_borrow<py::array>(frame),
+                                    "track: frame " + std::to_string(grays.size())));
+      COMIC_CHECK(grays.back().size() == grays.front().size(), kInvalidArgument,
+                  "track: frame " << grays.size() - 1 << " differs in size from frame 0");
+    }
+    COMIC_CHECK(!grays.empty(), kInvalidArgument, "track: no frames");
+    py::gil_scoped_release release;
+    result = frontend::TrackFrames(grays, *detector, tracker, {}, progress);
+  }
+  return TracksToPython(result.tracks);
+}
+
+// A finished reconstruction: the COLMAP model (what comic_sfm writes) and the run's report.
+struct PyReconstruction {
+  io::ColmapTextModel model;
+  std::string status;
+  std::string report_json;
+};
+
+py::dict ModelToColumns(const io::ColmapTextModel& model) {
+  py::dict result;
+  {
+    const size_t n = model.cameras.size();
+    py::array_t<uint32_t> id(n);
+    py::array_t<int32_t> width(n), height(n);
+    py::list names, params;
+    for (size_t i = 0; i < n; ++i) {
+      const io::ColmapCamera& c = model.cameras[i];
+      id.mutable_at(i) = c.camera_id;
+      width.mutable_at(i) = c.width;
+      height.mutable_at(i) = c.height;
+      names.append(c.model);
+      params.append(py::array_t<double>(c.params.size(), c.params.data()));
+    }
+    py::dict cameras;
+    cameras["camera_id"] = id;
+    cameras["model"] = names;
+    cameras["width"] = width;
+    cameras["height"] = height;
+    cameras["params"] = params;
+    result["cameras"] = cameras;
+  }
+  {
+    const size_t n = model.images.size();
+    py::array_t<uint32_t> id(n), camera_id(n), num_points2D(n);
+    py::array_t<double> qvec({static_cast<py::ssize_t>(n), py::ssize_t{4}});
+    py::array_t<double> tvec({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+    py::list names;
+    size_t num_observations = 0;
+    for (const io::ColmapImage& image : model.images) num_observations += image.points2D.size();
+    py::array_t<uint32_t> obs_image(num_observations);
+    py::array_t<double> obs_x(num_observations), obs_y(num_observations);
+    py::array_t<int64_t> obs_point(num_observations);
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const io::ColmapImage& image = model.images[i];
+      id.mutable_at(i) = image.image_id;
+      camera_id.mutable_at(i) = image.camera_id;
+      num_points2D.mutable_at(i) = static_cast<uint32_t>(image.points2D.size());
+      const Eigen::Quaterniond& q = image.cam_from_world_rotation;
+      qvec.mutable_at(i, 0) = q.w();
+      qvec.mutable_at(i, 1) = q.x();
+      qvec.mutable_at(i, 2) = q.y();
+      qvec.mutable_at(i, 3) = q.z();
+      for (int c = 0; c < 3; ++c) tvec.mutable_at(i, c) = image.cam_from_world_translation[c];
+      names.append(image.name);
+      for (const io::ColmapPoint2D& point : image.points2D) {
+        obs_image.mutable_at(k) = image.image_id;
+        obs_x.mutable_at(k) = point.x;
+        obs_y.mutable_at(k) = point.y;
+        obs_point.mutable_at(k) = point.point3D_id;
+        ++k;
+      }
+    }
+    py::dict images;
+    images["image_id"] = id;
+    images["camera_id"] = camera_id;
+    images["qvec"] = qvec;
+    images["tvec"] = tvec;
+    images["name"] = names;
+    images["num_points2D"] = num_points2D;
+    result["images"] = images;
+    py::dict points2D;
+    points2D["image_id"] = obs_image;
+    points2D["x"] = obs_x;
+    points2D["y"] = obs_y;
+    points2D["point3D_id"] = obs_point;
+    result["points2D"] = points2D;
+  }
+  {
+    const size_t n = model.points3D.size();
+    py::array_t<uint64_t> id(n);
+    py::array_t<double> xyz({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+    py::array_t<uint8_t> rgb({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+    py::array_t<double> error(n);
+    py::array_t<uint32_t> track_length(n);
+    for (size_t i = 0; i < n; ++i) {
+      const io::ColmapPoint3D& p = model.points3D[i];
+      id.mutable_at(i) = p.point3D_id;
+      for (int c = 0; c < 3; ++c) {
+        xyz.mutable_at(i, c) = p.xyz[c];
+        rgb.mutable_at(i, c) = p.rgb[c];
+      }
+      error.mutable_at(i) = p.error;
+      track_length.mutable_at(i) = static_cast<uint32_t>(p.track.size());
+    }
+    py::dict points;
+    points["point3D_id"] = id;
+    points["xyz"] = xyz;
+    points["rgb"] = rgb;
+    points["error"] = error;
+    points["track_length"] = track_length;
+    result["points3D"] = points;
+  }
+  return result;
+}
+
+// comic_sfm's intrinsics rule: --intrinsics, else the ground truth's, else f = 1.2 max(w, h).
+sfm::Camera ResolveCamera(const io::ImageSequence& sequence, const std::string& intrinsics,
+                          const std::optional<sfm::FrameGroundTruth>& truth) {
+  const cv::Size source_size = sequence.SourceFrameSize();
+  const cv::Size frame_size = sequence.FrameSize();
+  const double scale = static_cast<double>(frame_size.height) / source_size.height;
+  sfm::Camera camera;
+  if (!intrinsics.empty()) {
+    const sfm::Camera source_camera =
+        sfm::CameraFromK(io::ReadIntrinsicsFile(intrinsics), source_size.width, source_size.height);
+    camera = scale == 1.0 ? source_camera : source_camera.Scaled(scale);
+  } else if (truth && truth->camera) {
+    camera = *truth->camera;
+  } else {
+    camera = sfm::Camera::FromImageSize(frame_size.width, frame_size.height);
+  }
+  camera.width = frame_size.width;
+  camera.height = frame_size.height;
+  return camera;
+}
+
+PyReconstruction Reconstruct(const std::string& path, const std::string& detector_name,
+                             const py::dict& detector_options, const std::string& intrinsics,
+                             const std::string& gt, const std::string& gt_format,
+                             const py::dict& options, const py::object& callback) {
+  frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
+  sfm::SequenceReconstructionOptions sfm_options;
+  io::ImageSequenceOptions sequence_options;
+  OptionTable table;
+  // comic_sfm's option names, so that the same run is spelt the same way in both.
+  sfm::IncrementalPipelineOptions* m = &sfm_options.mapper;
+  AddSfmTrackerOptions(&sfm_options.tracker, &table);
+  table.insert({{"refine_focal", Field(&m->global_ba.refine_focal_length)},
+                {"retriangulate", Field(&m->mapper.retriangulate_incomplete_tracks)},
+                {"local_ba_images", Field(&m->local_ba_num_images)},
+                {"global_ba_growth", Field(&m->global_ba_growth_ratio)},
+                {"init_angle", Field(&m->mapper.init_tri_angle_deg)},
+                {"init_max_gap", Field(&m->mapper.init_max_frame_gap)}});
+  // As comic_sfm's --threads: detection only (0 = one per core); the bundle adjustments stay on
+  // one thread, as Ceres's sums depend on its thread scheduling.
+  int threads = 0;
+  table["threads"] = Field(&threads);
+  AddSequenceOptions(&sequence_options, &table);
+  ApplyOptions(options, table, "reconstruct");
+  COMIC_CHECK(threads >= 0, kInvalidArgument, "reconstruct: threads must be >= 0, got " << threads);
+  sfm_options.Check();
+  sequence_options.Check();
+
+  if (!detector_options.contains("threads")) made.comic.num_threads = threads;
+  const io::ImageSequence sequence = io::ImageSequence::Open(path, sequence_options);
+  std::optional<sfm::FrameGroundTruth> truth;
+  if (!gt.empty()) {
+    std::vector<int> source_indices;
+    for (size_t k = 0; k < sequence.NumFrames(); ++k) {
+      source_indices.push_back(sequence_options.first_frame +
+                               static_cast<int>(k) * sequence_options.stride);
+    }
+    truth = sfm::MatchGroundTruthToFrames(
+        io::ReadGroundTruthCameras(gt, io::ParseGroundTruthFormat(gt_format)),
+        sequence.FrameNames(), source_indices, sequence.SourceFrameSize(), sequence.FrameSize());
+  }
+  const sfm::Camera camera = ResolveCamera(sequence, intrinsics, truth);
+  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
+  const sfm::MapperProgressCallback progress = MapperCallback(callback);
+  PyReconstruction result;
+  {
+    py::gil_scoped_release release;
+    const sfm::SequenceReconstruction run =
+        sfm::ReconstructSequence(sequence, *detector, camera, sfm_options, {}, progress);
+    const sfm::Reconstruction& reconstruction = run.mapping.reconstruction;
+    std::optional<sfm::TrajectoryEvaluation> evaluation;
+    if (truth) {
+      evaluation =
+          sfm::EvaluateTrajectory(sfm::RegisteredPosesByName(reconstruction, sequence.FrameNames()),
+                                  truth->cams_from_world);
+    }
+    const sfm::SfmRunReport report =
+        sfm::MakeRunReport(run, sfm::ComputeReconstructionStats(reconstruction), evaluation);
+    result.report_json = sfm::RunReportToJson(report).dump();
+    result.status = sfm::ReconstructionStatusName(run.mapping.status);
+    if (run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
+      result.model = sfm::ToColmapTextModel(reconstruction);
+    }
+  }
+  return result;
+}
+
+// comic_export_colmap's image names: relative to image_path, which must be `frames` or above it.
+std::string ImageNamePrefix(const std::string& frames, const std::string& image_path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path relative =
+      fs::relative(fs::weakly_canonical(frames, ec), fs::weakly_canonical(image_path, ec), ec);
+  COMIC_CHECK(!ec && !relative.empty() && *relative.begin() != "..", kInvalidArgument,
+              "image_path " << image_path << " must be the frames' folder or a folder above it");
+  const std::string prefix = relative.generic_string();
+  return prefix == "." ? "" : prefix + "/";
+}
+
+py::dict ExportColmap(const std::string& frames, const std::string& database,
+                      const std::string& detector_name, const py::dict& detector_options,
+                      const std::string& intrinsics, const std::string& image_path_arg,
+                      bool overwrite, const py::dict& options) {
+  frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
+  // comic_export_colmap's defaults, which are comic_sfm's: the same tracks from the same folder.
+  frontend::TrackerOptions tracker = sfm::SequenceReconstructionOptions().tracker;
+  io::ImageSequenceOptions sequence_options;
+  sfm::ColmapExportOptions export_options;
+  int threads = 0;
+  OptionTable table = {{"window", Field(&export_options.pair_window)},
+                       {"max_error", Field(&export_options.two_view.max_error_px)},
+                       {"min_inliers", Field(&export_options.two_view.min_num_inliers)},
+                       {"threads", Field(&threads)}};
+  AddSfmTrackerOptions(&tracker, &table);
+  AddSequenceOptions(&sequence_options, &table);
+  ApplyOptions(options, table, "export_colmap");
+  COMIC_CHECK(threads >= 0, kInvalidArgument,
+              "export_colmap: threads must be >= 0, got " << threads);
+  export_options.num_threads = threads;
+  if (!detector_options.contains("threads")) made.comic.num_threads = threads;
+  sequence_options.Check();
+  export_options.Check();
+  tracker.Check();
+  io::CheckWritableFile(database, overwrite);
+  COMIC_CHECK(io::PathExists(frames), kNotFound, frames << ": no such file or folder");
+  COMIC_CHECK(io::IsDirectory(frames), kInvalidArgument,
+              frames << ": not a folder (COLMAP needs the frames as image files in a folder)");
+  const std::string image_path = image_path_arg.empty() ? frames : image_path_arg;
+  COMIC_CHECK(io::IsDirectory(image_path), kNotFound, image_path << ": image_path is not a folder");
+  export_options.image_name_prefix = ImageNamePrefix(frames, image_path);
+  const io::ImageSequence sequence = io::ImageSequence::Open(frames, sequence_options);
+  COMIC_CHECK(sequence.NumFrames() >= 2, kInvalidArgument,
+              frames << ": COLMAP export needs at least two frames, got " << sequence.NumFrames());
+  std::optional<sfm::Camera> camera;
+  if (!intrinsics.empty()) {
+    const Eigen::Matrix3d k = io::ReadIntrinsicsFile(intrinsics);
+    sfm::Camera known;
+    known.width = sequence.FrameSize().width;
+    known.height = sequence.FrameSize().height;
+    known.fx = k(0, 0);
+    known.fy = k(1, 1);
+    known.cx = k(0, 2);
+    known.cy = k(1, 2);
+    known.Check();
+    camera = known;
+  }
+  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
+  sfm::ColmapExportSummary summary;
+  {
+    py::gil_scoped_release release;
+    const frontend::TrackingResult tracking = frontend::TrackSequence(sequence, *detector, tracker);
+    summary = sfm::ExportTracksToColmapDatabase(tracking.tracks, camera, export_options, database,
+                                                overwrite);
+  }
+  const std::string sparse = io::JoinPaths(io::ParentPath(database), "sparse");
+  py::dict result;
+  result["num_images"] = summary.num_images;
+  result["num_keypoints"] = summary.num_keypoints;
+  result["num_matched_pairs"] = summary.num_matched_pairs;
+  result["num_verified_pairs"] = summary.num_verified_pairs;
+  result["num_matches"] = summary.num_matches;
+  result["num_inlier_matches"] = summary.num_inlier_matches;
+  result["known_intrinsics"] = summary.known_intrinsics;
+  result["mapper_command"] = sfm::ColmapMapperCommandLine(
+      database, image_path, sparse, sfm::RecommendedColmapMapperOptions(summary));
+  return result;
+}
+
+}  // namespace
+}  // namespace comic::python
+
+PYBIND11_MODULE(_core, m) {
+  using namespace comic::python;
+  m.doc() = "comic-sfm's compiled core; use the package `comic` (python/comic/__init__.py).";
+  m.attr("__version__") = comic::Version();  // project(VERSION), through io/version.cc
+  m.attr("detector_names") = comic::frontend::DetectorNames();
+  m.attr("patch_size") = comic::frontend::kPatchSize;
+
+  py::register_exception_translator([](std::exception_ptr pointer) {
+    try {
+      if (pointer) std::rethrow_exception(pointer);
+    } catch (const comic::Error& e) {
+      if (e.kind() == comic::ErrorKind::kInvalidArgument) {
+        PyErr_SetString(PyExc_ValueError, e.what());
+      } else {
+        PyErr_SetString(PyExc_RuntimeError, e.what());
+      }
+    }
+  });
+
+  m.def("imread", &ImRead, py::arg("path"), py::arg("resize_height"), py::arg("color"));
+  m.def("detect", &Detect, py::arg("image"), py::arg("detector"), py::arg("options"));
+  m.def("match", &Match, py::arg("image1"), py::arg("features1"), py::arg("side_masks1"),
+        py::arg("image2"), py::arg("features2"), py::arg("side_masks2"), py::arg("options"));
+  m.def("track", &Track, py::arg("frames"), py::arg("detector"), py::arg("detector_options"),
+        py::arg("options"), py::arg("callback"));
+  m.def("reconstruct", &Reconstruct, py::arg("path"), py::arg("detector"),
+        py::arg("detector_options"), py::arg("intrinsics"), py::arg("gt"), py::arg("gt_format"),
+        py::arg("options"), py::arg("callback"));
+  m.def("export_colmap", &ExportColmap, py::arg("frames"), py::arg("database"), py::arg("detector"),
+        py::arg("detector_options"), py::arg("intrinsics"), py::arg("image_path"),
+        py::arg("overwrite"), py::arg("options"));
+
+  py::class_<PyReconstruction>(m, "Reconstruction")
+      .def_readonly("status", &PyReconstruction::status)
+      .def_readonly("report_json", &PyReconstruction::report_json)
+      .def("columns", [](const PyReconstruction& r) { return ModelToColumns(r.model); })
+      .def("write_text",
+           [](const PyReconstruction& r, const std::string& folder) {
+             comic::io::WriteColmapTextModel(r.model, folder);
+           })
+      .def("write_binary",
+           [](const PyReconstruction& r, const std::string& folder) {
+             comic::io::WriteColmapBinaryModel(r.model, folder);
+           })
+      .def("write_ply",
+           [](const PyReconstruction& r, const std::string& path, const std::string& format) {
+             std::vector<comic::io::PlyPoint> cloud;
+             for (const comic::io::ColmapPoint3D& point : r.model.points3D) {
+               cloud.push_back({point.xyz, point.rgb});
+             }
+             comic::io::WritePly(path, cloud, comic::io::ParsePlyFormat(format));
+           });
+}
