@@ -3,7 +3,8 @@
 // one run, and reports the median milliseconds per frame and the ratios CoMIC / MSER. A plain
 // program rather than a timed test: timings depend on the machine. With
 // --perturbations it also measures how many features each detector finds again on the same
-// frame after one grey level of noise and after a 0.5 px shift.
+// frame after one grey level of noise and after a 0.5 px shift. With --match-pair it also times
+// the patch matcher (one frame pair, 2000 features per frame, every cost in the same run).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +23,7 @@
 #include "frontend/comic/comic_detector.h"
 #include "frontend/comic/comic_direct_detector.h"
 #include "frontend/detector_factory.h"
+#include "frontend/matching/patch_matcher.h"
 #include "frontend/parallel_for.h"
 #include "io/error.h"
 #include "io/file_utils.h"
@@ -122,6 +124,45 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
             << table.ToMarkdown();
 }
 
+// Matcher speed (issue 15): ms per frame pair for MatchFeatures with the radius gate (r = 20 px,
+// T = 400) between `gray` and `gray2`, on each detector's `count` strongest features per frame,
+// for every cost in one run (so the ratios compare like with like on a shared machine).
+void PrintMatcherTimes(const cv::Mat& gray, const cv::Mat& gray2, int count, int runs) {
+  namespace fe = comic::frontend;
+  comic::io::ReportTable table({"detector", "features (1 / 2)", "cost", "median ms / pair",
+                                "min ms / pair", "matches", "median / full"});
+  for (const char* column : {"median ms / pair", "min ms / pair", "median / full"}) {
+    table.SetPrecision(column, column == std::string("median / full") ? 2 : 1);
+  }
+  for (const std::string name : {"comic", "harris"}) {
+    fe::DetectorOptions options;
+    options.name = name;
+    const auto detector = fe::MakeDetector(options);
+    auto strongest = [&](const cv::Mat& image) {
+      fe::FeatureSet features = detector->Detect(image);
+      fe::SortByResponse(&features);
+      if (static_cast<int>(features.size()) > count) features.resize(count);
+      return features;
+    };
+    const fe::FeatureSet f1 = strongest(gray), f2 = strongest(gray2);
+    double full_ms = 0;
+    for (fe::MatchCost cost : {fe::MatchCost::kFullPatch, fe::MatchCost::kSplitMinOfFourPairings,
+                               fe::MatchCost::kCalibratedSides}) {
+      fe::PatchMatcherOptions matcher;
+      matcher.cost = cost;
+      const Timing t =
+          Time(runs, [&] { return fe::MatchFeatures(gray, f1, gray2, f2, matcher).size(); });
+      if (cost == fe::MatchCost::kFullPatch) full_ms = t.median_ms;
+      table.AddRow({name, std::to_string(f1.size()) + " / " + std::to_string(f2.size()),
+                    fe::MatchCostName(cost), t.median_ms, t.min_ms,
+                    static_cast<int64_t>(t.features), t.median_ms / full_ms});
+    }
+  }
+  std::cout << "\nPatch matcher, one frame pair, radius gate r = 20 px, T = 400, up to " << count
+            << " features per frame:\n\n"
+            << table.ToMarkdown();
+}
+
 int Run(int argc, char** argv) {
   std::string input = "../shared/data/middlebury2003_cones/im2.png";
   std::string json_path;
@@ -130,6 +171,8 @@ int Run(int argc, char** argv) {
   int threads = 0;
   bool perturbations = false;
   std::string counts_list;
+  std::string match_pair;
+  int match_features = 2000;
   comic::apps::ArgParser parser(
       "comic_bench", "[IMAGE] [options]",
       "Times CoMIC (the default direct search, 1 thread and N threads), OpenCV MSER (delta 5),\n"
@@ -161,7 +204,16 @@ int Run(int argc, char** argv) {
       "                              table per N of the comma-separated LIST (default: "
       "CoMIC's count)",
       &counts_list);
+  parser.AddOption("match-pair", "IMAGE2",
+                   "also time the patch matcher between IMAGE and IMAGE2 (same size) for every "
+                   "cost",
+                   &match_pair);
+  parser.AddOption("match-features", "N", "features per frame for --match-pair (strongest N)",
+                   &match_features);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  COMIC_CHECK(match_features >= 1, kInvalidArgument, "--match-features must be >= 1");
+  COMIC_CHECK(match_pair.empty() || comic::io::PathExists(match_pair), kNotFound,
+              match_pair << ": no such file (--match-pair)");
   COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
   COMIC_CHECK(runs >= 1, kInvalidArgument, "--runs must be >= 1");
   COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0");
@@ -184,6 +236,13 @@ int Run(int argc, char** argv) {
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 
   const cv::Mat gray = comic::io::LoadImage(input, resize_height).gray;
+  cv::Mat gray2;
+  if (!match_pair.empty()) {
+    gray2 = comic::io::LoadImage(match_pair, resize_height).gray;
+    COMIC_CHECK(gray2.size() == gray.size(), kInvalidArgument,
+                match_pair << " is " << gray2.cols << "x" << gray2.rows << ", " << input << " is "
+                           << gray.cols << "x" << gray.rows << " (--match-pair needs equal sizes)");
+  }
   const int many = comic::frontend::ResolveNumThreads(threads, 1 << 20);
   std::cout << "image: " << input << " (" << gray.cols << "x" << gray.rows << "), " << runs
             << " runs per detector, OpenCV threads: " << cv::getNumThreads() << "\n\n";
@@ -295,6 +354,7 @@ int Run(int argc, char** argv) {
     if (counts.empty()) counts.push_back(0);
     for (int count : counts) PrintPerturbations(gray, many, count);
   }
+  if (!gray2.empty()) PrintMatcherTimes(gray, gray2, match_features, runs);
   return 0;
 }
 

@@ -56,8 +56,8 @@ int Run(int argc, char** argv) {
   fe::StereoEvaluationOptions options;
   options.detectors.comic.num_threads = 0;  // one per core: the output does not depend on it
   std::string methods =
-      "comic/split,comic/like-sides,comic/full,harris/full,hessian/full,"
-      "mser/full,fast/full";
+      "comic/split,comic/like-sides,comic/full,comic/calibrated,harris/full,harris/calibrated,"
+      "hessian/full,hessian/calibrated,mser/full,fast/full,fast/calibrated";
   std::string counts = "0,1000";
   std::string sensitivity = "200,400,800";
   std::string repeatability = "1,1.5,2.5";
@@ -98,7 +98,8 @@ int Run(int argc, char** argv) {
   comic::apps::AddOutputFolderFlag(parser, &out_dir);
   comic::apps::AddResizeHeightFlag(parser, &options.working_height);
   parser.AddDeprecatedAlias("height", "resize-height");
-  parser.AddOption("methods", "LIST", "detector/matcher pairs (matchers: full, split, like-sides)",
+  parser.AddOption("methods", "LIST",
+                   "detector/matcher pairs (matchers: full, split, like-sides, calibrated)",
                    &methods);
   parser.AddOption("counts", "LIST",
                    "target counts N of valid left features, one run each; 0 = the count "
@@ -120,6 +121,8 @@ int Run(int argc, char** argv) {
   parser.AddOption("disparity-margin", "PX", "added to the max GT disparity for the gate",
                    &options.disparity_margin);
   comic::apps::AddMinSideOverlapFlag(parser, &options.min_side_overlap);
+  comic::apps::AddCalibratedCostFlags(parser, &options.min_side_fraction,
+                                      &options.side_noise_sigma);
   parser.AddOption("repeatability", "LIST", "repeatability tolerances in px", &repeatability);
   parser.AddOption("precision-reference", "METHOD",
                    "matched precision target = this method's overall precision at T",

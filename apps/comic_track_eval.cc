@@ -120,7 +120,8 @@ cv::Mat OverlayMosaic(const fe::TrackEvaluation& evaluation, const comic::io::Fr
 int Run(int argc, char** argv) {
   std::string frames_path, region_format = "auto";
   std::string detector_list = "comic,harris,hessian,mser,fast";
-  std::string comic_matchers = "split,like-sides,full";
+  std::string comic_matchers = "split,like-sides,full,calibrated";
+  std::string baseline_matchers = "full";
   std::string poses_file, calib_file, out_dir = "track_eval";
   std::string sweep_list = "100,200,400,800,1600,inf";
   int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 0;
@@ -155,8 +156,12 @@ int Run(int argc, char** argv) {
   comic::apps::AddDetectorListFlag(parser, &detector_list);
   parser.AddOption("comic-matchers", "LIST",
                    "matchers for CoMIC's features, one row each: split (Algorithm 2), "
-                   "like-sides, full",
+                   "like-sides, full, calibrated",
                    &comic_matchers);
+  parser.AddOption("baseline-matchers", "LIST",
+                   "matchers for the other detectors' features, one row each: full, calibrated "
+                   "(side-aware, issue 15), split, like-sides",
+                   &baseline_matchers);
   parser.AddOption("n", "N",
                    "frames a feature must be matched through (M_score(n)); n = 1 is "
                    "always reported too",
@@ -173,6 +178,8 @@ int Run(int argc, char** argv) {
   parser.AddDeprecatedAlias("radius", "search-radius");
   comic::apps::AddMaxCostFlag(parser, &max_cost);
   comic::apps::AddMinSideOverlapFlag(parser, &min_side_overlap);
+  comic::apps::AddCalibratedCostFlags(parser, &options.matcher.min_side_fraction,
+                                      &options.matcher.side_noise_sigma);
   parser.AddOption("poses", "FILE", "KITTI poses.txt (camera-to-world per frame) for precision",
                    &poses_file);
   parser.AddOption("calib", "FILE", "KITTI calib.txt (P0 gives the intrinsics) for precision",
@@ -193,7 +200,8 @@ int Run(int argc, char** argv) {
   parser.AddEpilog(
       "Outputs in DIR: scores_n<n>.{md,csv,json} (Table 1/2 layout), scores_n<n>.png (bar\n"
       "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
-      "precision_n<n>.{md,csv,json} with --poses, evaluation.json (everything, with\n"
+      "precision_n<n>.{md,csv,json} with --poses, precision_equal_count.{md,csv,json} with\n"
+      "--poses and a matcher other than full, evaluation.json (everything, with\n"
       "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n"
       "--target-precision: with --poses, the matchers are also compared at this epipolar\n"
       "precision (0-1). --resize-height: the paper works at 700.\n\n"
@@ -215,6 +223,10 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0");
   options.detectors = detector_list.empty() ? comic::frontend::DetectorNames()
                                             : comic::frontend::ParseDetectorList(detector_list);
+  options.baseline_costs.clear();
+  for (const std::string& name : comic::apps::SplitList(baseline_matchers, "baseline-matchers")) {
+    options.baseline_costs.push_back(fe::ParseMatchCost(name));
+  }
   options.comic_costs.clear();
   for (const std::string& name : comic::apps::SplitList(comic_matchers, "comic-matchers")) {
     options.comic_costs.push_back(fe::ParseMatchCost(name));
@@ -338,6 +350,16 @@ int Run(int argc, char** argv) {
       report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
              << "\n\n"
              << precision.ToMarkdown() << "\n";
+    }
+  }
+  if (ground_truth) {
+    const ReportTable equal_count = fe::EqualCountPrecisionTable(evaluation);
+    if (equal_count.NumRows() > 0) {
+      WriteTable(out_dir, "precision_equal_count", equal_count);
+      report << "## Epipolar precision at the full patch's number of accepted matches per pair "
+                "(tolerance "
+             << epipolar_tolerance << " px)\n\n"
+             << equal_count.ToMarkdown() << "\n";
     }
   }
   nlohmann::json json = fe::EvaluationToJson(evaluation);

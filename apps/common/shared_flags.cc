@@ -66,6 +66,15 @@ void AddMinSideOverlapFlag(ArgParser& parser, int* pixels) {
                    pixels);
 }
 
+void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma) {
+  parser.AddOption("min-side-fraction", "F",
+                   "calibrated cost: smallest share of the patch a side pairing must cover",
+                   min_side_fraction);
+  parser.AddOption("side-noise-sigma", "S",
+                   "calibrated cost: noise sigma (grey levels) that calibrates side costs",
+                   noise_sigma);
+}
+
 void AddIntrinsicsFlag(ArgParser& parser, std::string* path) {
   parser.AddOption("intrinsics", "FILE",
                    "intrinsics of the frames as stored: 'fx fy cx cy', a 3x3 K or a 3x4 P (KITTI "

@@ -35,6 +35,9 @@ void AddSearchRadiusFlag(ArgParser& parser, double* radius);
 void AddMaxCostFlag(ArgParser& parser, double* cost);
 // --min-side-overlap PX: split matching (paper Algorithm 2), fewest shared pixels of a side pair.
 void AddMinSideOverlapFlag(ArgParser& parser, int* pixels);
+// --min-side-fraction F and --side-noise-sigma S: the calibrated side-aware cost's smallest side
+// share of the patch and its noise σ (frontend/matching/patch_matcher.h, issue 15).
+void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma);
 // --intrinsics FILE: the frames' intrinsics as stored (see apps/common/camera_intrinsics.h).
 void AddIntrinsicsFlag(ArgParser& parser, std::string* path);
 

@@ -155,6 +155,12 @@ void StereoEvaluationOptions::Check() const {
   COMIC_CHECK(min_side_overlap >= 1 && min_side_overlap <= kPatchSize * kPatchSize,
               kInvalidArgument,
               "stereo evaluation: min_side_overlap must be in [1, 529], got " << min_side_overlap);
+  {
+    PatchMatcherOptions matcher;
+    matcher.min_side_fraction = min_side_fraction;
+    matcher.side_noise_sigma = side_noise_sigma;
+    matcher.Check();  // the calibrated cost's options, with the matcher's own messages
+  }
   COMIC_CHECK(max_cost > 0 && !std::isnan(max_cost), kInvalidArgument,
               "stereo evaluation: max_cost (T) must be > 0, got " << max_cost);
   for (double t : sensitivity_costs) {
@@ -317,6 +323,8 @@ StereoMatching MatchStereoDetection(const io::MiddleburyPair& pair, const Stereo
   matcher.max_disparity = std::max(gate_max_disparity, options.min_disparity);
   matcher.cost = cost;
   matcher.min_side_overlap = options.min_side_overlap;
+  matcher.min_side_fraction = options.min_side_fraction;
+  matcher.side_noise_sigma = options.side_noise_sigma;
   matcher.max_cost = kInfinity;
   StereoMatching matching;
   matching.method = {detection.detector, cost};

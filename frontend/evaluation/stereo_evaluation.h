@@ -117,6 +117,9 @@ struct StereoEvaluationOptions {
   double disparity_margin = 1.5;
   // Split costs: fewest pixels a side pairing must share (of 529), patch_matcher.h.
   int min_side_overlap = 40;
+  // The calibrated side cost's smallest side share and noise σ (patch_matcher.h).
+  double min_side_fraction = PatchMatcherOptions{}.min_side_fraction;
+  double side_noise_sigma = PatchMatcherOptions{}.side_noise_sigma;
   // The SSD threshold T: mean squared difference of 0–255 grey values (400 = RMS 20 levels).
   double max_cost = 400.0;
   // Further thresholds reported for sensitivity (T = ∞ is always reported too).

@@ -135,7 +135,11 @@ io::ReportTable ProtocolTable(const StereoEvaluationOptions& options) {
       "23x23, mean squared difference of 0-255 grey values; full = 529 pixels; split = min over "
       "the 4 side pairings (Algorithm 2); like-sides = (ic+,ic+) and (ic-,ic-) only; pairings "
       "need >= " +
-          std::to_string(options.min_side_overlap) + " shared pixels");
+          std::to_string(options.min_side_overlap) +
+          " shared pixels; calibrated = min of the full patch and the object sides' (or like "
+          "sides') costs in full-patch units, sides >= " +
+          Number(options.min_side_fraction) + " of the patch, noise sigma " +
+          Number(options.side_noise_sigma));
   add("one-to-one", "mutual best over all gated candidates, then the threshold T");
   add("SSD threshold T", Number(options.max_cost) + " (mean squared difference)");
   add("T sensitivity", NumberList(options.sensitivity_costs) + ", inf");

@@ -28,6 +28,19 @@ void TrackEvaluationOptions::Check() const {
       std::find(detectors.begin(), detectors.end(), "comic-paper") != detectors.end();
   COMIC_CHECK(!(has_comic || has_comic_paper) || !comic_costs.empty(), kInvalidArgument,
               "evaluation: no matcher for CoMIC's features");
+  const bool has_baseline =
+      std::any_of(detectors.begin(), detectors.end(),
+                  [](const std::string& d) { return d != "comic" && d != "comic-paper"; });
+  COMIC_CHECK(!has_baseline || !baseline_costs.empty(), kInvalidArgument,
+              "evaluation: no matcher for the baselines' features");
+  for (const auto* costs : {&comic_costs, &baseline_costs}) {
+    for (size_t i = 0; i < costs->size(); ++i) {
+      for (size_t j = 0; j < i; ++j) {
+        COMIC_CHECK((*costs)[i] != (*costs)[j], kInvalidArgument,
+                    "evaluation: matcher '" << MatchCostName((*costs)[i]) << "' listed twice");
+      }
+    }
+  }
   COMIC_CHECK(num_features >= 0, kInvalidArgument,
               "evaluation: num_features must be >= 0 (0 = CoMIC's count), got " << num_features);
   COMIC_CHECK(num_features > 0 || has_comic, kInvalidArgument,
@@ -60,7 +73,8 @@ bool IsComic(const std::string& detector) {
 }
 
 std::string RowLabel(const std::string& detector, MatchCost cost) {
-  return IsComic(detector) ? detector + "/" + MatchCostName(cost) : detector;
+  return IsComic(detector) || cost != MatchCost::kFullPatch ? detector + "/" + MatchCostName(cost)
+                                                            : detector;
 }
 
 // The labels of frame `frame`'s region at the evaluated size, or an empty Mat without regions.
@@ -102,6 +116,32 @@ PrecisionSummary SummarisePrecision(const EvaluationRow& row, const EpipolarGrou
     }
   }
   return summary;
+}
+
+// Precision of `row`'s k_p cheapest mutual-best matches in every frame pair p, k_p = the number
+// `reference` accepts there at T.
+PrecisionPoint PrecisionAtReferenceCount(const EvaluationRow& row, const EvaluationRow& reference,
+                                         const EpipolarGroundTruth& truth,
+                                         const TrackEvaluationOptions& options) {
+  const FeatureTracks& tracks = row.tracking.tracks;
+  PrecisionPoint point;
+  point.max_cost = std::numeric_limits<double>::quiet_NaN();  // a count per pair, not one T
+  for (size_t p = 0; p + 1 < tracks.NumFrames(); ++p) {
+    const size_t k =
+        ApplyCostThreshold(reference.tracking.mutual_matches[p], options.matcher.max_cost).size();
+    std::vector<PatchMatch> cheapest = row.tracking.mutual_matches[p];
+    std::stable_sort(cheapest.begin(), cheapest.end(),
+                     [](const PatchMatch& a, const PatchMatch& b) { return a.cost < b.cost; });
+    cheapest.resize(std::min(k, cheapest.size()));
+    const cv::Matx33d F =
+        FundamentalFromPoses(truth.K, truth.world_from_camera[p], truth.world_from_camera[p + 1]);
+    const std::vector<bool> ok = EpipolarConsistency(F, tracks.features[p], tracks.features[p + 1],
+                                                     cheapest, options.epipolar_tolerance);
+    point.accepted += static_cast<int>(cheapest.size());
+    point.correct += static_cast<int>(std::count(ok.begin(), ok.end(), true));
+  }
+  point.precision = point.accepted > 0 ? static_cast<double>(point.correct) / point.accepted : 0.0;
+  return point;
 }
 
 size_t IndexOfN(const TrackEvaluation& evaluation, int n) {
@@ -225,9 +265,8 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
   std::vector<std::vector<size_t>> rows_of_detector(detectors.size());
   std::vector<Tracker> trackers;
   for (size_t d = 0; d < detectors.size(); ++d) {
-    const std::vector<MatchCost> costs = IsComic(options.detectors[d])
-                                             ? options.comic_costs
-                                             : std::vector<MatchCost>{MatchCost::kFullPatch};
+    const std::vector<MatchCost>& costs =
+        IsComic(options.detectors[d]) ? options.comic_costs : options.baseline_costs;
     for (MatchCost cost : costs) {
       EvaluationRow row;
       row.detector = options.detectors[d];
@@ -279,6 +318,17 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
       row.sweep.push_back(std::move(at_t));
     }
     if (ground_truth) row.precision = SummarisePrecision(row, *ground_truth, options);
+  }
+  if (ground_truth) {
+    for (EvaluationRow& row : evaluation.rows) {
+      if (row.cost == MatchCost::kFullPatch) continue;
+      for (const EvaluationRow& reference : evaluation.rows) {
+        if (reference.detector != row.detector || reference.cost != MatchCost::kFullPatch) continue;
+        row.precision->reference_label = reference.label;
+        row.precision->at_reference_count =
+            PrecisionAtReferenceCount(row, reference, *ground_truth, options);
+      }
+    }
   }
   return evaluation;
 }
@@ -345,6 +395,27 @@ io::ReportTable PrecisionTable(const TrackEvaluation& evaluation, int n) {
   return table;
 }
 
+io::ReportTable EqualCountPrecisionTable(const TrackEvaluation& evaluation) {
+  io::ReportTable table(
+      {"detector", "reference", "matches/pair", "precision %", "reference precision @T %"});
+  for (const char* column : {"matches/pair", "precision %", "reference precision @T %"}) {
+    table.SetPrecision(column, 1);
+  }
+  const double pairs = evaluation.num_frames > 1 ? evaluation.num_frames - 1.0 : 1.0;
+  for (const EvaluationRow& row : evaluation.rows) {
+    COMIC_CHECK(row.precision.has_value(), kInvalidArgument,
+                "equal-count table: the evaluation had no epipolar ground truth");
+    if (!row.precision->at_reference_count) continue;
+    const PrecisionPoint& at = *row.precision->at_reference_count;
+    for (const EvaluationRow& reference : evaluation.rows) {
+      if (reference.label != row.precision->reference_label) continue;
+      table.AddRow({row.label, reference.label, at.accepted / pairs, Percent(at.precision),
+                    Percent(reference.precision->at_threshold.precision)});
+    }
+  }
+  return table;
+}
+
 io::ReportTable ThresholdSweepTable(const TrackEvaluation& evaluation, int n) {
   const size_t k = IndexOfN(evaluation, n);
   const std::string ms = "M_score(" + std::to_string(n) + ") % ";
@@ -376,6 +447,8 @@ nlohmann::json EvaluationToJson(const TrackEvaluation& evaluation) {
   const TrackEvaluationOptions& o = evaluation.options;
   nlohmann::json costs = nlohmann::json::array();
   for (MatchCost cost : o.comic_costs) costs.push_back(MatchCostName(cost));
+  std::vector<std::string> baseline_costs;
+  for (MatchCost cost : o.baseline_costs) baseline_costs.push_back(MatchCostName(cost));
   nlohmann::json json = {
       {"frames", evaluation.num_frames},
       {"frame_size", {evaluation.frame_size.width, evaluation.frame_size.height}},
@@ -386,6 +459,7 @@ nlohmann::json EvaluationToJson(const TrackEvaluation& evaluation) {
       {"options",
        {{"detectors", o.detectors},
         {"comic_costs", costs},
+        {"baseline_costs", baseline_costs},
         {"num_features", o.num_features},
         {"radius_px", o.matcher.radius},
         {"max_cost", o.matcher.max_cost},
@@ -440,6 +514,10 @@ nlohmann::json EvaluationToJson(const TrackEvaluation& evaluation) {
           {"all_mutual", PrecisionPointJson(p.all_mutual)},
           {"at_target", p.at_target ? PrecisionPointJson(*p.at_target) : nlohmann::json(nullptr)},
           {"scores_at_target", at_target_scores}};
+      if (p.at_reference_count) {
+        entry["precision"]["at_reference_count"] = PrecisionPointJson(*p.at_reference_count);
+        entry["precision"]["reference"] = p.reference_label;
+      }
     }
     rows.push_back(entry);
   }

@@ -13,7 +13,8 @@
 // Rows. Every detector is one row with the full-patch matcher, except CoMIC, which has one row
 // per entry of comic_costs: "comic/split" (Algorithm 2, the paper's matcher), "comic/like-sides"
 // and "comic/full" (CoMIC points, baseline matcher: separates the detector's contribution from
-// the matcher's).
+// the matcher's). The other detectors have one row per entry of baseline_costs ("harris" for the
+// full patch, "harris/calibrated" for issue 15's side-aware cost on Harris's points, ...).
 //
 // Threshold equalisation (threshold_equalisation.h). N is options.num_features, or, when that is
 // 0, the number of CoMIC features (at CoMIC's own options, every candidate by default) in the
@@ -51,6 +52,8 @@ struct TrackEvaluationOptions {
   // Matchers evaluated on CoMIC's features, one row each (see above).
   std::vector<MatchCost> comic_costs = {MatchCost::kSplitMinOfFourPairings,
                                         MatchCost::kSplitLikeSides, MatchCost::kFullPatch};
+  // Matchers evaluated on every other detector's features, one row each (see above).
+  std::vector<MatchCost> baseline_costs = {MatchCost::kFullPatch};
   // N, the feature count every detector is equalised to in frame 0's object region; 0 = CoMIC's
   // count (then "comic" must be among the detectors).
   int num_features = 0;
@@ -96,6 +99,11 @@ struct PrecisionSummary {
   PrecisionPoint all_mutual;    // every mutual-best match (T = infinity)
   std::optional<PrecisionPoint> at_target;       // the largest T reaching target_precision
   std::vector<MatchingScores> scores_at_target;  // per n, tracks rebuilt at that T
+  // Rows other than the full patch: the same detector's full-patch row accepts k_p matches in
+  // frame pair p at T; this row's k_p cheapest mutual-best matches of each pair (ties by index1),
+  // so two matchers are compared at equal numbers of accepted matches (issue 15).
+  std::optional<PrecisionPoint> at_reference_count;
+  std::string reference_label;  // the full-patch row, e.g. "comic/full", "harris"
 };
 
 struct EvaluationRow {
@@ -139,6 +147,10 @@ io::ReportTable ScoreTable(const TrackEvaluation& evaluation, int n);
 // Epipolar precision per row (needs ground truth): matches per frame pair and precision at T,
 // for every mutual-best match, and at the target precision with M_score(n) / ResM_n there.
 io::ReportTable PrecisionTable(const TrackEvaluation& evaluation, int n);
+
+// Epipolar precision at equal numbers of accepted matches per frame pair (needs ground truth): one
+// line per row that has a full-patch row of the same detector, with that row's precision at T.
+io::ReportTable EqualCountPrecisionTable(const TrackEvaluation& evaluation);
 
 // M_score(n) and ResM_n per row at every threshold of options.sweep_costs: one line per row and
 // threshold.

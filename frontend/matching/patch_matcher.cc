@@ -6,6 +6,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "frontend/matching/level_line_sides.h"
 #include "io/error.h"
 
 namespace comic::frontend {
@@ -15,15 +16,26 @@ namespace {
 constexpr int kPatchPixels = kPatchSize * kPatchSize;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-// A feature's patch: grey values and side labels (kNone everywhere without a side mask).
+// A feature's patch: grey values and side labels (kNone everywhere without a side mask). For
+// kCalibratedSides also `words`: the grey values as int32, then one all-ones/zero word per pixel
+// for ic+ and one for ic− (3 x kPatchPixels), so that the cost loop has no branch and vectorises;
+// empty for the other costs, which do not pay for it.
 struct Patch {
   bool valid = false;
   bool has_sides = false;
   std::array<uint8_t, kPatchPixels> values{};
   std::array<PatchSide, kPatchPixels> sides{};
+  PatchSide object_side = PatchSide::kNone;
+  std::vector<int32_t> words;
+  const int32_t* WideValues() const { return words.data(); }
+  const int32_t* SideWords(int side_index) const {
+    return words.data() + (1 + side_index) * kPatchPixels;
+  }
 };
 
-Patch ExtractPatch(const cv::Mat& gray, const Feature& feature) {
+int SideIndex(PatchSide side) { return side == PatchSide::kPlus ? 0 : 1; }
+
+Patch ExtractPatch(const cv::Mat& gray, const Feature& feature, MatchCost cost) {
   Patch patch;
   if (!PatchFits(feature, gray.size())) return patch;
   patch.valid = true;
@@ -33,7 +45,21 @@ Patch ExtractPatch(const cv::Mat& gray, const Feature& feature) {
     const uint8_t* row = gray.ptr<uint8_t>(cy - kPatchRadius + v) + (cx - kPatchRadius);
     std::copy(row, row + kPatchSize, patch.values.begin() + v * kPatchSize);
   }
-  if (feature.HasSideMask()) {
+  if (cost == MatchCost::kCalibratedSides) {
+    // Every detector's points get sides here, and only for this cost (issue 15).
+    const LevelLineSides sides = ComputeLevelLineSides(gray, feature);
+    patch.words.assign(3 * kPatchPixels, 0);
+    std::copy(patch.values.begin(), patch.values.end(), patch.words.begin());
+    if (!sides.mask.empty()) {
+      patch.has_sides = true;
+      patch.object_side = sides.object_side;
+      std::copy(sides.mask.begin(), sides.mask.end(), patch.sides.begin());
+      for (int k = 0; k < kPatchPixels; ++k) {
+        patch.words[kPatchPixels + k] = sides.mask[k] == PatchSide::kPlus ? -1 : 0;
+        patch.words[2 * kPatchPixels + k] = sides.mask[k] == PatchSide::kMinus ? -1 : 0;
+      }
+    }
+  } else if (feature.HasSideMask()) {
     patch.has_sides = true;
     std::copy(feature.side_mask.begin(), feature.side_mask.end(), patch.sides.begin());
   }
@@ -76,8 +102,66 @@ float SplitCost(const Patch& a, const Patch& b, bool like_sides_only, int min_ov
   return best;
 }
 
+// The full-patch sum of squared differences and, over the union of side `side_a` of `a` and side
+// `side_b` of `b`, the sum and the pixel count, in one branch-free pass (529 · 255² < 2³¹).
+struct SideSums {
+  int32_t full = 0;
+  int32_t side = 0;
+  int32_t count = 0;
+};
+
+SideSums SumOverSideUnion(const Patch& a, int side_a, const Patch& b, int side_b) {
+  const int32_t* va = a.WideValues();
+  const int32_t* vb = b.WideValues();
+  const int32_t* ma = a.SideWords(side_a);
+  const int32_t* mb = b.SideWords(side_b);
+  int32_t full = 0, side = 0, count = 0;
+  for (int k = 0; k < kPatchPixels; ++k) {
+    const int32_t d = va[k] - vb[k];
+    const int32_t d2 = d * d;
+    const int32_t m = ma[k] | mb[k];  // all ones where pixel k is on the side in either patch
+    full += d2;
+    side += d2 & m;
+    count -= m;
+  }
+  return {full, side, count};
+}
+
+// kCalibratedSides: the full-patch cost and the calibrated cost of the object sides' union (or,
+// with like_sides_without_object, of both like pairings for a pair without object sides), the
+// lowest of them.
+float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& options) {
+  int pairings[2][2];
+  int num_pairings = 0;
+  if (a.has_sides && b.has_sides) {
+    if (a.object_side != PatchSide::kNone && b.object_side != PatchSide::kNone) {
+      pairings[num_pairings][0] = SideIndex(a.object_side);
+      pairings[num_pairings++][1] = SideIndex(b.object_side);
+    } else if (options.like_sides_without_object) {
+      pairings[num_pairings][0] = 0;
+      pairings[num_pairings++][1] = 0;
+      pairings[num_pairings][0] = 1;
+      pairings[num_pairings++][1] = 1;
+    }
+  }
+  if (num_pairings == 0) return FullCost(a, b);
+  const int min_pixels =
+      std::max(options.min_side_overlap,
+               static_cast<int>(std::ceil(options.min_side_fraction * kPatchPixels)));
+  double best = kInfinity;
+  for (int p = 0; p < num_pairings; ++p) {
+    const SideSums sums = SumOverSideUnion(a, pairings[p][0], b, pairings[p][1]);
+    best = std::min(best, static_cast<double>(sums.full) / kPatchPixels);
+    if (sums.count < min_pixels) continue;
+    best = std::min(best, CalibratedSideCost(static_cast<double>(sums.side) / sums.count,
+                                             sums.count, options.side_noise_sigma));
+  }
+  return static_cast<float>(best);
+}
+
 float Cost(const Patch& a, const Patch& b, const PatchMatcherOptions& options) {
   if (!a.valid || !b.valid) return kInfinity;
+  if (options.cost == MatchCost::kCalibratedSides) return CalibratedCost(a, b, options);
   if (options.cost == MatchCost::kFullPatch || !a.has_sides || !b.has_sides) {
     return FullCost(a, b);
   }
@@ -129,17 +213,32 @@ const char* MatchCostName(MatchCost cost) {
       return "split";
     case MatchCost::kSplitLikeSides:
       return "like-sides";
+    case MatchCost::kCalibratedSides:
+      return "calibrated";
   }
   return "?";
 }
 
 MatchCost ParseMatchCost(const std::string& name) {
-  for (MatchCost cost :
-       {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings, MatchCost::kSplitLikeSides}) {
+  for (MatchCost cost : {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings,
+                         MatchCost::kSplitLikeSides, MatchCost::kCalibratedSides}) {
     if (name == MatchCostName(cost)) return cost;
   }
   throw Error(ErrorKind::kInvalidArgument,
-              "unknown match cost '" + name + "' (valid: full, split, like-sides)");
+              "unknown match cost '" + name + "' (valid: full, split, like-sides, calibrated)");
+}
+
+double CalibratedSideCost(double mean_squared_difference, int pixels, double noise_sigma) {
+  COMIC_CHECK(pixels >= 1 && noise_sigma > 0 && mean_squared_difference >= 0, kInvalidArgument,
+              "calibrated side cost: needs pixels >= 1, noise_sigma > 0 and a mean >= 0, got "
+                  << pixels << ", " << noise_sigma << ", " << mean_squared_difference);
+  if (pixels == kPatchPixels) return mean_squared_difference;
+  const double scale = 2.0 * noise_sigma * noise_sigma;  // the mean of d² under the noise model
+  const double g_n = std::sqrt(2.0 / (9.0 * pixels));
+  const double g_full = std::sqrt(2.0 / (9.0 * kPatchPixels));
+  const double z = (std::cbrt(mean_squared_difference / scale) - (1.0 - g_n * g_n)) / g_n;
+  const double base = 1.0 - g_full * g_full + z * g_full;
+  return base <= 0 ? 0.0 : scale * base * base * base;
 }
 
 void PatchMatcherOptions::Check() const {
@@ -154,6 +253,11 @@ void PatchMatcherOptions::Check() const {
                                                           << min_side_overlap);
   COMIC_CHECK(max_cost >= 0 && !std::isnan(max_cost), kInvalidArgument,
               "matcher: max_cost must be >= 0, got " << max_cost);
+  COMIC_CHECK(min_side_fraction >= 0 && min_side_fraction <= 1, kInvalidArgument,
+              "matcher: min_side_fraction must be in [0, 1], got " << min_side_fraction);
+  COMIC_CHECK(side_noise_sigma > 0 && std::isfinite(side_noise_sigma), kInvalidArgument,
+              "matcher: side_noise_sigma must be a positive number of grey levels, got "
+                  << side_noise_sigma);
 }
 
 std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const FeatureSet& features1,
@@ -170,7 +274,8 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
               "patch matcher: " << search.radii.size() << " search radii for " << features1.size()
                                 << " features");
   std::vector<Patch> patches2(features2.size());
-  for (size_t j = 0; j < features2.size(); ++j) patches2[j] = ExtractPatch(gray2, features2[j]);
+  for (size_t j = 0; j < features2.size(); ++j)
+    patches2[j] = ExtractPatch(gray2, features2[j], options.cost);
   const double cell = options.gate == CandidateGate::kRadius
                           ? std::max(8.0, options.radius)
                           : std::max(8.0, options.max_disparity - options.min_disparity);
@@ -178,7 +283,7 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
 
   std::vector<PatchMatch> candidates;
   for (int i = 0; i < static_cast<int>(features1.size()); ++i) {
-    const Patch patch1 = ExtractPatch(gray1, features1[i]);
+    const Patch patch1 = ExtractPatch(gray1, features1[i], options.cost);
     if (!patch1.valid) continue;
     const cv::Point2f centre = search.centres.empty() ? features1[i].Position() : search.centres[i];
     const double radius = search.radii.empty() ? options.radius : search.radii[i];
@@ -257,7 +362,8 @@ float PatchCost(const cv::Mat& gray1, const Feature& feature1, const cv::Mat& gr
   options.Check();
   CheckImage(gray1, "image 1");
   CheckImage(gray2, "image 2");
-  return Cost(ExtractPatch(gray1, feature1), ExtractPatch(gray2, feature2), options);
+  return Cost(ExtractPatch(gray1, feature1, options.cost),
+              ExtractPatch(gray2, feature2, options.cost), options);
 }
 
 }  // namespace comic::frontend

@@ -26,6 +26,21 @@
 //                           cost is the minimum over pairings whose overlap has at least
 //                           min_side_overlap pixels (d_min of Algorithm 2).
 //   kSplitLikeSides         the same, over the pairings (ic+, ic+) and (ic−, ic−) only.
+//   kCalibratedSides        issue 15: the lower of the full-patch cost and the object sides'
+//                           cost, the latter first made to mean what a full-patch cost means
+//                           (CalibratedSideCost: the same noise gives the same distribution
+//                           whatever the pixel count). The object side is the side the corner
+//                           points into (level_line_sides.h: CoMIC's polarity, otherwise the
+//                           corner's geometry), so a contrast reversal still pairs object with
+//                           object. The side cost is the mean over the UNION of the two object
+//                           sides: where the two objects' shapes disagree, a pixel on one object
+//                           and the other's background is compared too, so a flat side cannot
+//                           match any flat region that merely contains it. The union must hold
+//                           at least min_side_fraction of the patch. A pair in which either
+//                           object side is unknown (a straight edge, no level line) costs the
+//                           full patch, unless like_sides_without_object. Features without a
+//                           side mask (every detector but CoMIC) get one from the level line
+//                           through the point (ComputeLevelLineSides), only for this cost.
 // A split mode falls back to kFullPatch for a pair in which either feature has no side mask, so
 // one options struct serves CoMIC and the baselines. Caution when comparing modes: a split cost
 // averages over fewer pixels and takes a minimum over pairings, so it is lower than the
@@ -51,9 +66,9 @@
 
 namespace comic::frontend {
 
-enum class MatchCost { kFullPatch, kSplitMinOfFourPairings, kSplitLikeSides };
+enum class MatchCost { kFullPatch, kSplitMinOfFourPairings, kSplitLikeSides, kCalibratedSides };
 
-// "full", "split", "like-sides" (the command-line names).
+// "full", "split", "like-sides", "calibrated" (the command-line names).
 const char* MatchCostName(MatchCost cost);
 // Throws comic::Error(kInvalidArgument) listing the valid names.
 MatchCost ParseMatchCost(const std::string& name);
@@ -74,6 +89,22 @@ struct PatchMatcherOptions {
   MatchCost cost = MatchCost::kFullPatch;
   // Split costs: fewest pixels two sides must share for their pairing to count (of 529).
   int min_side_overlap = 40;
+  // kCalibratedSides: a side pairing counts only if the two sides cover at least this fraction of
+  // the kPatchSize² pixels (a side of a few pixels says little about the match). 0.15 = 80 px: a
+  // right-angle corner at the centre holds 11 x 11 = 121 px (23 %) once the curve's own pixels
+  // are left out, so corners down to about 60° keep their object side.
+  double min_side_fraction = 0.15;
+  // kCalibratedSides: σ of the noise model, grey levels: per-pixel differences are taken as
+  // N(0, 2σ²), so a mean of n squared differences has mean 2σ² and spread 2σ²·√(2/n). 2σ² = 800
+  // puts the noise level at twice the protocol's T = 400. Chosen on Tsukuba and Cones against
+  // σ = 10, which lets small sides through at low costs and loses boundary matches at matched
+  // precision (docs/side_aware_matching.md).
+  double side_noise_sigma = 20.0;
+  // kCalibratedSides: when a feature's object side is unknown (a straight edge), also try the
+  // like pairings (ic+, ic+) and (ic−, ic−), each over the union of its two sides; false = the
+  // full patch only (the default: at σ = 10, Harris's boundary M_score(1) at matched precision on
+  // Tsukuba was 34.2 % with them and 37.2 % without; an edge's side matches along the edge).
+  bool like_sides_without_object = false;
   // SSD threshold T: a mutual-best match is accepted if its cost <= max_cost (mean squared
   // difference, grey levels²). +infinity accepts every mutual-best match.
   double max_cost = 400.0;
@@ -117,6 +148,13 @@ std::vector<PatchMatch> MatchFeatures(const cv::Mat& gray1, const FeatureSet& fe
                                       const cv::Mat& gray2, const FeatureSet& features2,
                                       const PatchMatcherOptions& options,
                                       const SearchRegions& search = {});
+
+// kCalibratedSides: the full-patch (kPatchSize² pixels) mean squared difference that is as likely
+// under the noise model (σ = noise_sigma) as a mean of `mean_squared_difference` over `pixels`
+// pixels, by the Wilson–Hilferty cube-root approximation of the χ² distribution: with
+// u = mean / 2σ², z = (u^⅓ − (1 − 2/9n)) / √(2/9n), the result is 2σ²·(1 − 2/9N + z·√(2/9N))³
+// (0 if the bracket is negative). The identity for pixels = N; monotone in the mean.
+double CalibratedSideCost(double mean_squared_difference, int pixels, double noise_sigma);
 
 // The cost of one pair under `options.cost` (no gate), +inf if a patch does not fit or no side
 // pairing overlaps enough.

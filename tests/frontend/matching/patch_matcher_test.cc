@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/baselines/harris_detector.h"
 #include "frontend/evaluation/threshold_equalisation.h"
+#include "frontend/matching/level_line_sides.h"
 #include "io/error.h"
 
 namespace comic::frontend {
@@ -212,10 +214,11 @@ TEST(PatchMatcher, MutualBestIsOneToOneWithDeterministicTies) {
 }
 
 TEST(PatchMatcher, NamesOptionsAndBadInput) {
-  for (MatchCost cost :
-       {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings, MatchCost::kSplitLikeSides}) {
+  for (MatchCost cost : {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings,
+                         MatchCost::kSplitLikeSides, MatchCost::kCalibratedSides}) {
     EXPECT_EQ(ParseMatchCost(MatchCostName(cost)), cost);
   }
+  EXPECT_EQ(ParseMatchCost("calibrated"), MatchCost::kCalibratedSides);
   EXPECT_THROW(ParseMatchCost("ncc"), Error);
   PatchMatcherOptions options;
   options.radius = 0;
@@ -230,6 +233,190 @@ TEST(PatchMatcher, NamesOptionsAndBadInput) {
   EXPECT_THROW(MatchFeatures(cv::Mat(50, 50, CV_8UC3), {}, image, {}, {}), Error);
   // Features whose patch does not fit are never matched.
   EXPECT_TRUE(ComputeCandidateCosts(image, {At(3, 3)}, image, {At(3, 3)}, {}).empty());
+}
+
+// ---- The calibrated side cost (issue 15) ----
+
+TEST(CalibratedSideCost, IsTheIdentityOnTheFullPatchAndMonotoneInTheMean) {
+  constexpr int kFull = kPatchSize * kPatchSize;
+  for (double m : {0.0, 50.0, 400.0, 1600.0, 5000.0}) {
+    EXPECT_DOUBLE_EQ(CalibratedSideCost(m, kFull, 28.0), m);
+  }
+  double previous = -1;
+  for (double m = 0; m <= 4000; m += 25) {
+    const double c = CalibratedSideCost(m, 132, 28.0);
+    EXPECT_GE(c, previous) << m;
+    previous = c;
+  }
+  // Below the noise level 2σ² a mean over fewer pixels is weaker evidence, so it costs more in
+  // full-patch units; at 2σ² every pixel count gives about 2σ².
+  EXPECT_GT(CalibratedSideCost(400, 132, 28.0), 400);
+  EXPECT_GT(CalibratedSideCost(400, 132, 28.0), CalibratedSideCost(400, 264, 28.0));
+  EXPECT_NEAR(CalibratedSideCost(2 * 28.0 * 28.0, 132, 28.0), 2 * 28.0 * 28.0, 0.01 * 1568);
+  EXPECT_THROW(CalibratedSideCost(10, 0, 28.0), Error);
+  EXPECT_THROW(CalibratedSideCost(10, 100, 0.0), Error);
+}
+
+// Two 23x23 images of independent Gaussian noise σ around 128 on the first `side_pixels` pixels
+// (row-major), which are the object side (ic+, polarity kBright) of both features; the rest of
+// the patches differ by 255, so neither the full patch nor another side can match.
+struct NoisePair {
+  cv::Mat image1, image2;
+  Feature feature1, feature2;
+};
+
+NoisePair MakeNoisePair(int side_pixels, double sigma, cv::RNG& rng) {
+  NoisePair pair;
+  pair.image1.create(kPatchSize, kPatchSize, CV_8UC1);
+  pair.image2.create(kPatchSize, kPatchSize, CV_8UC1);
+  Feature f = At(kPatchRadius, kPatchRadius);
+  f.polarity = Polarity::kBright;
+  f.side_mask.assign(kPatchSize * kPatchSize, PatchSide::kMinus);
+  for (int k = 0; k < kPatchSize * kPatchSize; ++k) {
+    const bool side = k < side_pixels;
+    if (side) f.side_mask[k] = PatchSide::kPlus;
+    pair.image1.data[k] = side ? cv::saturate_cast<uint8_t>(128 + rng.gaussian(sigma)) : uint8_t{0};
+    pair.image2.data[k] =
+        side ? cv::saturate_cast<uint8_t>(128 + rng.gaussian(sigma)) : uint8_t{255};
+  }
+  pair.feature1 = f;
+  pair.feature2 = f;
+  return pair;
+}
+
+TEST(CalibratedSideCost, EqualNoiseOnSidesOfDifferentSizesPassesOneThresholdEquallyOften) {
+  constexpr double kSigma = 20.0;
+  constexpr int kTrials = 4000;
+  PatchMatcherOptions options;
+  options.side_noise_sigma = kSigma;
+  options.min_side_fraction = 0.2;
+  // The threshold: the 5 % quantile of the cost of pure noise over the whole patch.
+  cv::RNG rng(15);
+  std::vector<float> full_costs;
+  for (int t = 0; t < kTrials; ++t) {
+    const NoisePair p = MakeNoisePair(kPatchSize * kPatchSize, kSigma, rng);
+    options.cost = MatchCost::kCalibratedSides;
+    full_costs.push_back(PatchCost(p.image1, p.feature1, p.image2, p.feature2, options));
+  }
+  std::sort(full_costs.begin(), full_costs.end());
+  const double threshold = full_costs[kTrials / 20];
+  for (int side : {110, 180, 264, 400}) {
+    int calibrated_pass = 0, split_pass = 0;
+    for (int t = 0; t < kTrials; ++t) {
+      const NoisePair p = MakeNoisePair(side, kSigma, rng);
+      options.cost = MatchCost::kCalibratedSides;
+      calibrated_pass +=
+          PatchCost(p.image1, p.feature1, p.image2, p.feature2, options) <= threshold;
+      options.cost = MatchCost::kSplitLikeSides;
+      split_pass += PatchCost(p.image1, p.feature1, p.image2, p.feature2, options) <= threshold;
+    }
+    const double calibrated_rate = static_cast<double>(calibrated_pass) / kTrials;
+    const double split_rate = static_cast<double>(split_pass) / kTrials;
+    // Within a few percent of the full patch's 5 % whatever the side's size ...
+    EXPECT_NEAR(calibrated_rate, 0.05, 0.02) << side << " pixels";
+    // ... where the plain mean over the side (Algorithm 2's) passes far more often on small
+    // sides (its spread grows as 1/√n).
+    if (side <= 180) {
+      EXPECT_GT(split_rate, 0.12) << side << " pixels";
+    }
+  }
+}
+
+// An object (bright textured quadrant x, y >= 32) in front of background `background` (textured),
+// and a feature at its corner without a side mask (as a Harris point has none).
+cv::Mat ObjectInFront(uint64_t object_seed, uint64_t background_seed, double background_mean) {
+  cv::Mat image = Texture({64, 64}, background_seed, background_mean, 8);
+  Texture({32, 32}, object_seed, 150, 12).copyTo(image(cv::Rect(32, 32, 32, 32)));
+  return image;
+}
+
+TEST(CalibratedSideCost, AnObjectCornerMatchesOnItsObjectSideAndNotOnItsBackgroundSide) {
+  const Feature corner = At(32, 32);
+  PatchMatcherOptions options;  // T = 400
+  const cv::Mat view1 = ObjectInFront(1, 2, 50);
+  // The same object before a new dark background, and before a bright one (the object is then
+  // the darker side: the polarity follows the object, not the brightness).
+  for (double background : {80.0, 230.0}) {
+    const cv::Mat view2 = ObjectInFront(1, 3, background);
+    options.cost = MatchCost::kFullPatch;
+    const float full = PatchCost(view1, corner, view2, corner, options);
+    options.cost = MatchCost::kCalibratedSides;
+    const float calibrated = PatchCost(view1, corner, view2, corner, options);
+    EXPECT_GT(full, options.max_cost) << background;
+    // The object side is pixel-identical: accepted at T, where the full patch is not. (Not 0: a
+    // perfect side of ~110 px is only as strong as a full patch of a few hundred, see
+    // CalibratedSideCost.)
+    EXPECT_LT(calibrated, options.max_cost) << background;
+    EXPECT_LT(calibrated, 0.6f * full) << background;
+  }
+  // A different object before the same background: the background side alone would match
+  // (Algorithm 2's minimum over pairings takes it), the calibrated cost does not use it.
+  const cv::Mat other = ObjectInFront(7, 2, 50);
+  Feature masked1 = corner, masked2 = corner;
+  masked1.side_mask = ComputeLevelLineSides(view1, corner).mask;
+  masked2.side_mask = ComputeLevelLineSides(other, corner).mask;
+  ASSERT_FALSE(masked1.side_mask.empty());
+  ASSERT_FALSE(masked2.side_mask.empty());
+  options.cost = MatchCost::kSplitMinOfFourPairings;
+  const float split = PatchCost(view1, masked1, other, masked2, options);
+  options.cost = MatchCost::kFullPatch;
+  const float full = PatchCost(view1, corner, other, corner, options);
+  options.cost = MatchCost::kCalibratedSides;
+  const float calibrated = PatchCost(view1, corner, other, corner, options);
+  EXPECT_LT(split, 1.0f);               // the background side is pixel-identical
+  EXPECT_GT(calibrated, 0.99f * full);  // no cheaper than the full patch: the object side differs
+  EXPECT_GT(calibrated, 20 * std::max(split, 1.0f));
+}
+
+TEST(CalibratedSideCost, FeaturesWithoutSidesCostTheFullPatch) {
+  const cv::Mat a = Texture({64, 64}, 4), b = Texture({64, 64}, 5);
+  const cv::Mat flat(64, 64, CV_8UC1, cv::Scalar(100));
+  PatchMatcherOptions options;
+  options.cost = MatchCost::kFullPatch;
+  const float full = PatchCost(flat, At(32, 32), b, At(32, 32), options);
+  options.cost = MatchCost::kCalibratedSides;
+  EXPECT_EQ(PatchCost(flat, At(32, 32), b, At(32, 32), options), full);  // flat: no level line
+  options.cost = MatchCost::kFullPatch;
+  const float textured = PatchCost(a, At(30, 30), b, At(31, 33), options);
+  options.cost = MatchCost::kCalibratedSides;
+  EXPECT_LE(PatchCost(a, At(30, 30), b, At(31, 33), options), textured);  // never above full
+  options.min_side_fraction = 1.5;
+  EXPECT_THROW(options.Check(), Error);
+  options = {};
+  options.side_noise_sigma = 0;
+  EXPECT_THROW(options.Check(), Error);
+}
+
+TEST(CalibratedSideCost, ObjectSidesOfDifferentShapesAreComparedOverTheirUnion) {
+  // Flat images: object 200 on background 40. Patch 1's object is the quadrant x, y >= 32;
+  // patch 2's reaches 6 rows higher. Where both are object the values agree exactly, so a cost
+  // over the shared pixels alone (Algorithm 2) is 0; over the union the 6 x 12 pixels that are
+  // object in one patch and background in the other differ by 160.
+  cv::Mat image1(64, 64, CV_8UC1, cv::Scalar(40)), image2(64, 64, CV_8UC1, cv::Scalar(40));
+  image1(cv::Rect(32, 32, 32, 32)).setTo(200);
+  image2(cv::Rect(32, 26, 32, 38)).setTo(200);
+  auto masked = [](const cv::Mat& image) {
+    Feature f = At(32, 32);
+    f.polarity = Polarity::kBright;
+    f.side_mask.resize(kPatchSize * kPatchSize);
+    for (int v = 0; v < kPatchSize; ++v) {
+      for (int u = 0; u < kPatchSize; ++u) {
+        const bool object = image.at<uint8_t>(32 - kPatchRadius + v, 32 - kPatchRadius + u) == 200;
+        f.side_mask[v * kPatchSize + u] = object ? PatchSide::kPlus : PatchSide::kMinus;
+      }
+    }
+    return f;
+  };
+  const Feature f1 = masked(image1), f2 = masked(image2);
+  PatchMatcherOptions options;
+  options.cost = MatchCost::kSplitLikeSides;
+  EXPECT_LT(PatchCost(image1, f1, image2, f2, options), 1.0f);
+  options.cost = MatchCost::kFullPatch;
+  const float full = PatchCost(image1, f1, image2, f2, options);
+  EXPECT_NEAR(full, 72 * 160.0 * 160.0 / 529, 1.0);
+  options.cost = MatchCost::kCalibratedSides;
+  EXPECT_EQ(PatchCost(image1, f1, image2, f2, options), full);  // the side is no cheaper
+  EXPECT_GT(full, options.max_cost);
 }
 
 }  // namespace
