@@ -15,7 +15,7 @@ def test_version_is_the_project_version():
     with open(os.path.join(SOURCE_DIR, "CMakeLists.txt")) as f:
         text = f.read()
     assert "project(comic_sfm VERSION %s " % comic.__version__ in text
-    assert comic.DETECTORS == ("comic", "harris", "hessian", "mser", "fast")
+    assert comic.DETECTORS == ("comic", "comic-paper", "harris", "hessian", "mser", "fast")
 
 
 def test_detect_returns_structured_features_and_side_masks():
@@ -52,8 +52,9 @@ def test_baselines_and_their_options():
         features, masks = comic.detect(image, detector=name)
         assert len(features) >= 5, name
         assert masks.shape == (len(features), 23, 23)
-        if name != "comic":
-            # No iso level, cornerness or side masks outside CoMIC (MSER has a polarity).
+        if not name.startswith("comic"):
+            # No iso level, cornerness or side masks outside the two CoMIC searches (MSER has a
+            # polarity).
             assert np.all(features["level"] == -1) and np.all(masks == 0), name
             assert np.all(features["cornerness"] == 0), name
     wide, _ = comic.detect(image, detector="harris", integration_sigma=4.0)
