@@ -122,8 +122,8 @@ TEST(ComicExportColmap, WritesTheSameDatabaseAsComicSfm) {
   const std::string example = comic::test::ExampleDir();
   const std::string common =
       example + "/image_l --intrinsics " + example + "/calib.txt --detector fast --last 7";
-  const auto exported = RunCommand(AppPath("comic_export_colmap") + " " + common +
-                                   " --colmap-db " + dir.File("export.db") + " --threads 1");
+  const auto exported = RunCommand(AppPath("comic_export_colmap") + " " + common + " --colmap-db " +
+                                   dir.File("export.db") + " --threads 1");
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
   const auto reconstructed =
       RunCommand(AppPath("comic_sfm") + " " + common + " --colmap-db " + dir.File("sfm.db") +
