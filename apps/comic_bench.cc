@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/thread_count.h"
 #include "frontend/comic/comic_detector.h"
 #include "frontend/detector_factory.h"
 #include "frontend/parallel_for.h"
@@ -141,9 +142,12 @@ int Run(int argc, char** argv) {
       "                              of 1 grey level and after a 0.5 px shift",
       &perturbations);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
-  COMIC_CHECK(runs >= 1, kInvalidArgument, "--runs must be >= 1");
-  COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0");
+  COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
+              "--resize-height must be in [0, " << comic::io::kMaxResizeHeight
+                                                << "] (0 = original), got " << resize_height);
+  COMIC_CHECK(runs >= 1 && runs <= 1000, kInvalidArgument,
+              "--runs must be in [1, 1000], got " << runs);
+  comic::apps::CheckThreadCount("--threads", threads);
   COMIC_CHECK(comic::io::PathExists(input), kNotFound,
               input << ": no such file (pass a real frame as IMAGE, e.g. "
                        "../shared/data/middlebury2003_cones/im2.png)");

@@ -6,10 +6,14 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/thread_count.h"
 #include "frontend/comic/comic_detector.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_io.h"
+#include "io/interrupt_cleanup.h"
+#include "io/pixel_budget.h"
+#include "io/staged_files.h"
 
 namespace {
 
@@ -95,6 +99,7 @@ int Run(int argc, char** argv) {
   bool full_resolution_init = false;
   bool no_neighbour_seeds = false;
   bool every_path = false;
+  int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::frontend::ComicDetectorOptions options;
   options.num_threads = 0;  // all cores: the output does not depend on the thread count
   comic::apps::ArgParser parser(
@@ -156,6 +161,10 @@ int Run(int argc, char** argv) {
                    &options.num_threads);
   parser.AddOption("max-features", "N", "keep only the N most stable features (0 = all)",
                    &max_features);
+  parser.AddOption("max-pixels", "N",
+                   "refuse images with more pixels than this after resizing (about 200 bytes "
+                   "each; see docs/robustness.md)",
+                   &max_pixels);
   parser.AddEpilog(
       "Example:\n"
       "  comic_detect ../shared/data/middlebury2003_cones/im2.png --resize-height 700 \\\n"
@@ -164,16 +173,22 @@ int Run(int argc, char** argv) {
       "into\n"
       "the darker side; the line through each circle is its maximally stable iso-curve segment.\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
+  COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
+              "--resize-height must be in [0, " << comic::io::kMaxResizeHeight
+                                                << "] (0 = original), got " << resize_height);
+  comic::io::CheckMaxPixels(max_pixels);
+  comic::apps::CheckThreadCount("--threads", options.num_threads);
   COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
   options.coarse_initialisation = !full_resolution_init;
   options.seed_neighbouring_corners = !no_neighbour_seeds;
   options.skip_duplicate_paths = !every_path;
   options.Check();
-  if (!overlay_path.empty()) comic::io::CheckWritableFile(overlay_path);
-  if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
+  // Both outputs are checked now and renamed into place together at the end (all or nothing).
+  comic::io::StagedFiles outputs;
+  if (!overlay_path.empty()) outputs.Stage(overlay_path);
+  if (!json_path.empty()) outputs.Stage(json_path);
 
-  const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height);
+  const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height, max_pixels);
   const comic::frontend::ComicDetector detector(options);
   const auto start = std::chrono::steady_clock::now();
   FeatureSet features = detector.Detect(image.gray);
@@ -190,8 +205,7 @@ int Run(int argc, char** argv) {
             << features.size() - bright << " dark)\n"
             << "time:     " << ms << " ms\n";
   if (!overlay_path.empty()) {
-    comic::io::WriteImageAtomically(overlay_path, DrawOverlay(image.color, features));
-    std::cout << "overlay:  " << overlay_path << "\n";
+    outputs.WriteImage(overlay_path, DrawOverlay(image.color, features));
   }
   if (!json_path.empty()) {
     nlohmann::json features_json = nlohmann::json::array();
@@ -215,14 +229,17 @@ int Run(int argc, char** argv) {
                                    {"min_cornerness", options.min_cornerness},
                                    {"coarse_initialisation", options.coarse_initialisation}}},
                                  {"features", features_json}};
-    comic::io::WriteFileAtomically(json_path, root.dump(1) + "\n");
-    std::cout << "json:     " << json_path << "\n";
+    outputs.WriteFile(json_path, root.dump(1) + "\n");
   }
+  outputs.Commit();
+  if (!overlay_path.empty()) std::cout << "overlay:  " << overlay_path << "\n";
+  if (!json_path.empty()) std::cout << "json:     " << json_path << "\n";
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_detect", [&] { return Run(argc, argv); });
 }

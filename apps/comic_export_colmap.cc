@@ -6,12 +6,15 @@
 #include <optional>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/thread_count.h"
 #include "frontend/detector_factory.h"
 #include "frontend/matching/tracker.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/ground_truth_cameras.h"
 #include "io/image_sequence.h"
+#include "io/interrupt_cleanup.h"
+#include "io/pixel_budget.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_runner.h"
 
@@ -41,6 +44,7 @@ int Run(int argc, char** argv) {
   std::string image_path;
   std::string sparse_path;
   int colmap_threads = -1;
+  int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
   comic::frontend::TrackerOptions tracker_options;
   tracker_options.max_features = 1500;
@@ -90,6 +94,14 @@ int Run(int argc, char** argv) {
   parser.AddOption("sparse", "DIR",
                    "output folder in the printed mapper command (default: DB's folder/sparse)",
                    &sparse_path);
+  parser.AddFlag("allow-truncated",
+                 "accept a video whose frames stop decoding before its end: a warning line, "
+                 "and the frames before the break are used (otherwise an error)",
+                 &sequence_options.allow_truncated);
+  parser.AddOption("max-pixels", "N",
+                   "refuse frames with more pixels than this after resizing (about 200 bytes "
+                   "each; see docs/robustness.md)",
+                   &max_pixels);
   parser.AddOption("colmap-threads", "N",
                    "--Mapper.num_threads in the printed command (-1 = COLMAP's default)",
                    &colmap_threads);
@@ -107,6 +119,9 @@ int Run(int argc, char** argv) {
 
   // Everything that can be checked before the work starts.
   COMIC_CHECK(!output.empty(), kInvalidArgument, "--output DB is required");
+  comic::apps::CheckThreadCount("--threads", export_options.num_threads);
+  comic::io::CheckMaxPixels(max_pixels);
+  sequence_options.max_pixels = max_pixels;
   sequence_options.Check();
   export_options.Check();
   comic::frontend::DetectorOptions detector_options;
@@ -182,5 +197,6 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_export_colmap", [&] { return Run(argc, argv); });
 }

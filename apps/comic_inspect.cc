@@ -27,12 +27,21 @@ int Run(int argc, char** argv) {
   parser.AddOption("last", "N", "last frame index, inclusive (-1 = end)", &options.last_frame);
   parser.AddOption("stride", "N", "use every N-th frame", &options.stride);
   parser.AddOption("contact-sheet", "PNG", "write a contact sheet of sampled frames", &sheet_path);
-  parser.AddOption("sheet-frames", "N", "number of frames on the contact sheet", &sheet_frames);
+  parser.AddOption("sheet-frames", "N", "number of frames on the contact sheet (1-100)",
+                   &sheet_frames);
+  parser.AddFlag("allow-truncated",
+                 "accept a video whose frames stop decoding before its end: a warning line, "
+                 "and the frames before the break are used (otherwise an error)",
+                 &options.allow_truncated);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  COMIC_CHECK(sheet_frames >= 1, kInvalidArgument, "--sheet-frames must be >= 1");
+  COMIC_CHECK(sheet_frames >= 1 && sheet_frames <= 100, kInvalidArgument,
+              "--sheet-frames must be in [1, 100], got " << sheet_frames);
   if (!sheet_path.empty()) comic::io::CheckWritableFile(sheet_path);
 
   const auto sequence = comic::io::ImageSequence::Open(input, options);
+  if (!sequence.warning().empty()) {
+    std::cerr << "comic_inspect: warning: " << sequence.warning() << std::endl;
+  }
   std::cout << "source:      " << input << (sequence.IsVideo() ? " (video)" : " (images)") << "\n"
             << "frames:      " << sequence.NumFrames() << "\n"
             << "stored size: " << sequence.SourceFrameSize().width << "x"

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/thread_count.h"
 #include "frontend/detector_factory.h"
 #include "frontend/evaluation/region_labels.h"
 #include "frontend/matching/tracker.h"
@@ -24,10 +25,13 @@
 #include "io/file_utils.h"
 #include "io/ground_truth_cameras.h"
 #include "io/image_sequence.h"
+#include "io/interrupt_cleanup.h"
 #include "io/mask_folder.h"
+#include "io/pixel_budget.h"
 #include "io/ply.h"
 #include "io/region_annotations.h"
 #include "io/report_table.h"
+#include "io/staged_folder.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"
 #include "sfm/colmap/colmap_comparison.h"
@@ -58,6 +62,8 @@ struct Flags {
   std::string intrinsics;
   std::string gt;
   std::string gt_format = "auto";
+  bool gt_partial = false;
+  int max_pixels = static_cast<int>(io::kDefaultMaxPixels);
   std::string out = "out/sfm";
   io::ImageSequenceOptions sequence;
   int max_features = 2000;
@@ -119,8 +125,9 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   options.mapper.global_ba_growth_ratio = flags.global_ba_growth;
   options.mapper.mapper.init_tri_angle_deg = flags.init_angle;
   options.mapper.mapper.init_max_frame_gap = flags.init_max_gap;
-  options.mapper.local_ba.num_threads = flags.threads;
-  options.mapper.global_ba.num_threads = flags.threads;
+  const int threads = flags.threads == 0 ? comic::apps::HardwareThreads() : flags.threads;
+  options.mapper.local_ba.num_threads = threads;
+  options.mapper.global_ba.num_threads = threads;
   options.Check();
   return options;
 }
@@ -196,6 +203,8 @@ Inputs ResolveInputs(const Flags& flags) {
     inputs.gt_format = truth.format;
     inputs.ground_truth = sfm::MatchGroundTruthToFrames(
         truth, sequence.FrameNames(), inputs.source_indices, source_size, frame_size);
+    sfm::CheckGroundTruthCoverage(*inputs.ground_truth, sequence.FrameNames(), flags.gt,
+                                  flags.gt_partial);
   }
   if (!flags.intrinsics.empty()) {
     const sfm::Camera source_camera = sfm::CameraFromK(io::ReadIntrinsicsFile(flags.intrinsics),
@@ -400,8 +409,12 @@ void CheckColmapFlags(const Flags& flags) {
   COMIC_CHECK(io::IsDirectory(flags.frames), kInvalidArgument,
               "--colmap-db and --compare-colmap need FRAMES to be a folder of images (COLMAP reads "
               "the image files)");
-  COMIC_CHECK(flags.colmap_threads == -1 || flags.colmap_threads >= 1, kInvalidArgument,
-              "--colmap-threads must be -1 or >= 1");
+  COMIC_CHECK(
+      flags.colmap_threads == -1 ||
+          (flags.colmap_threads >= 1 && flags.colmap_threads <= comic::apps::HardwareThreads()),
+      kInvalidArgument,
+      "--colmap-threads must be -1 (every core) or in [1, " << comic::apps::HardwareThreads()
+                                                            << "], got " << flags.colmap_threads);
   if (!flags.colmap_db.empty()) io::CheckWritableFile(flags.colmap_db, flags.overwrite);
   if (flags.compare_colmap) {
     COMIC_CHECK(sfm::IsColmapAvailable(), kNotFound,
@@ -438,7 +451,7 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
 
 // --compare-colmap: COLMAP's mapper on the same tracks, side by side with this run.
 void CompareWithColmap(const Flags& flags, const Inputs& inputs,
-                       const sfm::SequenceReconstruction& run) {
+                       const sfm::SequenceReconstruction& run, const io::StagedFolder& out) {
   sfm::ColmapComparisonOptions options;
   options.colmap_threads = flags.colmap_threads;
   const std::vector<std::optional<sfm::Rigid3d>> truth =
@@ -446,16 +459,18 @@ void CompareWithColmap(const Flags& flags, const Inputs& inputs,
                           : std::vector<std::optional<sfm::Rigid3d>>();
   const sfm::ColmapComparison comparison = sfm::CompareWithColmap(
       run.tracks, inputs.camera, IntrinsicsKnown(flags, inputs), truth, flags.frames,
-      io::JoinPaths(flags.out, "colmap"), options, &run.mapping);
+      io::JoinPaths(out.path(), "colmap"), options, &run.mapping);
   const io::ReportTable table = comparison.Table();
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.md"), table.ToMarkdown());
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.csv"), table.ToCsv());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.csv"), table.ToCsv());
   const nlohmann::json json = {
       {"table", table.ToJson()},
-      {"colmap_mapper_command", comparison.colmap_mapper_command},
-      {"colmap_model", comparison.colmap_model_path ? nlohmann::json(*comparison.colmap_model_path)
-                                                    : nlohmann::json(nullptr)},
-      {"colmap_log", comparison.log_path},
+      // Paths as they will be after the outputs move into place, not the staging folder's.
+      {"colmap_mapper_command", out.ToTargetPaths(comparison.colmap_mapper_command)},
+      {"colmap_model", comparison.colmap_model_path
+                           ? nlohmann::json(out.ToTargetPaths(*comparison.colmap_model_path))
+                           : nlohmann::json(nullptr)},
+      {"colmap_log", out.ToTargetPaths(comparison.log_path)},
       {"export_time_s", comparison.export_time_s},
       {"export",
        {{"images", comparison.export_summary.num_images},
@@ -464,9 +479,10 @@ void CompareWithColmap(const Flags& flags, const Inputs& inputs,
         {"matches", comparison.export_summary.num_matches},
         {"inlier_matches", comparison.export_summary.num_inlier_matches},
         {"known_intrinsics", comparison.export_summary.known_intrinsics}}}};
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.json"), json.dump(2) + "\n");
-  std::cout << table.ToMarkdown() << "COLMAP ran: " << comparison.colmap_mapper_command
-            << "\n(log: " << comparison.log_path << ")" << std::endl;
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.json"), json.dump(2) + "\n");
+  std::cout << out.ToTargetPaths(table.ToMarkdown())
+            << "COLMAP ran: " << out.ToTargetPaths(comparison.colmap_mapper_command)
+            << "\n(log: " << out.ToTargetPaths(comparison.log_path) << ")" << std::endl;
 }
 
 int Run(int argc, char** argv) {
@@ -499,6 +515,18 @@ int Run(int argc, char** argv) {
                    &flags.gt);
   parser.AddOption("gt-format", "F", "format of --gt: auto, kitti, middlebury or strecha",
                    &flags.gt_format);
+  parser.AddFlag("gt-partial",
+                 "accept --gt that covers only some frames and evaluate on those (otherwise "
+                 "an error)",
+                 &flags.gt_partial);
+  parser.AddFlag("allow-truncated",
+                 "accept a video whose frames stop decoding before its end: a warning line, "
+                 "and the frames before the break are used (otherwise an error)",
+                 &flags.sequence.allow_truncated);
+  parser.AddOption("max-pixels", "N",
+                   "refuse frames with more pixels than this after resizing (about 200 bytes "
+                   "each; see docs/robustness.md)",
+                   &flags.max_pixels);
   parser.AddOption("out", "DIR", "output folder (created if needed)", &flags.out);
   parser.AddOption("resize-height", "H", "resize frames to height H (0 = original)",
                    &flags.sequence.resize_height);
@@ -561,7 +589,8 @@ int Run(int argc, char** argv) {
   parser.AddOption("init-max-gap", "N", "initial pair: frames at most this far apart",
                    &flags.init_max_gap);
   parser.AddOption("threads", "N",
-                   "Ceres threads (1 = bit-for-bit deterministic; more may change the last bits)",
+                   "threads (0 = all cores, at most the machine's; the output is identical bit for "
+                   "bit for any value: bundle adjustment runs Ceres on one thread)",
                    &flags.threads);
   parser.AddOption("regions", "FILE",
                    "object region per frame (VOT polygons / OTB boxes): adds boundary and "
@@ -613,10 +642,20 @@ int Run(int argc, char** argv) {
                                                     "fast)");
     detectors = {flags.detector};
   }
+  comic::apps::CheckThreadCount("--threads", flags.threads);
+  io::CheckMaxPixels(flags.max_pixels);
+  flags.sequence.max_pixels = flags.max_pixels;
+  flags.sequence.Check();
   MakeOptions(flags);  // validates the numeric options before any work
   CheckColmapFlags(flags);
-  io::EnsureWritableDirectory(flags.out);
+  // Validate, then write, all or nothing: --out is checked but not created; the outputs go to a
+  // staging folder beside it and move into place when the run has succeeded (issue 19).
+  io::CheckCreatableFolder(flags.out);
   const Inputs inputs = ResolveInputs(flags);
+  if (!inputs.sequence->warning().empty()) {
+    std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
+  }
+  io::StagedFolder out(flags.out);
   if (!flags.quiet) {
     std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames "
               << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
@@ -631,11 +670,14 @@ int Run(int argc, char** argv) {
   }
 
   if (!flags.compare) {
-    const DetectorRun result = RunDetector(flags.detector, flags, inputs, flags.out);
+    const DetectorRun result = RunDetector(flags.detector, flags, inputs, out.path());
     PrintSummary(result.report);
-    if (!flags.colmap_db.empty()) WriteColmapDatabase(flags, inputs, result.run);
-    if (flags.compare_colmap) CompareWithColmap(flags, inputs, result.run);
-    COMIC_CHECK(result.run.mapping.status == sfm::ReconstructionStatus::kSuccess, kInvalidData,
+    const bool success = result.run.mapping.status == sfm::ReconstructionStatus::kSuccess;
+    if (success && !flags.colmap_db.empty()) WriteColmapDatabase(flags, inputs, result.run);
+    if (success && flags.compare_colmap) CompareWithColmap(flags, inputs, result.run, out);
+    // A failed reconstruction commits its report.json (the documented exception): it says why.
+    out.Commit();
+    COMIC_CHECK(success, kInvalidData,
                 sfm::ReconstructionStatusMessage(result.run.mapping.status)
                     << " (report: " << io::JoinPaths(flags.out, "report.json") << ")");
     return 0;
@@ -643,18 +685,19 @@ int Run(int argc, char** argv) {
 
   std::vector<sfm::SfmRunReport> reports;
   for (const std::string& name : detectors) {
-    const DetectorRun result = RunDetector(name, flags, inputs, io::JoinPaths(flags.out, name));
+    const DetectorRun result = RunDetector(name, flags, inputs, io::JoinPaths(out.path(), name));
     PrintSummary(result.report);
     reports.push_back(result.report);
   }
   const io::ReportTable table = sfm::MakeComparisonTable(reports);
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.md"), table.ToMarkdown());
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.csv"), table.ToCsv());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.csv"), table.ToCsv());
   nlohmann::json json = {{"table", table.ToJson()}, {"runs", nlohmann::json::array()}};
   for (const sfm::SfmRunReport& report : reports)
     json["runs"].push_back(sfm::RunReportToJson(report));
   json["options"] = OptionsToJson(flags, inputs);
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.json"), json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.json"), json.dump(2) + "\n");
+  out.Commit();
   std::cout << table.ToMarkdown();
   return 0;
 }
@@ -664,5 +707,6 @@ int Run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Errors go to stderr as one line; Ceres' recoverable-trouble warnings would add noise there.
   comic::sfm::ShowOnlySolverErrors();
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_sfm", [&] { return Run(argc, argv); });
 }

@@ -18,6 +18,8 @@ PACKAGES=(
   nlohmann-json3-dev  # JSON reports
   libgtest-dev   # GoogleTest (CMake finds GTest::gtest_main)
   colmap         # the real COLMAP 3.8 binary, used by tests and --compare-colmap
+  clang          # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
+  libfuzzer-14-dev
 )
 
 missing=()
