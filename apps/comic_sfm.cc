@@ -400,6 +400,12 @@ void PrintSummary(const sfm::SfmRunReport& report) {
 void CheckColmapFlags(const Flags& flags) {
   COMIC_CHECK(!flags.overwrite || !flags.colmap_db.empty(), kInvalidArgument,
               "--overwrite needs --colmap-db");
+  COMIC_CHECK(
+      flags.colmap_threads == -1 ||
+          (flags.colmap_threads >= 1 && flags.colmap_threads <= comic::apps::HardwareThreads()),
+      kInvalidArgument,
+      "--colmap-threads must be -1 (every core) or in [1, " << comic::apps::HardwareThreads()
+                                                            << "], got " << flags.colmap_threads);
   if (flags.colmap_db.empty() && !flags.compare_colmap) return;
   COMIC_CHECK(!flags.compare, kInvalidArgument,
               "--colmap-db and --compare-colmap work on one detector's run, not with --compare");
@@ -409,12 +415,6 @@ void CheckColmapFlags(const Flags& flags) {
   COMIC_CHECK(io::IsDirectory(flags.frames), kInvalidArgument,
               "--colmap-db and --compare-colmap need FRAMES to be a folder of images (COLMAP reads "
               "the image files)");
-  COMIC_CHECK(
-      flags.colmap_threads == -1 ||
-          (flags.colmap_threads >= 1 && flags.colmap_threads <= comic::apps::HardwareThreads()),
-      kInvalidArgument,
-      "--colmap-threads must be -1 (every core) or in [1, " << comic::apps::HardwareThreads()
-                                                            << "], got " << flags.colmap_threads);
   if (!flags.colmap_db.empty()) io::CheckWritableFile(flags.colmap_db, flags.overwrite);
   if (flags.compare_colmap) {
     COMIC_CHECK(sfm::IsColmapAvailable(), kNotFound,

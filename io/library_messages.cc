@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
 #include <mutex>
 #include <opencv2/core/utils/logger.hpp>
@@ -47,6 +48,13 @@ std::string CaptureLibraryMessages(const std::function<void()>& body) {
     captured.append(buffer, n);
   }
   std::fclose(sink);
+  // FFmpeg names its context by address ("[mjpeg @ 0x55eafc5bb040] overread 8"): meaningless to
+  // a user and different on every run, so the address goes.
+  for (size_t at = captured.find(" @ 0x"); at != std::string::npos; at = captured.find(" @ 0x")) {
+    size_t end = at + 5;
+    while (end < captured.size() && std::isxdigit(static_cast<unsigned char>(captured[end]))) ++end;
+    captured.erase(at, end - at);
+  }
   return PrintableOneLine(captured, 200);
 }
 

@@ -15,6 +15,9 @@ TEST(LibraryMessages, CapturesWhatIsWrittenToStderrAsOneLine) {
   });
   EXPECT_EQ(captured, "libpng error: Read Error second\\x01line");
   EXPECT_EQ(CaptureLibraryMessages([] {}), "");
+  EXPECT_EQ(
+      CaptureLibraryMessages([] { std::fprintf(stderr, "[mjpeg @ 0x55eafc5bb040] overread 8\n"); }),
+      "[mjpeg] overread 8");
 }
 
 TEST(LibraryMessages, RestoresStderrWhenTheBodyThrows) {
