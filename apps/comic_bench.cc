@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "frontend/comic/comic_detector.h"
 #include "frontend/detector_factory.h"
@@ -125,16 +126,16 @@ int Run(int argc, char** argv) {
       "Times CoMIC (1 thread and N threads), OpenCV MSER (delta 5), FAST-9 and GFTT-Harris on\n"
       "IMAGE resized to --resize-height, each run --runs times after one warm-up run, and prints\n"
       "the median milliseconds per frame and the ratio CoMIC (1 thread) / MSER, then CoMIC's\n"
-      "one-thread time by stage (initialisation, convergence, output). OpenCV's own\n"
-      "thread pool is left as configured (cv::getNumThreads() is reported).");
+      "one-thread time by stage (initialisation, convergence, output). --threads sets the\n"
+      "worker count of the second CoMIC run (and of --perturbations); OpenCV's own thread pool\n"
+      "is left as configured (cv::getNumThreads() is reported).");
   parser.AddPositional("IMAGE",
                        "a real frame [default: ../shared/data/middlebury2003_cones/im2.png]",
                        &input, /*required=*/false);
-  parser.AddOption("resize-height", "H", "resize to height H (0 = original)", &resize_height);
+  comic::apps::AddResizeHeightFlag(parser, &resize_height);
   parser.AddOption("runs", "N", "timed runs per detector (the median is reported)", &runs);
-  parser.AddOption("threads", "N", "threads for the multi-threaded CoMIC run (0 = all cores)",
-                   &threads);
-  parser.AddOption("json", "FILE", "also write the table as JSON", &json_path);
+  comic::apps::AddThreadsFlag(parser, &threads);
+  comic::apps::AddJsonFlag(parser, &json_path);
   parser.AddFlag(
       "perturbations",
       "also report, for CoMIC, Harris, Hessian and FAST at CoMIC's count, the\n"

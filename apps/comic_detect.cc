@@ -6,6 +6,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/input_budget_flags.h"
+#include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "frontend/comic/comic_detector.h"
 #include "io/error.h"
@@ -103,22 +105,16 @@ int Run(int argc, char** argv) {
   comic::frontend::ComicDetectorOptions options;
   options.num_threads = 0;  // all cores: the output does not depend on the thread count
   comic::apps::ArgParser parser(
-      "comic_detect", "IMAGE [--out overlay.png] [--json features.json] [options]",
+      "comic_detect", "IMAGE [--overlay overlay.png] [--json features.json] [options]",
       "Detects CoMIC features (Corners on Maximally-stable Iso-intensity Curves, Ravindran &\n"
       "Mittal) in IMAGE (colour and 16-bit images are converted to 8-bit grey), draws them with\n"
       "their maximally stable iso-curve segments, and writes them as JSON. Prints a summary.");
   parser.AddPositional("IMAGE", "input image (any format OpenCV reads)", &input);
-  parser.AddOption("out", "PNG", "write an overlay: features and their MSICS on the image",
+  parser.AddOption("overlay", "PNG", "write an overlay: features and their MSICS on the image",
                    &overlay_path);
-  parser.AddOption("json", "FILE",
-                   "write the features as JSON (position, scale, response = stability rho,\n"
-                   "                              cornerness kappa, level, polarity, curve, "
-                   "23x23 side mask)",
-                   &json_path);
-  parser.AddOption("resize-height", "H",
-                   "resize the image to height H first, keeping the aspect ratio (0 = original;\n"
-                   "                              the paper worked at 700)",
-                   &resize_height);
+  parser.AddDeprecatedAlias("out", "overlay");
+  comic::apps::AddJsonFlag(parser, &json_path);
+  comic::apps::AddResizeHeightFlag(parser, &resize_height);
   parser.AddOption("scale", "S", "detection scale s in px (paper: 8.4; initialisation at 2s)",
                    &options.scale);
   parser.AddOption("block-size", "B",
@@ -156,19 +152,16 @@ int Run(int argc, char** argv) {
                  "run the initialisation stage at full resolution (default: on the image\n"
                  "                              halved, same physical scale, 4x fewer pixels)",
                  &full_resolution_init);
-  parser.AddOption("threads", "N",
-                   "worker threads (0 = all cores); the output does not depend on it",
-                   &options.num_threads);
-  parser.AddOption("max-features", "N", "keep only the N most stable features (0 = all)",
-                   &max_features);
-  parser.AddOption("max-pixels", "N",
-                   "refuse images with more pixels than this after resizing (about 200 bytes "
-                   "each; see docs/robustness.md)",
-                   &max_pixels);
+  comic::apps::AddThreadsFlag(parser, &options.num_threads);
+  comic::apps::AddMaxFeaturesFlag(parser, &max_features);
+  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddEpilog(
       "Example:\n"
       "  comic_detect ../shared/data/middlebury2003_cones/im2.png --resize-height 700 \\\n"
-      "      --out cones_comic.png --json cones_comic.json\n"
+      "      --overlay cones_comic.png --json cones_comic.json\n"
+      "--json: position, scale, response = stability rho, cornerness kappa, level, polarity,\n"
+      "curve and 23x23 side mask of every feature (strongest = most stable first). The paper\n"
+      "worked at --resize-height 700.\n"
       "Overlay colours: red = corner pointing into the brighter side of its iso-curve, cyan = "
       "into\n"
       "the darker side; the line through each circle is its maximally stable iso-curve segment.\n");

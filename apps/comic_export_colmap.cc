@@ -6,12 +6,17 @@
 #include <optional>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/camera_intrinsics.h"
+#include "apps/common/colmap_db_flags.h"
+#include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
+#include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
+#include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
 #include "frontend/matching/tracker.h"
 #include "io/error.h"
 #include "io/file_utils.h"
-#include "io/ground_truth_cameras.h"
 #include "io/image_sequence.h"
 #include "io/interrupt_cleanup.h"
 #include "io/pixel_budget.h"
@@ -36,57 +41,34 @@ std::string ImageNamePrefix(const std::string& frames, const std::string& image_
 
 int Run(int argc, char** argv) {
   std::string frames;
-  std::string output;
-  bool overwrite = false;
   std::string intrinsics_path;
   std::string detector_name = "harris";
-  std::string prediction = "coarse-to-fine";
   std::string image_path;
   std::string sparse_path;
-  int colmap_threads = -1;
+  int threads = 0;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
-  comic::frontend::TrackerOptions tracker_options;
-  tracker_options.max_features = 1500;
-  comic::sfm::ColmapExportOptions export_options;
+  comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
+  comic::apps::ColmapDbFlags colmap;
 
   comic::apps::ArgParser parser(
-      "comic_export_colmap", "FRAMES --output DB [options]",
+      "comic_export_colmap", "FRAMES --colmap-db DB [options]",
       "Detects and tracks features through FRAMES (a folder of images) and writes them as a\n"
       "COLMAP 3.8 database: one camera, one image per frame with its features as keypoints, and\n"
       "for every pair of frames at most --window apart that share tracks the raw matches and the\n"
       "matches verified by two-view geometry (essential matrix with --intrinsics, fundamental\n"
       "matrix without). Then prints the `colmap mapper` command to run on it, with the options\n"
-      "the sequence needs. The database is written completely or not at all.");
+      "the sequence needs. The database is written completely or not at all. With the same\n"
+      "options `comic_sfm FRAMES --colmap-db DB` writes the same database.");
   parser.AddPositional("FRAMES", "folder of images (COLMAP needs the image files)", &frames);
-  parser.AddOption("output", "DB", "the COLMAP database to write (required)", &output);
-  parser.AddFlag("overwrite", "replace DB if it exists (otherwise an existing file is refused)",
-                 &overwrite);
-  parser.AddOption("intrinsics", "FILE",
-                   "known intrinsics: 'fx fy cx cy', a 3x3 K, or a 3x4 P such as KITTI's "
-                   "calib.txt (OpenCV pixel convention); without, COLMAP's SIMPLE_RADIAL guess",
-                   &intrinsics_path);
-  parser.AddOption("detector", "NAME", "feature detector: comic, harris, hessian, mser, fast",
-                   &detector_name);
-  parser.AddOption("max-features", "N", "strongest features kept per frame (0 = all)",
-                   &tracker_options.max_features);
-  parser.AddOption("prediction", "P", "tracker motion prediction: none, velocity, coarse-to-fine",
-                   &prediction);
-  parser.AddOption("radius", "PX", "tracker search radius around the prediction, pixels",
-                   &tracker_options.matcher.radius);
-  parser.AddOption("first", "I", "first frame index of FRAMES to use",
-                   &sequence_options.first_frame);
-  parser.AddOption("last", "I", "last frame index to use, inclusive (-1 = end)",
-                   &sequence_options.last_frame);
-  parser.AddOption("stride", "N", "use every N-th frame", &sequence_options.stride);
-  parser.AddOption("window", "K", "pair frames at most K apart that share tracks",
-                   &export_options.pair_window);
-  parser.AddOption("max-error", "PX", "two-view RANSAC inlier threshold, pixels",
-                   &export_options.two_view.max_error_px);
-  parser.AddOption("min-inliers", "N", "fewer verified matches: the pair is DEGENERATE",
-                   &export_options.two_view.min_num_inliers);
-  parser.AddOption("threads", "N", "threads verifying pairs (0 = one per core; same output)",
-                   &export_options.num_threads);
+  comic::apps::AddColmapDbFlags(parser, &colmap);
+  parser.AddDeprecatedAlias("output", "colmap-db");
+  comic::apps::AddIntrinsicsFlag(parser, &intrinsics_path);
+  comic::apps::AddDetectorFlag(parser, &detector_name);
+  comic::apps::AddTrackerFlags(parser, &tracker_flags);
+  parser.AddDeprecatedAlias("radius", "search-radius");
+  comic::apps::AddFrameRangeFlags(parser, &sequence_options);
+  comic::apps::AddThreadsFlag(parser, &threads);
   parser.AddOption("image-path", "DIR",
                    "COLMAP's --image_path: FRAMES (default) or a folder above it; image names "
                    "are relative to it",
@@ -94,20 +76,11 @@ int Run(int argc, char** argv) {
   parser.AddOption("sparse", "DIR",
                    "output folder in the printed mapper command (default: DB's folder/sparse)",
                    &sparse_path);
-  parser.AddFlag("allow-truncated",
-                 "accept a video whose frames stop decoding before its end: a warning line, "
-                 "and the frames before the break are used (otherwise an error)",
-                 &sequence_options.allow_truncated);
-  parser.AddOption("max-pixels", "N",
-                   "refuse frames with more pixels than this after resizing (about 200 bytes "
-                   "each; see docs/robustness.md)",
-                   &max_pixels);
-  parser.AddOption("colmap-threads", "N",
-                   "--Mapper.num_threads in the printed command (-1 = COLMAP's default)",
-                   &colmap_threads);
+  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddEpilog(
+      "Without --intrinsics the camera is COLMAP's SIMPLE_RADIAL guess.\n"
       "Example (the bundled KITTI clip):\n"
-      "  comic_export_colmap examples/data/kitti06_000-011/image_l --output kitti.db \\\n"
+      "  comic_export_colmap examples/data/kitti06_000-011/image_l --colmap-db kitti.db \\\n"
       "      --intrinsics examples/data/kitti06_000-011/calib.txt\n"
       "prints, among its report, the command to run, e.g.\n"
       "  mkdir -p sparse && colmap mapper --database_path kitti.db --image_path ... \\\n"
@@ -118,21 +91,22 @@ int Run(int argc, char** argv) {
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
 
   // Everything that can be checked before the work starts.
-  COMIC_CHECK(!output.empty(), kInvalidArgument, "--output DB is required");
-  comic::apps::CheckThreadCount("--threads", export_options.num_threads);
+  const std::string& output = colmap.database;
+  COMIC_CHECK(!output.empty(), kInvalidArgument, "--colmap-db DB is required");
+  comic::apps::CheckThreadCount("--threads", threads);
   comic::io::CheckMaxPixels(max_pixels);
   sequence_options.max_pixels = max_pixels;
   sequence_options.Check();
-  export_options.Check();
+  comic::sfm::ColmapExportOptions export_options = colmap.export_options;
+  export_options.num_threads = threads;
+  comic::apps::CheckColmapDbFlags(colmap);
   comic::frontend::DetectorOptions detector_options;
   detector_options.name = detector_name;
+  detector_options.comic.num_threads = threads;
   detector_options.Check();
-  tracker_options.prediction = comic::frontend::ParseMotionPrediction(prediction);
-  tracker_options.Check();
-  comic::sfm::ColmapMapperOptions mapper_check;
-  mapper_check.num_threads = colmap_threads;
-  mapper_check.Check();
-  comic::io::CheckWritableFile(output, overwrite);
+  const comic::frontend::TrackerOptions tracker_options =
+      comic::apps::ToTrackerOptions(tracker_flags);
+  comic::io::CheckWritableFile(output, colmap.overwrite);
   COMIC_CHECK(comic::io::PathExists(frames), kNotFound, frames << ": no such file or folder");
   COMIC_CHECK(comic::io::IsDirectory(frames), kInvalidArgument,
               frames << ": not a folder (COLMAP needs the frames as image files in a folder)");
@@ -143,35 +117,25 @@ int Run(int argc, char** argv) {
   if (sparse_path.empty())
     sparse_path = comic::io::JoinPaths(comic::io::ParentPath(output), "sparse");
 
-  std::optional<Eigen::Matrix3d> k;
-  if (!intrinsics_path.empty()) k = comic::io::ReadIntrinsicsFile(intrinsics_path);
-
   const auto sequence = comic::io::ImageSequence::Open(frames, sequence_options);
   COMIC_CHECK(sequence.NumFrames() >= 2, kInvalidArgument,
               frames << ": COLMAP export needs at least two frames, got " << sequence.NumFrames());
   std::optional<comic::sfm::Camera> camera;
-  if (k) {
-    comic::sfm::Camera known;
-    known.width = sequence.FrameSize().width;
-    known.height = sequence.FrameSize().height;
-    known.fx = (*k)(0, 0);
-    known.fy = (*k)(1, 1);
-    known.cx = (*k)(0, 2);
-    known.cy = (*k)(1, 2);
-    known.Check();
-    camera = known;
+  if (!intrinsics_path.empty()) {
+    camera = comic::apps::LoadCameraIntrinsics(intrinsics_path, sequence.SourceFrameSize(),
+                                               sequence.FrameSize());
   }
 
   const auto detector = comic::frontend::MakeDetector(detector_options);
   const comic::frontend::TrackingResult tracking =
       comic::frontend::TrackSequence(sequence, *detector, tracker_options);
   const comic::frontend::FeatureTracks& tracks = tracking.tracks;
-  const comic::sfm::ColmapExportSummary summary =
-      comic::sfm::ExportTracksToColmapDatabase(tracks, camera, export_options, output, overwrite);
+  const comic::sfm::ColmapExportSummary summary = comic::sfm::ExportTracksToColmapDatabase(
+      tracks, camera, export_options, output, colmap.overwrite);
 
   comic::sfm::ColmapMapperOptions mapper_options =
       comic::sfm::RecommendedColmapMapperOptions(summary);
-  mapper_options.num_threads = colmap_threads;
+  mapper_options.num_threads = colmap.colmap_threads;
   size_t observations = 0;
   for (const auto& track : tracks.tracks) observations += track.Length();
   std::cout << "frames:     " << sequence.NumFrames() << " (" << frames << ")\n"

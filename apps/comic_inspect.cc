@@ -5,6 +5,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
+#include "apps/common/shared_flags.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_sequence.h"
@@ -21,18 +24,12 @@ int Run(int argc, char** argv) {
       "Opens FRAMES (a folder of images, a single image or a video file) as comic-sfm reads it\n"
       "and prints the number of frames, their size and names.");
   parser.AddPositional("FRAMES", "folder of images, image or video file", &input);
-  parser.AddOption("resize-height", "H", "resize frames to height H (0 = original)",
-                   &options.resize_height);
-  parser.AddOption("first", "N", "first frame index", &options.first_frame);
-  parser.AddOption("last", "N", "last frame index, inclusive (-1 = end)", &options.last_frame);
-  parser.AddOption("stride", "N", "use every N-th frame", &options.stride);
+  comic::apps::AddResizeHeightFlag(parser, &options.resize_height);
+  comic::apps::AddFrameRangeFlags(parser, &options);
   parser.AddOption("contact-sheet", "PNG", "write a contact sheet of sampled frames", &sheet_path);
   parser.AddOption("sheet-frames", "N", "number of frames on the contact sheet (1-100)",
                    &sheet_frames);
-  parser.AddFlag("allow-truncated",
-                 "accept a video whose frames stop decoding before its end: a warning line, "
-                 "and the frames before the break are used (otherwise an error)",
-                 &options.allow_truncated);
+  comic::apps::AddAllowTruncatedFlag(parser, &options.allow_truncated);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(sheet_frames >= 1 && sheet_frames <= 100, kInvalidArgument,
               "--sheet-frames must be in [1, 100], got " << sheet_frames);

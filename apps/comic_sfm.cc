@@ -16,7 +16,13 @@
 #include <vector>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/camera_intrinsics.h"
+#include "apps/common/colmap_db_flags.h"
+#include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
+#include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
+#include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
 #include "frontend/evaluation/region_labels.h"
 #include "frontend/matching/tracker.h"
@@ -66,32 +72,19 @@ struct Flags {
   int max_pixels = static_cast<int>(io::kDefaultMaxPixels);
   std::string out = "out/sfm";
   io::ImageSequenceOptions sequence;
-  int max_features = 2000;
-  double search_radius = 20.0;
-  double unpredicted_radius = 60.0;
-  std::string prediction = "velocity";
-  double coarse_radius = 80.0;
-  int match_window = 1;
-  std::string track_conflicts = "greedy";
-  int verify_min_gap = 0;
-  bool match_turned = false;
-  double max_cost = 400.0;
+  comic::apps::TrackerFlags tracker;  // sfm::SequenceReconstructionOptions' tracker defaults
   bool refine_focal = false;
   bool retriangulate = false;
   int local_ba_images = 8;
   double global_ba_growth = 1.5;
   double init_angle = 4.0;
   int init_max_gap = 20;
-  int threads = 1;
-  std::string regions;
-  std::string masks;
-  double boundary_band = 11.0;
+  int threads = 0;
+  comic::apps::ObjectRegionFlags region{"", "", 11.0};
   std::string plot_plane = "auto";
   bool quiet = false;
-  std::string colmap_db;
-  bool overwrite = false;
+  comic::apps::ColmapDbFlags colmap;
   bool compare_colmap = false;
-  int colmap_threads = -1;
 };
 
 // What every run shares, resolved and validated before any heavy work.
@@ -109,31 +102,24 @@ struct Inputs {
 
 sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   sfm::SequenceReconstructionOptions options;
-  options.tracker.max_features = flags.max_features;
-  options.tracker.matcher.radius = flags.search_radius;
-  options.tracker.unpredicted_radius = flags.unpredicted_radius;
-  options.tracker.prediction = frontend::ParseMotionPrediction(flags.prediction);
-  options.tracker.coarse_radius = flags.coarse_radius;
-  options.tracker.match_window = flags.match_window;
-  options.tracker.conflict_rule = frontend::ParseTrackConflictRule(flags.track_conflicts);
-  options.tracker.verify_min_gap = flags.verify_min_gap;
-  options.tracker.match_turned_180 = flags.match_turned;
-  options.tracker.matcher.max_cost = flags.max_cost;
+  options.tracker = comic::apps::ToTrackerOptions(flags.tracker);
   options.mapper.global_ba.refine_focal_length = flags.refine_focal;
   options.mapper.mapper.retriangulate_incomplete_tracks = flags.retriangulate;
   options.mapper.local_ba_num_images = flags.local_ba_images;
   options.mapper.global_ba_growth_ratio = flags.global_ba_growth;
   options.mapper.mapper.init_tri_angle_deg = flags.init_angle;
   options.mapper.mapper.init_max_frame_gap = flags.init_max_gap;
-  const int threads = flags.threads == 0 ? comic::apps::HardwareThreads() : flags.threads;
-  options.mapper.local_ba.num_threads = threads;
-  options.mapper.global_ba.num_threads = threads;
+  // --threads is not passed to the bundle adjustments: Ceres sums the residual blocks of its
+  // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no app's output may
+  // depend on the thread count. They stay on one thread; detection and the export use --threads.
+  comic::apps::CheckThreadCount("--threads", flags.threads);
   options.Check();
   return options;
 }
 
 nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
   const sfm::Camera& c = inputs.camera;
+  const frontend::TrackerOptions& tracker = flags.tracker.options;
   return {{"frames", flags.frames},
           {"first", flags.sequence.first_frame},
           {"last", flags.sequence.last_frame},
@@ -149,16 +135,16 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
             {"pixel_convention", "OpenCV (top-left pixel centre at 0,0)"}}},
           {"gt", flags.gt.empty() ? nlohmann::json(nullptr) : nlohmann::json(flags.gt)},
           {"gt_format", io::GroundTruthFormatName(inputs.gt_format)},
-          {"max_features", flags.max_features},
-          {"search_radius_px", flags.search_radius},
-          {"unpredicted_radius_px", flags.unpredicted_radius},
-          {"prediction", flags.prediction},
-          {"coarse_radius_px", flags.coarse_radius},
-          {"match_window", flags.match_window},
-          {"track_conflicts", flags.track_conflicts},
-          {"verify_min_gap", flags.verify_min_gap},
-          {"match_turned", flags.match_turned},
-          {"max_cost", flags.max_cost},
+          {"max_features", tracker.max_features},
+          {"search_radius_px", tracker.matcher.radius},
+          {"unpredicted_radius_px", tracker.unpredicted_radius},
+          {"prediction", flags.tracker.prediction},
+          {"coarse_radius_px", tracker.coarse_radius},
+          {"match_window", tracker.match_window},
+          {"track_conflicts", flags.tracker.track_conflicts},
+          {"verify_min_gap", tracker.verify_min_gap},
+          {"match_turned", tracker.match_turned_180},
+          {"max_cost", tracker.matcher.max_cost},
           {"refine_focal", flags.refine_focal},
           {"retriangulate", flags.retriangulate},
           {"local_ba_images", flags.local_ba_images},
@@ -166,9 +152,9 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"init_angle_deg", flags.init_angle},
           {"init_max_gap", flags.init_max_gap},
           {"threads", flags.threads},
-          {"regions", flags.regions},
-          {"masks", flags.masks},
-          {"boundary_band_px", flags.boundary_band}};
+          {"regions", flags.region.regions},
+          {"masks", flags.region.masks},
+          {"boundary_band_px", flags.region.boundary_band}};
 }
 
 sfm::PlotPlane ParsePlotPlane(const std::string& name) {
@@ -180,9 +166,10 @@ sfm::PlotPlane ParsePlotPlane(const std::string& name) {
 }
 
 Inputs ResolveInputs(const Flags& flags) {
-  COMIC_CHECK(flags.regions.empty() || flags.masks.empty(), kInvalidArgument,
+  const comic::apps::ObjectRegionFlags& region = flags.region;
+  COMIC_CHECK(region.regions.empty() || region.masks.empty(), kInvalidArgument,
               "--regions and --masks exclude each other");
-  COMIC_CHECK(flags.boundary_band > 0, kInvalidArgument, "--boundary-band must be > 0");
+  COMIC_CHECK(region.boundary_band > 0, kInvalidArgument, "--boundary-band must be > 0");
   if (flags.plot_plane != "auto") ParsePlotPlane(flags.plot_plane);
   const io::GroundTruthFormat gt_format = io::ParseGroundTruthFormat(flags.gt_format);
 
@@ -196,7 +183,6 @@ Inputs ResolveInputs(const Flags& flags) {
   }
   const cv::Size source_size = sequence.SourceFrameSize();
   const cv::Size frame_size = sequence.FrameSize();
-  const double scale = static_cast<double>(frame_size.height) / source_size.height;
 
   if (!flags.gt.empty()) {
     const io::GroundTruthCameras truth = io::ReadGroundTruthCameras(flags.gt, gt_format);
@@ -207,9 +193,7 @@ Inputs ResolveInputs(const Flags& flags) {
                                   flags.gt_partial);
   }
   if (!flags.intrinsics.empty()) {
-    const sfm::Camera source_camera = sfm::CameraFromK(io::ReadIntrinsicsFile(flags.intrinsics),
-                                                       source_size.width, source_size.height);
-    inputs.camera = scale == 1.0 ? source_camera : source_camera.Scaled(scale);
+    inputs.camera = comic::apps::LoadCameraIntrinsics(flags.intrinsics, source_size, frame_size);
     inputs.intrinsics_source = "file " + flags.intrinsics;
   } else if (inputs.ground_truth && inputs.ground_truth->camera) {
     inputs.camera = *inputs.ground_truth->camera;
@@ -221,29 +205,29 @@ Inputs ResolveInputs(const Flags& flags) {
   inputs.camera.width = frame_size.width;
   inputs.camera.height = frame_size.height;
 
-  if (!flags.regions.empty() || !flags.masks.empty()) {
+  if (!region.regions.empty() || !region.masks.empty()) {
     std::optional<io::RegionAnnotations> regions;
     std::optional<io::MaskFolder> masks;
-    if (!flags.regions.empty()) {
-      regions = io::ReadRegionFile(flags.regions);
+    if (!region.regions.empty()) {
+      regions = io::ReadRegionFile(region.regions);
     } else {
-      masks = io::MaskFolder::Open(flags.masks);
+      masks = io::MaskFolder::Open(region.masks);
     }
     for (int source_index : inputs.source_indices) {
       cv::Mat mask;
       if (regions) {
         COMIC_CHECK(source_index < static_cast<int>(regions->polygons.size()), kInvalidData,
-                    flags.regions << ": no region for frame " << source_index);
+                    region.regions << ": no region for frame " << source_index);
         mask = io::RasterizeRegion(regions->polygons[source_index], source_size, frame_size);
       } else {
         COMIC_CHECK(source_index < static_cast<int>(masks->NumMasks()), kInvalidData,
-                    flags.masks << ": no mask for frame " << source_index);
+                    region.masks << ": no mask for frame " << source_index);
         mask = masks->Read(source_index, source_size);
         if (mask.size() != frame_size) {
           cv::resize(mask, mask, frame_size, 0, 0, cv::INTER_NEAREST);
         }
       }
-      inputs.region_labels.push_back(frontend::LabelRegion(mask, flags.boundary_band));
+      inputs.region_labels.push_back(frontend::LabelRegion(mask, region.boundary_band));
     }
   }
 
@@ -313,7 +297,10 @@ struct DetectorRun {
 // Reconstructs with one detector and writes its outputs into `out_dir`.
 DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, const Inputs& inputs,
                         const std::string& out_dir) {
-  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_name);
+  frontend::DetectorOptions detector_options;
+  detector_options.name = detector_name;
+  detector_options.comic.num_threads = flags.threads;
+  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_options);
   const sfm::SequenceReconstructionOptions options = MakeOptions(flags);
   const std::string tag = "[" + detector_name + "] ";
   DetectorRun result;
@@ -398,15 +385,8 @@ void PrintSummary(const sfm::SfmRunReport& report) {
 
 // --colmap-db / --compare-colmap: checks that can fail before any work.
 void CheckColmapFlags(const Flags& flags) {
-  COMIC_CHECK(!flags.overwrite || !flags.colmap_db.empty(), kInvalidArgument,
-              "--overwrite needs --colmap-db");
-  COMIC_CHECK(
-      flags.colmap_threads == -1 ||
-          (flags.colmap_threads >= 1 && flags.colmap_threads <= comic::apps::HardwareThreads()),
-      kInvalidArgument,
-      "--colmap-threads must be -1 (every core) or in [1, " << comic::apps::HardwareThreads()
-                                                            << "], got " << flags.colmap_threads);
-  if (flags.colmap_db.empty() && !flags.compare_colmap) return;
+  comic::apps::CheckColmapDbFlags(flags.colmap);
+  if (flags.colmap.database.empty() && !flags.compare_colmap) return;
   COMIC_CHECK(!flags.compare, kInvalidArgument,
               "--colmap-db and --compare-colmap work on one detector's run, not with --compare");
   COMIC_CHECK(flags.sequence.resize_height == 0, kInvalidArgument,
@@ -415,14 +395,16 @@ void CheckColmapFlags(const Flags& flags) {
   COMIC_CHECK(io::IsDirectory(flags.frames), kInvalidArgument,
               "--colmap-db and --compare-colmap need FRAMES to be a folder of images (COLMAP reads "
               "the image files)");
-  if (!flags.colmap_db.empty()) io::CheckWritableFile(flags.colmap_db, flags.overwrite);
+  if (!flags.colmap.database.empty()) {
+    io::CheckWritableFile(flags.colmap.database, flags.colmap.overwrite);
+  }
   if (flags.compare_colmap) {
     COMIC_CHECK(sfm::IsColmapAvailable(), kNotFound,
                 "--compare-colmap: colmap is not installed (apt-get install colmap)");
     const std::string work = io::JoinPaths(flags.out, "colmap");
     COMIC_CHECK(
         !io::PathExists(work), kIo,
-        work << ": exists from an earlier --compare-colmap; remove it or use another --out");
+        work << ": exists from an earlier --compare-colmap; remove it or use another --output");
   }
 }
 
@@ -431,21 +413,29 @@ bool IntrinsicsKnown(const Flags& flags, const Inputs& inputs) {
   return !flags.intrinsics.empty() || (inputs.ground_truth && inputs.ground_truth->camera);
 }
 
+// The export options of --colmap-db and --compare-colmap, as comic_export_colmap sets them.
+sfm::ColmapExportOptions ExportOptions(const Flags& flags) {
+  sfm::ColmapExportOptions options = flags.colmap.export_options;
+  options.num_threads = flags.threads;
+  return options;
+}
+
 // --colmap-db: the tracks of this run as a COLMAP database, and the command to run on it.
 void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
                          const sfm::SequenceReconstruction& run) {
+  const std::string& database = flags.colmap.database;
   const sfm::ColmapExportSummary summary = sfm::ExportTracksToColmapDatabase(
       run.tracks,
       IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
-      sfm::ColmapExportOptions(), flags.colmap_db, flags.overwrite);
+      ExportOptions(flags), database, flags.colmap.overwrite);
   sfm::ColmapMapperOptions mapper = sfm::RecommendedColmapMapperOptions(summary);
-  mapper.num_threads = flags.colmap_threads;
-  std::cout << "wrote " << flags.colmap_db << " (" << summary.num_images << " images, "
+  mapper.num_threads = flags.colmap.colmap_threads;
+  std::cout << "wrote " << database << " (" << summary.num_images << " images, "
             << summary.num_verified_pairs << " of " << summary.num_matched_pairs
             << " pairs verified); run COLMAP on it with:\n  "
-            << sfm::ColmapMapperCommandLine(
-                   flags.colmap_db, flags.frames,
-                   io::JoinPaths(io::ParentPath(flags.colmap_db), "sparse"), mapper)
+            << sfm::ColmapMapperCommandLine(database, flags.frames,
+                                            io::JoinPaths(io::ParentPath(database), "sparse"),
+                                            mapper)
             << std::endl;
 }
 
@@ -453,7 +443,8 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
 void CompareWithColmap(const Flags& flags, const Inputs& inputs,
                        const sfm::SequenceReconstruction& run, const io::StagedFolder& out) {
   sfm::ColmapComparisonOptions options;
-  options.colmap_threads = flags.colmap_threads;
+  options.export_options = ExportOptions(flags);
+  options.colmap_threads = flags.colmap.colmap_threads;
   const std::vector<std::optional<sfm::Rigid3d>> truth =
       inputs.ground_truth ? inputs.ground_truth->cams_from_world
                           : std::vector<std::optional<sfm::Rigid3d>>();
@@ -491,23 +482,18 @@ int Run(int argc, char** argv) {
       "comic_sfm", "FRAMES [options]",
       "Structure from motion on a frame sequence (folder of images or video): tracks features\n"
       "with the chosen detector, reconstructs cameras and points incrementally with Ceres bundle\n"
-      "adjustment, and writes into --out: cameras.txt, images.txt, points3D.txt (a COLMAP text\n"
+      "adjustment, and writes into --output: cameras.txt, images.txt, points3D.txt (a COLMAP text\n"
       "model), points.ply (coloured point cloud), report.json (every number and the options),\n"
       "trajectory.png (top view; with --gt, ours Sim(3)-aligned against the ground truth).");
   parser.AddPositional("FRAMES", "folder of images, or video file", &flags.frames);
-  parser.AddOption("detector", "NAME", "detector: comic, harris, hessian, mser or fast",
-                   &flags.detector);
-  parser.AddFlag("compare",
-                 "run every detector of --detectors on the same frames; writes --out/<detector>/ "
-                 "and the table compare.md, compare.csv, compare.json",
-                 &flags.compare);
-  parser.AddOption("detectors", "LIST",
-                   "comma-separated detectors for --compare (default: all five)", &flags.detectors);
-  parser.AddOption("intrinsics", "FILE",
-                   "intrinsics of the frames as stored: 'fx fy cx cy', a 3x3 K or a 3x4 P (e.g. "
-                   "KITTI calib.txt); default: from --gt if it has them, else f = 1.2 max(w, h) "
-                   "at the image centre",
-                   &flags.intrinsics);
+  comic::apps::AddDetectorFlag(parser, &flags.detector);
+  parser.AddFlag(
+      "compare",
+      "run every detector of --detectors on the same frames; writes --output/<detector>/ "
+      "and the table compare.md, compare.csv, compare.json",
+      &flags.compare);
+  comic::apps::AddDetectorListFlag(parser, &flags.detectors);
+  comic::apps::AddIntrinsicsFlag(parser, &flags.intrinsics);
   parser.AddOption("gt", "PATH",
                    "ground-truth cameras: KITTI poses.txt (calib.txt beside it gives the "
                    "intrinsics; matched by frame index), Middlebury *_par.txt, or a folder of "
@@ -519,58 +505,12 @@ int Run(int argc, char** argv) {
                  "accept --gt that covers only some frames and evaluate on those (otherwise "
                  "an error)",
                  &flags.gt_partial);
-  parser.AddFlag("allow-truncated",
-                 "accept a video whose frames stop decoding before its end: a warning line, "
-                 "and the frames before the break are used (otherwise an error)",
-                 &flags.sequence.allow_truncated);
-  parser.AddOption("max-pixels", "N",
-                   "refuse frames with more pixels than this after resizing (about 200 bytes "
-                   "each; see docs/robustness.md)",
-                   &flags.max_pixels);
-  parser.AddOption("out", "DIR", "output folder (created if needed)", &flags.out);
-  parser.AddOption("resize-height", "H", "resize frames to height H (0 = original)",
-                   &flags.sequence.resize_height);
-  parser.AddOption("first", "N", "first frame index", &flags.sequence.first_frame);
-  parser.AddOption("last", "N", "last frame index, inclusive (-1 = end)",
-                   &flags.sequence.last_frame);
-  parser.AddOption("stride", "N", "use every N-th frame", &flags.sequence.stride);
-  parser.AddOption("max-features", "N", "strongest features tracked per frame (0 = all)",
-                   &flags.max_features);
-  parser.AddOption("search-radius", "PX", "tracker search radius around the predicted position",
-                   &flags.search_radius);
-  parser.AddOption("unpredicted-radius", "PX",
-                   "tracker search radius where no motion predicts a feature (0 = "
-                   "--search-radius)",
-                   &flags.unpredicted_radius);
-  parser.AddOption("prediction", "P", "tracker motion prediction: none, velocity, coarse-to-fine",
-                   &flags.prediction);
-  parser.AddOption("coarse-radius", "PX",
-                   "coarse-to-fine prediction: search radius of the coarse pass (pixels of the "
-                   "frames as used)",
-                   &flags.coarse_radius);
-  parser.AddOption("match-window", "K",
-                   "match each frame to the next K frames, not only the next one, and build the "
-                   "tracks from all the matches (sparse image sets: links views across a wide or "
-                   "failed step)",
-                   &flags.match_window);
-  parser.AddOption("track-conflicts", "RULE",
-                   "--match-window > 1: a set of matches holding two features of one frame is "
-                   "'drop'ped whole, or split 'greedy' (nearer frames' matches first, then lower "
-                   "cost; a match joining two features of one frame is refused)",
-                   &flags.track_conflicts);
-  parser.AddOption("verify-min-gap", "G",
-                   "verify the matches of frame pairs at least G frames apart with a fundamental "
-                   "matrix (RANSAC, 2 px); a pair no epipolar geometry explains loses its matches "
-                   "(0 = none)",
-                   &flags.verify_min_gap);
-  parser.AddFlag(
-      "match-turned",
-      "also match each verified pair with the later frame turned by 180 degrees and keep "
-      "the hypothesis with more verified matches (Middlebury rings: views of the other "
-      "latitude sign are upside down; needs --verify-min-gap)",
-      &flags.match_turned);
-  parser.AddOption("max-cost", "T", "tracker SSD threshold (mean squared grey difference)",
-                   &flags.max_cost);
+  comic::apps::AddAllowTruncatedFlag(parser, &flags.sequence.allow_truncated);
+  comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
+  comic::apps::AddOutputFolderFlag(parser, &flags.out);
+  comic::apps::AddResizeHeightFlag(parser, &flags.sequence.resize_height);
+  comic::apps::AddFrameRangeFlags(parser, &flags.sequence);
+  comic::apps::AddTrackerFlags(parser, &flags.tracker);
   parser.AddFlag("retriangulate",
                  "triangulate a track again from all its registered views when its point misses "
                  "some of them, keeping the point that explains more views",
@@ -588,42 +528,27 @@ int Run(int argc, char** argv) {
                    &flags.init_angle);
   parser.AddOption("init-max-gap", "N", "initial pair: frames at most this far apart",
                    &flags.init_max_gap);
-  parser.AddOption("threads", "N",
-                   "threads (0 = all cores, at most the machine's; the output is identical bit for "
-                   "bit for any value: bundle adjustment runs Ceres on one thread)",
-                   &flags.threads);
-  parser.AddOption("regions", "FILE",
-                   "object region per frame (VOT polygons / OTB boxes): adds boundary and "
-                   "interior point statistics",
-                   &flags.regions);
-  parser.AddOption("masks", "DIR",
-                   "object mask per frame (e.g. DAVIS annotations): adds boundary and interior "
-                   "point statistics",
-                   &flags.masks);
-  parser.AddOption("boundary-band", "PX", "width of the boundary band on each side of the edge",
-                   &flags.boundary_band);
+  comic::apps::AddThreadsFlag(parser, &flags.threads);
+  comic::apps::AddObjectRegionFlags(parser, &flags.region);
   parser.AddOption("plot-plane", "P",
                    "trajectory plot plane: auto (x-z for KITTI, else the plane of largest "
                    "spread), xz, xy or yz",
                    &flags.plot_plane);
-  parser.AddFlag("quiet", "no progress line per registered frame", &flags.quiet);
-  parser.AddOption("colmap-db", "DB",
-                   "also write the tracks as a COLMAP 3.8 database and print the `colmap mapper` "
-                   "command to run on it (FRAMES must be a folder; see docs/colmap.md)",
-                   &flags.colmap_db);
-  parser.AddFlag("overwrite", "replace --colmap-db if it exists (otherwise it is refused)",
-                 &flags.overwrite);
+  comic::apps::AddQuietFlag(parser, &flags.quiet);
+  comic::apps::AddColmapDbFlags(parser, &flags.colmap);
   parser.AddFlag("compare-colmap",
                  "also run COLMAP's mapper on the same tracks and write the side-by-side table "
-                 "--out/colmap_compare.md (.csv, .json); COLMAP's files go to --out/colmap/",
+                 "--output/colmap_compare.md (.csv, .json); COLMAP's files go to --output/colmap/",
                  &flags.compare_colmap);
-  parser.AddOption("colmap-threads", "N", "threads of COLMAP's mapper (-1 = every core)",
-                   &flags.colmap_threads);
   parser.AddEpilog(
       "Example (the bundled KITTI clip, calibrated from its calib.txt, measured against\n"
       "its poses.txt):\n"
       "  comic_sfm examples/data/kitti06_000-011/image_l \\\n"
-      "      --gt examples/data/kitti06_000-011/poses.txt --out out/example --compare\n"
+      "      --gt examples/data/kitti06_000-011/poses.txt --output out/example --compare\n"
+      "--regions/--masks add boundary and interior point statistics. --colmap-db needs FRAMES\n"
+      "to be a folder and --resize-height 0, and writes what comic_export_colmap writes with\n"
+      "the same options. --threads: detection and the export; the bundle adjustments run on\n"
+      "one thread (Ceres' multi-threaded sums are not bit-for-bit repeatable).\n"
       "Exit codes: 0 success, 2 usage error, 1 anything else (including a sequence that cannot\n"
       "be reconstructed without --compare).");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
@@ -673,7 +598,7 @@ int Run(int argc, char** argv) {
     const DetectorRun result = RunDetector(flags.detector, flags, inputs, out.path());
     PrintSummary(result.report);
     const bool success = result.run.mapping.status == sfm::ReconstructionStatus::kSuccess;
-    if (success && !flags.colmap_db.empty()) WriteColmapDatabase(flags, inputs, result.run);
+    if (success && !flags.colmap.database.empty()) WriteColmapDatabase(flags, inputs, result.run);
     if (success && flags.compare_colmap) CompareWithColmap(flags, inputs, result.run, out);
     // A failed reconstruction commits its report.json (the documented exception): it says why.
     out.Commit();

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/list_flags.h"
+#include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "frontend/evaluation/stereo_evaluation.h"
 #include "frontend/evaluation/stereo_evaluation_report.h"
@@ -24,41 +26,9 @@ namespace {
 namespace fe = comic::frontend;
 namespace io = comic::io;
 
-std::vector<std::string> SplitList(const std::string& text, const std::string& what) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    COMIC_CHECK(!item.empty(), kInvalidArgument,
-                "--" << what << ": empty entry in '" << text << "'");
-    items.push_back(item);
-  }
-  COMIC_CHECK(!items.empty(), kInvalidArgument, "--" << what << ": the list is empty");
-  return items;
-}
-
-double ParseNumber(const std::string& text, const std::string& what) {
-  size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  COMIC_CHECK(used == text.size() && used > 0, kInvalidArgument,
-              "--" << what << ": expected a number, got '" << text << "'");
-  return value;
-}
-
-std::vector<double> ParseNumberList(const std::string& text, const std::string& what) {
-  std::vector<double> values;
-  for (const std::string& item : SplitList(text, what)) values.push_back(ParseNumber(item, what));
-  return values;
-}
-
 std::vector<int> ParseCountList(const std::string& text) {
   std::vector<int> counts;
-  for (double v : ParseNumberList(text, "counts")) {
+  for (double v : comic::apps::ParseNumberList(text, "counts")) {
     COMIC_CHECK(v >= 0 && v == static_cast<int>(v), kInvalidArgument,
                 "--counts: expected whole numbers >= 0, got " << v);
     counts.push_back(static_cast<int>(v));
@@ -88,6 +58,7 @@ int Run(int argc, char** argv) {
   std::string out_dir = "stereo_eval";
   double scale = 0.0;
   fe::StereoEvaluationOptions options;
+  options.detectors.comic.num_threads = 0;  // one per core: the output does not depend on it
   std::string methods =
       "comic/split,comic/like-sides,comic/full,harris/full,hessian/full,"
       "mser/full,fast/full";
@@ -100,8 +71,8 @@ int Run(int argc, char** argv) {
 
   comic::apps::ArgParser parser(
       "comic_stereo_eval",
-      "LEFT RIGHT --disparity GT [--scale S] [--disc MASK] [--nonocc MASK] [--out DIR] | "
-      "--middlebury DIR[,DIR...] [--out DIR]",
+      "LEFT RIGHT --disparity GT [--disparity-scale S] [--disc MASK] [--nonocc MASK] [-o DIR] | "
+      "--middlebury DIR[,DIR...] [-o DIR]",
       "Evaluates CoMIC and the baseline detectors on rectified stereo pairs with ground-truth\n"
       "disparity (paper §5.2.2, Tables 1 and 2): thresholds equalised on the left image, SSD\n"
       "matching along the row, one-to-one; M_score(1), ResM_1 and precision for the boundary\n"
@@ -112,10 +83,11 @@ int Run(int argc, char** argv) {
   parser.AddPositional("RIGHT", "right image", &right, false);
   parser.AddOption("disparity", "GT", "ground-truth disparity of the left image (stored x S)",
                    &disparity);
-  parser.AddOption("scale", "S",
+  parser.AddOption("disparity-scale", "S",
                    "disparity = stored value / S (Tsukuba 16, 2003 quarter-size pairs 4); "
                    "0 = from the left file name (im3.png: 16, im2.png: 4)",
                    &scale);
+  parser.AddDeprecatedAlias("scale", "disparity-scale");
   parser.AddOption("disc", "MASK",
                    "depth-discontinuity mask (255 = boundary, 128 = other visible pixels); "
                    "without it no boundary split",
@@ -127,9 +99,9 @@ int Run(int argc, char** argv) {
                    "comma-separated folders laid out like ../shared/data/middlebury2003_cones "
                    "(im2/im6 or im3/im4, groundtruth, nonocc, disc)",
                    &middlebury);
-  parser.AddOption("out", "DIR", "output folder (created if missing)", &out_dir);
-  parser.AddOption("height", "H", "working height in px (paper: 700; 0 = original size)",
-                   &options.working_height);
+  comic::apps::AddOutputFolderFlag(parser, &out_dir);
+  comic::apps::AddResizeHeightFlag(parser, &options.working_height);
+  parser.AddDeprecatedAlias("height", "resize-height");
   parser.AddOption("methods", "LIST", "detector/matcher pairs (matchers: full, split, like-sides)",
                    &methods);
   parser.AddOption("counts", "LIST",
@@ -137,8 +109,7 @@ int Run(int argc, char** argv) {
                    "reference's own count at its default threshold",
                    &counts);
   parser.AddOption("count-reference", "DET", "detector defining N = 0", &options.count_reference);
-  parser.AddOption("max-cost", "T", "SSD threshold: mean squared grey difference",
-                   &options.max_cost);
+  comic::apps::AddMaxCostFlag(parser, &options.max_cost);
   parser.AddOption("sensitivity", "LIST", "further thresholds T reported (inf always is)",
                    &sensitivity);
   parser.AddOption("tolerance", "PX", "a match is correct within this distance of the truth",
@@ -152,37 +123,37 @@ int Run(int argc, char** argv) {
                    &options.max_disparity);
   parser.AddOption("disparity-margin", "PX", "added to the max GT disparity for the gate",
                    &options.disparity_margin);
-  parser.AddOption("min-side-overlap", "PX",
-                   "split costs: fewest pixels a side pairing must share (of 529)",
-                   &options.min_side_overlap);
+  comic::apps::AddMinSideOverlapFlag(parser, &options.min_side_overlap);
   parser.AddOption("repeatability", "LIST", "repeatability tolerances in px", &repeatability);
   parser.AddOption("precision-reference", "METHOD",
                    "matched precision target = this method's overall precision at T",
                    &precision_reference);
   parser.AddOption("target-precision", "P",
-                   "fixed matched-precision target in (0, 1]; 0 = from --precision-reference",
+                   "also compare the methods at this matched precision (see below)",
                    &options.target_precision);
   parser.AddOption("mser-merge-radius", "PX", "MSER centroids closer than this are merged",
                    &options.detectors.mser.merge_radius);
-  parser.AddOption("threads", "N", "CoMIC worker threads (0 = all; output identical)",
-                   &options.detectors.comic.num_threads);
+  comic::apps::AddThreadsFlag(parser, &options.detectors.comic.num_threads);
   parser.AddOption("figure-methods", "LIST", "methods drawn side by side in matches_<pair>.png",
                    &figure_methods);
-  parser.AddFlag("quiet", "no progress messages", &quiet);
+  comic::apps::AddQuietFlag(parser, &quiet);
   parser.AddEpilog(
       "Outputs in DIR: stereo_eval.md (every table, readable), stereo_eval.json, protocol.csv,\n"
       "pairs.csv, detections.csv, scores.csv, matched_precision.csv, repeatability.csv,\n"
-      "paper_comparison.csv and matches_<pair>.png (first count of --counts).\n\n"
+      "paper_comparison.csv and matches_<pair>.png (first count of --counts).\n"
+      "--target-precision P in (0, 1] fixes the matched-precision target; 0 (the default) takes\n"
+      "--precision-reference's overall precision at T. --resize-height is the working height\n"
+      "(paper: 700).\n\n"
       "Example:\n"
       "  comic_stereo_eval --middlebury ../shared/data/middlebury2001_tsukuba,"
-      "../shared/data/middlebury2003_cones --out stereo\n");
+      "../shared/data/middlebury2003_cones -o stereo\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
 
   // Options first: a bad flag fails before any file is read.
   options.methods = fe::ParseStereoMethods(methods);
   options.target_counts = ParseCountList(counts);
-  options.sensitivity_costs = ParseNumberList(sensitivity, "sensitivity");
-  options.repeatability_tolerances = ParseNumberList(repeatability, "repeatability");
+  options.sensitivity_costs = comic::apps::ParseNumberList(sensitivity, "sensitivity");
+  options.repeatability_tolerances = comic::apps::ParseNumberList(repeatability, "repeatability");
   const std::vector<fe::StereoMethod> precision_methods =
       fe::ParseStereoMethods(precision_reference);
   COMIC_CHECK(precision_methods.size() == 1, kInvalidArgument,
@@ -193,8 +164,9 @@ int Run(int argc, char** argv) {
   comic::apps::CheckThreadCount("--threads", options.detectors.comic.num_threads);
   COMIC_CHECK(options.working_height >= 0 && options.working_height <= io::kMaxResizeHeight,
               kInvalidArgument,
-              "--height must be in [0, " << io::kMaxResizeHeight << "] (0 = original size), got "
-                                         << options.working_height);
+              "--resize-height must be in [0, " << io::kMaxResizeHeight
+                                                << "] (0 = original size), got "
+                                                << options.working_height);
 
   // Inputs next: every pair is loaded (and so checked) before any output is touched.
   const bool pair_mode = !left.empty() || !right.empty();
@@ -210,10 +182,10 @@ int Run(int argc, char** argv) {
     paths.left = left;
     paths.right = right;
     paths.disparity = disparity;
-    paths.disparity_scale = parser.WasSet("scale") ? scale : ScaleFromLeftName(left);
-    COMIC_CHECK(parser.WasSet("scale") || paths.disparity_scale > 0, kInvalidArgument,
-                "--scale is required: " << io::FileName(left)
-                                        << " does not say which Middlebury pair it is");
+    paths.disparity_scale = parser.WasSet("disparity-scale") ? scale : ScaleFromLeftName(left);
+    COMIC_CHECK(parser.WasSet("disparity-scale") || paths.disparity_scale > 0, kInvalidArgument,
+                "--disparity-scale is required: " << io::FileName(left)
+                                                  << " does not say which Middlebury pair it is");
     paths.nonocc = nonocc;
     paths.disc = disc;
     pairs.push_back(io::LoadMiddleburyPair(paths, options.working_height));
@@ -221,9 +193,9 @@ int Run(int argc, char** argv) {
     COMIC_CHECK(disparity.empty() && disc.empty() && nonocc.empty(), kInvalidArgument,
                 "--disparity, --disc and --nonocc go with LEFT RIGHT; --middlebury folders hold "
                 "their own");
-    COMIC_CHECK(!parser.WasSet("scale") || scale > 0, kInvalidArgument,
-                "--scale must be > 0, got " << scale);
-    for (const std::string& folder : SplitList(middlebury, "middlebury")) {
+    COMIC_CHECK(!parser.WasSet("disparity-scale") || scale > 0, kInvalidArgument,
+                "--disparity-scale must be > 0, got " << scale);
+    for (const std::string& folder : comic::apps::SplitList(middlebury, "middlebury")) {
       pairs.push_back(io::LoadMiddleburyFolder(folder, options.working_height, scale));
     }
   }

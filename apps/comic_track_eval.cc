@@ -15,6 +15,10 @@
 #include <sstream>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
+#include "apps/common/list_flags.h"
+#include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "frontend/evaluation/epipolar_check.h"
 #include "frontend/evaluation/track_drawing.h"
@@ -34,14 +38,6 @@ namespace {
 
 using comic::io::ReportTable;
 namespace fe = comic::frontend;
-
-std::vector<std::string> SplitList(const std::string& list) {
-  std::vector<std::string> items;
-  std::istringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) items.push_back(item);
-  return items;
-}
 
 std::string JoinArgs(int argc, char** argv) {
   std::string command = "comic_track_eval";
@@ -127,23 +123,25 @@ cv::Mat OverlayMosaic(const fe::TrackEvaluation& evaluation, const comic::io::Fr
 }
 
 int Run(int argc, char** argv) {
-  std::string frames_path, masks_dir, boxes_file, region_format = "auto";
+  std::string frames_path, region_format = "auto";
   std::string detector_list = "comic,harris,hessian,mser,fast";
   std::string comic_matchers = "split,like-sides,full";
   std::string poses_file, calib_file, out_dir = "track_eval";
   std::string sweep_list = "100,200,400,800,1600,inf";
-  int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 1;
+  int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 0;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
   sequence_options.resize_height = 700;
   fe::TrackEvaluationOptions options;
   double radius = options.matcher.radius, max_cost = options.matcher.max_cost;
   int min_side_overlap = options.matcher.min_side_overlap;
-  double band = options.boundary_band, epipolar_tolerance = options.epipolar_tolerance;
+  comic::apps::ObjectRegionFlags region;
+  region.boundary_band = options.boundary_band;
+  double epipolar_tolerance = options.epipolar_tolerance;
   double target_precision = options.target_precision;
 
   comic::apps::ArgParser parser(
-      "comic_track_eval", "FRAMES [--masks DIR | --boxes FILE] [options]",
+      "comic_track_eval", "FRAMES [--masks DIR | --regions FILE] [options]",
       "Compares CoMIC with Harris, Hessian, MSER and FAST-9 on one sequence under the paper's\n"
       "protocol (§5.1): every detector's threshold is set to give the same number N of features\n"
       "on the object in the first frame; features are detected on every frame and matched frame\n"
@@ -154,17 +152,13 @@ int Run(int argc, char** argv) {
       "sides only, and with the full patch, one row each.");
   parser.AddPositional("FRAMES", "folder of images (or a video file) of the sequence",
                        &frames_path);
-  parser.AddOption("masks", "DIR",
-                   "object region: a folder of per-frame masks (non-zero = object), one per frame",
-                   &masks_dir);
-  parser.AddOption("boxes", "FILE",
-                   "object region: a region file, line k = frame k (VOT polygons or OTB boxes)",
-                   &boxes_file);
+  comic::apps::AddObjectRegionFlags(parser, &region);
+  parser.AddDeprecatedAlias("boxes", "regions");
+  parser.AddDeprecatedAlias("band", "boundary-band");
   parser.AddOption("region-format", "F",
-                   "format of --boxes: auto (8 numbers = VOT, 4 = OTB), vot or otb; both 1-based",
+                   "format of --regions: auto (8 numbers = VOT, 4 = OTB), vot or otb; both 1-based",
                    &region_format);
-  parser.AddOption("detectors", "LIST", "comma-separated detectors: comic,harris,hessian,mser,fast",
-                   &detector_list);
+  comic::apps::AddDetectorListFlag(parser, &detector_list);
   parser.AddOption("comic-matchers", "LIST",
                    "matchers for CoMIC's features, one row each: split (Algorithm 2), "
                    "like-sides, full",
@@ -174,25 +168,17 @@ int Run(int argc, char** argv) {
                    "always reported too",
                    &n);
   parser.AddOption("frame-step", "K", "score every K-th start frame (paper: 5)", &frame_step);
-  parser.AddOption("num-features", "N",
-                   "features on the object in frame 0 for every detector (0 = CoMIC's count)",
+  parser.AddOption("count", "N",
+                   "target count N: features on the object in frame 0 for every detector (0 = "
+                   "CoMIC's count)",
                    &num_features);
-  parser.AddOption("resize-height", "H",
-                   "resize frames to height H before everything (paper: 700; 0 = keep)",
-                   &sequence_options.resize_height);
-  parser.AddOption("first", "I", "first frame index of FRAMES to use",
-                   &sequence_options.first_frame);
-  parser.AddOption("last", "I", "last frame index to use, inclusive (-1 = end)",
-                   &sequence_options.last_frame);
-  parser.AddOption("radius", "PX", "matching search radius r in pixels (paper: 20)", &radius);
-  parser.AddOption("max-cost", "T",
-                   "SSD threshold: mean squared grey-level difference a match may have", &max_cost);
-  parser.AddOption("min-side-overlap", "PX",
-                   "split matching: fewest shared pixels for a side pairing to count",
-                   &min_side_overlap);
-  parser.AddOption("band", "PX",
-                   "boundary band: features within PX pixels of the region edge (either side)",
-                   &band);
+  parser.AddDeprecatedAlias("num-features", "count");
+  comic::apps::AddResizeHeightFlag(parser, &sequence_options.resize_height);
+  comic::apps::AddFrameRangeFlags(parser, &sequence_options, comic::apps::StrideFlag::kWithout);
+  comic::apps::AddSearchRadiusFlag(parser, &radius);
+  parser.AddDeprecatedAlias("radius", "search-radius");
+  comic::apps::AddMaxCostFlag(parser, &max_cost);
+  comic::apps::AddMinSideOverlapFlag(parser, &min_side_overlap);
   parser.AddOption("poses", "FILE", "KITTI poses.txt (camera-to-world per frame) for precision",
                    &poses_file);
   parser.AddOption("calib", "FILE", "KITTI calib.txt (P0 gives the intrinsics) for precision",
@@ -201,35 +187,35 @@ int Run(int argc, char** argv) {
                    "a match is consistent within PX pixels of its epipolar line",
                    &epipolar_tolerance);
   parser.AddOption("target-precision", "P",
-                   "also compare matchers at this epipolar precision (0-1)", &target_precision);
+                   "also compare the methods at this matched precision (see below)",
+                   &target_precision);
   parser.AddOption("sweep", "LIST",
                    "also score every row at these SSD thresholds (inf = every mutual-best match)",
                    &sweep_list);
   parser.AddOption("overlay-frames", "K", "write track overlays of K frames (0 = none)",
                    &overlay_frames);
-  parser.AddOption("threads", "N", "CoMIC worker threads (results do not depend on it)", &threads);
-  parser.AddOption("out", "DIR", "output folder (created if needed)", &out_dir);
-  parser.AddFlag("allow-truncated",
-                 "accept a video whose frames stop decoding before its end: a warning line, "
-                 "and the frames before the break are used (otherwise an error)",
-                 &sequence_options.allow_truncated);
-  parser.AddOption("max-pixels", "N",
-                   "refuse frames with more pixels than this after resizing (about 200 bytes "
-                   "each; see docs/robustness.md)",
-                   &max_pixels);
+  comic::apps::AddThreadsFlag(parser, &threads);
+  comic::apps::AddOutputFolderFlag(parser, &out_dir);
+  comic::apps::AddAllowTruncatedFlag(parser, &sequence_options.allow_truncated);
+  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddEpilog(
       "Outputs in DIR: scores_n<n>.{md,csv,json} (Table 1/2 layout), scores_n<n>.png (bar\n"
       "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
       "precision_n<n>.{md,csv,json} with --poses, evaluation.json (everything, with\n"
-      "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n\n"
+      "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n"
+      "--target-precision: with --poses, the matchers are also compared at this epipolar\n"
+      "precision (0-1). --resize-height: the paper works at 700.\n\n"
       "Example:\n"
-      "  comic_track_eval ../shared/data/otb_Crossing/img --boxes "
-      "../shared/data/otb_Crossing/groundtruth_rect.txt --out crossing\n");
+      "  comic_track_eval ../shared/data/otb_Crossing/img --regions "
+      "../shared/data/otb_Crossing/groundtruth_rect.txt -o crossing\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
 
   // Everything is checked before any detection runs.
+  const std::string& masks_dir = region.masks;
+  const std::string& boxes_file = region.regions;
+  const double band = region.boundary_band;
   COMIC_CHECK(masks_dir.empty() || boxes_file.empty(), kInvalidArgument,
-              "give either --masks or --boxes, not both");
+              "give either --masks or --regions, not both");
   COMIC_CHECK(poses_file.empty() == calib_file.empty(), kInvalidArgument,
               "--poses and --calib go together");
   COMIC_CHECK(n >= 1, kInvalidArgument, "--n must be >= 1, got " << n);
@@ -237,9 +223,10 @@ int Run(int argc, char** argv) {
   comic::apps::CheckThreadCount("--threads", threads);
   comic::io::CheckMaxPixels(max_pixels);
   sequence_options.max_pixels = max_pixels;
-  options.detectors = comic::frontend::ParseDetectorList(detector_list);
+  options.detectors = detector_list.empty() ? comic::frontend::DetectorNames()
+                                            : comic::frontend::ParseDetectorList(detector_list);
   options.comic_costs.clear();
-  for (const std::string& name : SplitList(comic_matchers)) {
+  for (const std::string& name : comic::apps::SplitList(comic_matchers, "comic-matchers")) {
     options.comic_costs.push_back(fe::ParseMatchCost(name));
   }
   options.detector_options.comic.num_threads = threads;
@@ -252,14 +239,7 @@ int Run(int argc, char** argv) {
   options.boundary_band = band;
   options.epipolar_tolerance = epipolar_tolerance;  // in stored pixels until the size is known
   options.target_precision = target_precision;
-  options.sweep_costs.clear();
-  for (const std::string& item : SplitList(sweep_list)) {
-    char* end = nullptr;
-    const double value = std::strtod(item.c_str(), &end);
-    COMIC_CHECK(!item.empty() && *end == '\0', kInvalidArgument,
-                "--sweep: expected numbers or inf, got '" << item << "'");
-    options.sweep_costs.push_back(value);
-  }
+  options.sweep_costs = comic::apps::ParseNumberList(sweep_list, "sweep");
   options.Check();
   const comic::io::RegionFileFormat format = comic::io::ParseRegionFileFormat(region_format);
   // --out is checked, not created: the outputs are staged beside it and moved into place when

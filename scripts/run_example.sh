@@ -11,4 +11,4 @@ mkdir -p out/example
 # out/example/compare.md (.csv, .json), and per detector a COLMAP text model, a PLY point cloud,
 # report.json and trajectory.png in out/example/<detector>/.
 "$build_dir"/bin/comic_sfm examples/data/kitti06_000-011/image_l \
-  --gt examples/data/kitti06_000-011/poses.txt --compare --out out/example
+  --gt examples/data/kitti06_000-011/poses.txt --compare --output out/example

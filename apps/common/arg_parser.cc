@@ -10,12 +10,15 @@
 #include "io/error.h"
 #include "io/library_messages.h"
 #include "io/printable_text.h"
+#include "io/version.h"
 
 namespace comic::apps {
 
 ArgParser::ArgParser(std::string program, std::string usage, std::string description)
     : program_(std::move(program)), usage_(std::move(usage)), description_(std::move(description)) {
   AddFlag("help", "show this help and exit", nullptr);
+  AddShortName('h', "help");
+  AddFlag("version", "print the version and exit", nullptr);
 }
 
 void ArgParser::AddPositional(const std::string& name, const std::string& help, std::string* value,
@@ -65,11 +68,37 @@ void ArgParser::AddOption(const std::string& name, const std::string& value_name
        }});
 }
 
+void ArgParser::AddShortName(char letter, const std::string& name) {
+  Option* option = FindOption(name);
+  COMIC_CHECK(option != nullptr, kInvalidArgument, "AddShortName: no option --" << name);
+  for (const Option& other : options_) {
+    COMIC_CHECK(other.short_name != letter, kInvalidArgument,
+                "AddShortName: -" << letter << " is already --" << other.name);
+  }
+  option->short_name = letter;
+}
+
+void ArgParser::AddDeprecatedAlias(const std::string& alias, const std::string& name) {
+  COMIC_CHECK(FindOption(name) != nullptr, kInvalidArgument,
+              "AddDeprecatedAlias: no option --" << name);
+  COMIC_CHECK(FindOptionOrAlias(alias) == nullptr, kInvalidArgument,
+              "AddDeprecatedAlias: --" << alias << " is already an option");
+  aliases_.push_back({alias, name});
+}
+
 void ArgParser::AddEpilog(const std::string& text) { epilog_ += text; }
 
 ArgParser::Option* ArgParser::FindOption(const std::string& name) {
   for (Option& option : options_) {
     if (option.name == name) return &option;
+  }
+  return nullptr;
+}
+
+ArgParser::Option* ArgParser::FindOptionOrAlias(const std::string& name) {
+  if (Option* option = FindOption(name)) return option;
+  for (const Alias& alias : aliases_) {
+    if (alias.alias == name) return FindOption(alias.name);
   }
   return nullptr;
 }
@@ -83,39 +112,59 @@ bool ArgParser::WasSet(const std::string& name) const {
 
 ArgParser::Result ArgParser::Parse(int argc, char** argv) {
   size_t next_positional = 0;
+  bool options_ended = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help") {
-      std::cout << Help();
-      return Result::kHelpShown;
+    if (!options_ended && arg == "--") {
+      options_ended = true;
+      continue;
     }
-    if (arg.size() > 2 && arg.compare(0, 2, "--") == 0) {
-      std::string name = arg.substr(2);
-      std::string value;
-      bool has_inline_value = false;
+    Option* option = nullptr;
+    std::string name;
+    std::string value;
+    bool has_inline_value = false;
+    if (!options_ended && arg.size() > 2 && arg.compare(0, 2, "--") == 0) {
+      name = arg.substr(2);
       const size_t eq = name.find('=');
       if (eq != std::string::npos) {
         value = name.substr(eq + 1);
         name = name.substr(0, eq);
         has_inline_value = true;
       }
-      Option* option = FindOption(name);
+      option = FindOptionOrAlias(name);
       COMIC_CHECK(option != nullptr, kInvalidArgument,
                   "unknown option --" << name << " (see " << program_ << " --help)");
-      if (option->value_name.empty()) {
-        COMIC_CHECK(!has_inline_value, kInvalidArgument, "--" << name << " takes no value");
-      } else if (!has_inline_value) {
-        COMIC_CHECK(i + 1 < argc, kInvalidArgument,
-                    "--" << name << " needs a value (" << option->value_name << ")");
-        value = argv[++i];
+    } else if (!options_ended && arg.size() == 2 && arg[0] == '-' && arg[1] != '-') {
+      for (Option& candidate : options_) {
+        if (candidate.short_name == arg[1]) option = &candidate;
       }
-      option->assign(value);
-      option->seen = true;
+      COMIC_CHECK(option != nullptr, kInvalidArgument,
+                  "unknown option " << arg << " (see " << program_ << " --help)");
+      name = option->name;
+    }
+    if (option == nullptr) {
+      COMIC_CHECK(next_positional < positionals_.size(), kInvalidArgument,
+                  "unexpected argument '" << arg << "' (see " << program_ << " --help)");
+      *positionals_[next_positional++].value = arg;
       continue;
     }
-    COMIC_CHECK(next_positional < positionals_.size(), kInvalidArgument,
-                "unexpected argument '" << arg << "' (see " << program_ << " --help)");
-    *positionals_[next_positional++].value = arg;
+    if (option->name == "help") {
+      std::cout << Help();
+      return Result::kHelpShown;
+    }
+    if (option->name == "version") {
+      std::cout << program_ << " " << Version() << "\n";
+      return Result::kHelpShown;
+    }
+    if (option->value_name.empty()) {
+      COMIC_CHECK(!has_inline_value, kInvalidArgument, "--" << name << " takes no value");
+    } else if (!has_inline_value) {
+      COMIC_CHECK(i + 1 < argc, kInvalidArgument,
+                  "--" << name << " needs a value (" << option->value_name << ")");
+      value = argv[++i];
+    }
+    option->assign(value);
+    option->seen = true;
   }
   for (size_t p = next_positional; p < positionals_.size(); ++p) {
     COMIC_CHECK(!positionals_[p].required, kInvalidArgument,
@@ -137,7 +186,11 @@ std::string ArgParser::Help() const {
   out << "\nOptions:\n";
   for (const Option& option : options_) {
     std::string left = "--" + option.name;
+    if (option.short_name != '\0') left = std::string("-") + option.short_name + ", " + left;
     if (!option.value_name.empty()) left += " " + option.value_name;
+    // The meaning starts in column 30; a longer name gets a line of its own so that name and
+    // meaning stay apart (tests/apps/option_vocabulary_test.cc reads them back).
+    if (left.size() >= 28) left += "\n" + std::string(30, ' ');
     out << "  " << std::left << std::setw(28) << left << option.help;
     if (!option.default_text.empty()) out << " [default: " << option.default_text << "]";
     out << "\n";

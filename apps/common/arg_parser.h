@@ -1,6 +1,9 @@
 // A small command-line parser shared by the apps: positional arguments, `--name value` /
 // `--name=value` options bound to variables (their initial values are the documented defaults),
-// boolean switches, and a generated --help. Flags are parsed here and nowhere below apps/.
+// boolean switches, one-letter short names (`-o DIR`, `-q`), hidden aliases for old spellings,
+// `--` ending the options, a generated --help and --version (comic::Version(), io/version.h).
+// Flags are parsed here and nowhere below apps/; the names shared by several apps are defined
+// once in apps/common/shared_flags.h.
 #pragma once
 
 #include <functional>
@@ -24,15 +27,22 @@ class ArgParser {
                  int* value);
   void AddOption(const std::string& name, const std::string& value_name, const std::string& help,
                  double* value);
+  // `-<letter>` as a short name of the option `name` (added before); shown in --help.
+  void AddShortName(char letter, const std::string& name);
+  // `--<alias>` as an old spelling of the option `name` (added before): accepted, not shown in
+  // --help (kept for one release so that scripts keep working; docs/apps.md lists them).
+  void AddDeprecatedAlias(const std::string& alias, const std::string& name);
   // Free text appended to --help (examples, notes on outputs).
   void AddEpilog(const std::string& text);
 
+  // kHelpShown: -h/--help or --version was printed to stdout; the app exits 0 without work.
   enum class Result { kRun, kHelpShown };
-  // Parses argv. Prints help to stdout and returns kHelpShown for -h/--help. Throws
+  // Parses argv. Prints help to stdout and returns kHelpShown for -h/--help, likewise the version
+  // for --version. Arguments after `--` are positionals even when they start with '-'. Throws
   // comic::Error(kInvalidArgument) with a one-line message for unknown options, missing values,
   // malformed numbers and missing positionals.
   Result Parse(int argc, char** argv);
-  // True if the option `name` (without dashes) was given on the command line.
+  // True if the option `name` (without dashes; not an alias) was given on the command line.
   bool WasSet(const std::string& name) const;
 
   std::string Help() const;
@@ -46,6 +56,11 @@ class ArgParser {
     std::string default_text;
     std::function<void(const std::string&)> assign;
     bool seen = false;
+    char short_name = '\0';
+  };
+  struct Alias {
+    std::string alias;
+    std::string name;
   };
   struct Positional {
     std::string name;
@@ -54,6 +69,8 @@ class ArgParser {
     bool required;
   };
   Option* FindOption(const std::string& name);
+  // The option called `name`, or the one `name` is an alias of; nullptr if none.
+  Option* FindOptionOrAlias(const std::string& name);
 
   std::string program_;
   std::string usage_;
@@ -61,6 +78,7 @@ class ArgParser {
   std::string epilog_;
   std::vector<Option> options_;
   std::vector<Positional> positionals_;
+  std::vector<Alias> aliases_;
 };
 
 // Runs an app body, mapping failures to one line on stderr and an exit code: comic::Error of

@@ -33,7 +33,7 @@ TEST(ComicDetect, HelpDocumentsEveryOption) {
   const auto result = RunCommand(AppPath("comic_detect") + " --help");
   EXPECT_EQ(result.exit_code, 0);
   for (const char* option :
-       {"IMAGE", "--out", "--json", "--resize-height", "--scale", "--block-size", "--delta",
+       {"IMAGE", "--overlay", "--json", "--resize-height", "--scale", "--block-size", "--delta",
         "--half-length", "--max-iterations", "--convergence-tolerance", "--stop-tolerance",
         "--merge-radius", "--min-stability", "--min-cornerness", "--no-neighbour-seeds",
         "--every-path", "--full-resolution-init", "--threads", "--max-features"}) {
@@ -46,7 +46,7 @@ TEST(ComicDetect, WritesTheOverlayAndTheFeaturesOfASquare) {
   const std::string image = WriteSquareImage(dir);
   const std::string overlay = dir.File("overlay.png");
   const std::string json_path = dir.File("features.json");
-  const auto result = RunCommand(AppPath("comic_detect") + " " + image + " --out " + overlay +
+  const auto result = RunCommand(AppPath("comic_detect") + " " + image + " --overlay " + overlay +
                                  " --json " + json_path);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("features: 4 (4 bright, 0 dark)"), std::string::npos)
@@ -117,19 +117,19 @@ TEST(ComicDetect, BadInputGivesOneLineErrorAndNoOutput) {
   };
   const std::vector<Case> cases = {
       {"", 2, "missing argument IMAGE"},
-      {dir.File("missing.png") + " --out " + out, 1, "no such file"},
-      {corrupt + " --out " + out, 1, "cannot decode image"},
-      {image + " --out /nonexistent/dir/o.png", 1, "does not exist"},
-      {image + " --out " + out + " --json " + dir.path(), 1, "is a folder"},
-      {image + " --out " + out + " --scale 0", 2, "scale must be > 0"},
-      {image + " --out " + out + " --scale x", 2, "expected a number"},
-      {image + " --out " + out + " --delta 0", 2, "delta must be >= 1"},
-      {image + " --out " + out + " --block-size 3", 2, "block_size must be >= 8"},
-      {image + " --out " + out + " --min-cornerness 0.5", 2, "min_cornerness"},
-      {image + " --out " + out + " --threads -1", 2, "num_threads must be >= 0"},
-      {image + " --out " + out + " --resize-height -2", 2, "--resize-height must be >= 0"},
-      {image + " --out " + out + " --max-features -1", 2, "--max-features must be >= 0"},
-      {image + " --out " + out + " --bogus", 2, "unknown option --bogus"},
+      {dir.File("missing.png") + " --overlay " + out, 1, "no such file"},
+      {corrupt + " --overlay " + out, 1, "cannot decode image"},
+      {image + " --overlay /nonexistent/dir/o.png", 1, "does not exist"},
+      {image + " --overlay " + out + " --json " + dir.path(), 1, "is a folder"},
+      {image + " --overlay " + out + " --scale 0", 2, "scale must be > 0"},
+      {image + " --overlay " + out + " --scale x", 2, "expected a number"},
+      {image + " --overlay " + out + " --delta 0", 2, "delta must be >= 1"},
+      {image + " --overlay " + out + " --block-size 3", 2, "block_size must be >= 8"},
+      {image + " --overlay " + out + " --min-cornerness 0.5", 2, "min_cornerness"},
+      {image + " --overlay " + out + " --threads -1", 2, "num_threads must be >= 0"},
+      {image + " --overlay " + out + " --resize-height -2", 2, "--resize-height must be >= 0"},
+      {image + " --overlay " + out + " --max-features -1", 2, "--max-features must be >= 0"},
+      {image + " --overlay " + out + " --bogus", 2, "unknown option --bogus"},
   };
   for (const Case& c : cases) {
     const auto result = RunCommand(AppPath("comic_detect") + " " + c.args);
@@ -149,7 +149,7 @@ TEST(ComicDetect, TinyAndUniformImagesGiveNoFeaturesAndNoError) {
   for (const std::string& image : {tiny, uniform}) {
     const std::string json_path = dir.File("f.json");
     const auto result = RunCommand(AppPath("comic_detect") + " " + image + " --json " + json_path +
-                                   " --out " + dir.File("o.png"));
+                                   " --overlay " + dir.File("o.png"));
     ASSERT_EQ(result.exit_code, 0) << result.output;
     EXPECT_NE(result.output.find("features: 0"), std::string::npos) << result.output;
     EXPECT_TRUE(nlohmann::json::parse(ReadFile(json_path))["features"].empty());

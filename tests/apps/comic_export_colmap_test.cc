@@ -20,7 +20,7 @@ bool ColmapOnPath() { return RunCommand("command -v colmap").exit_code == 0; }
 
 std::string ExampleArgs(const std::string& db) {
   const std::string example = comic::test::ExampleDir();
-  return example + "/image_l --output " + db + " --intrinsics " + example + "/calib.txt";
+  return example + "/image_l --colmap-db " + db + " --intrinsics " + example + "/calib.txt";
 }
 
 // The command printed after "run COLMAP on it with:".
@@ -44,9 +44,10 @@ TEST(ComicExportColmap, HelpDocumentsEveryOption) {
   const auto result = RunCommand(AppPath("comic_export_colmap") + " --help");
   EXPECT_EQ(result.exit_code, 0);
   for (const char* option :
-       {"--output", "--overwrite", "--intrinsics", "--detector", "--max-features", "--prediction",
-        "--radius", "--first", "--last", "--stride", "--window", "--max-error", "--min-inliers",
-        "--threads", "--image-path", "--sparse", "--colmap-threads", "init_max_forward_motion"}) {
+       {"--colmap-db", "--overwrite", "--intrinsics", "--detector", "--max-features",
+        "--prediction", "--search-radius", "--first", "--last", "--stride", "--window",
+        "--max-error", "--min-inliers", "--threads", "--image-path", "--sparse", "--colmap-threads",
+        "init_max_forward_motion"}) {
     EXPECT_NE(result.output.find(option), std::string::npos) << option;
   }
 }
@@ -61,17 +62,17 @@ TEST(ComicExportColmap, BadInputGivesOneLineErrorAndNonZeroExit) {
     std::string message;
   };
   const std::vector<Case> cases = {
-      {example + "/image_l", 2, "--output DB is required"},
-      {"/nonexistent/frames --output " + dir.File("a.db"), 1, "no such file or folder"},
+      {example + "/image_l", 2, "--colmap-db DB is required"},
+      {"/nonexistent/frames --colmap-db " + dir.File("a.db"), 1, "no such file or folder"},
       {ExampleArgs(dir.File("existing.db")), 1, "already exists"},
       {ExampleArgs(dir.File("a.db")) + " --window 0", 2, "pair_window must be >= 1"},
       {ExampleArgs(dir.File("a.db")) + " --detector sift", 2, "sift"},
       {ExampleArgs(dir.File("a.db")) + " --prediction kalman", 2, "kalman"},
       {ExampleArgs(dir.File("a.db")) + " --image-path " + dir.path(), 2, "--image-path"},
       {ExampleArgs("/nonexistent/dir/a.db"), 1, "does not exist"},
-      {example + "/image_l --output " + dir.File("a.db") + " --intrinsics /nonexistent/calib", 1,
+      {example + "/image_l --colmap-db " + dir.File("a.db") + " --intrinsics /nonexistent/calib", 1,
        "/nonexistent/calib"},
-      {example + "/image_l/000000.png --output " + dir.File("a.db"), 2, "not a folder"},
+      {example + "/image_l/000000.png --colmap-db " + dir.File("a.db"), 2, "not a folder"},
   };
   for (const Case& c : cases) {
     const auto result = RunCommand(AppPath("comic_export_colmap") + " " + c.args);
@@ -111,6 +112,30 @@ TEST(ComicExportColmap, WritesTheBundledExampleAndOverwritesOnlyWhenAsked) {
       RunCommand(AppPath("comic_export_colmap") + " " + ExampleArgs(db) + " --overwrite");
   EXPECT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(comic::io::ColmapDatabase::Open(db).ReadImage(1).name, "000000.png");
+}
+
+// One vocabulary: comic_sfm --colmap-db and comic_export_colmap take the same tracker and export
+// flags with the same defaults (apps/common/tracker_flags.h, colmap_db_flags.h), so the same
+// folder and options give the same database, byte for byte, whatever --threads each is given.
+TEST(ComicExportColmap, WritesTheSameDatabaseAsComicSfm) {
+  ScopedTempDir dir;
+  const std::string example = comic::test::ExampleDir();
+  const std::string common =
+      example + "/image_l --intrinsics " + example + "/calib.txt --detector fast --last 7";
+  const auto exported = RunCommand(AppPath("comic_export_colmap") + " " + common +
+                                   " --colmap-db " + dir.File("export.db") + " --threads 1");
+  ASSERT_EQ(exported.exit_code, 0) << exported.output;
+  const auto reconstructed =
+      RunCommand(AppPath("comic_sfm") + " " + common + " --colmap-db " + dir.File("sfm.db") +
+                 " -o " + dir.File("out") + " -q --threads 2");
+  ASSERT_EQ(reconstructed.exit_code, 0) << reconstructed.output;
+  const std::string from_export = comic::io::ReadFileToString(dir.File("export.db"));
+  EXPECT_GT(from_export.size(), 10000u);
+  EXPECT_TRUE(from_export == comic::io::ReadFileToString(dir.File("sfm.db")))
+      << "the two databases differ";
+  comic::io::ColmapDatabase database = comic::io::ColmapDatabase::Open(dir.File("sfm.db"));
+  EXPECT_EQ(database.NumImages(), 8u);
+  EXPECT_GT(database.NumVerifiedImagePairs(), 15u);
 }
 
 // The test the COLMAP export is held to: the real `colmap mapper`, run exactly as printed.

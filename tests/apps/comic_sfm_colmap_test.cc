@@ -32,7 +32,7 @@ TEST(ComicSfmColmap, HelpDocumentsTheColmapOptions) {
 TEST(ComicSfmColmap, BadColmapFlagsFailBeforeAnyWork) {
   ScopedTempDir dir;
   comic::io::WriteFileAtomically(dir.File("existing.db"), "keep me\n");
-  const std::string out = " --out " + dir.File("out");
+  const std::string out = " --output " + dir.File("out");
   struct Case {
     std::string args;
     int exit_code;
@@ -64,8 +64,8 @@ TEST(ComicSfmColmap, WritesTheDatabaseAndComparesWithColmap) {
   const std::string db = dir.File("kitti.db");
   comic::io::WriteFileAtomically(db, "old\n");
   const auto result = RunCommand(
-      AppPath("comic_sfm") + " " + Example() + " --out " + dir.File("out") + " --colmap-db " + db +
-      " --overwrite --colmap-threads 2" + (colmap ? " --compare-colmap" : ""));
+      AppPath("comic_sfm") + " " + Example() + " --output " + dir.File("out") + " --colmap-db " +
+      db + " --overwrite --colmap-threads 2" + (colmap ? " --compare-colmap" : ""));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("run COLMAP on it with:\n  mkdir -p "), std::string::npos)
       << result.output;
@@ -86,8 +86,8 @@ TEST(ComicSfmColmap, WritesTheDatabaseAndComparesWithColmap) {
   EXPECT_NE(json.find("colmap_mapper_command"), std::string::npos);
   EXPECT_TRUE(comic::io::IsRegularFile(dir.File("out/colmap/database.db")));
 
-  // A second comparison into the same --out is refused up front.
-  const auto again = RunCommand(AppPath("comic_sfm") + " " + Example() + " --out " +
+  // A second comparison into the same --output is refused up front.
+  const auto again = RunCommand(AppPath("comic_sfm") + " " + Example() + " --output " +
                                 dir.File("out") + " --compare-colmap");
   EXPECT_EQ(again.exit_code, 1) << again.output;
   EXPECT_NE(again.output.find("earlier --compare-colmap"), std::string::npos) << again.output;

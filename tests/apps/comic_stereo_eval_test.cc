@@ -45,12 +45,12 @@ TEST(ComicStereoEval, HelpDocumentsEveryOption) {
   const auto result = RunCommand(AppPath("comic_stereo_eval") + " --help");
   EXPECT_EQ(result.exit_code, 0);
   for (const char* option : {"--disparity",
-                             "--scale",
+                             "--disparity-scale",
                              "--disc",
                              "--nonocc",
                              "--middlebury",
-                             "--out",
-                             "--height",
+                             "--output",
+                             "--resize-height",
                              "--methods",
                              "--counts",
                              "--count-reference",
@@ -77,10 +77,11 @@ TEST(ComicStereoEval, SyntheticPairGivesTheConstructedAnswers) {
   ScopedTempDir dir;
   WriteScene(dir);
   const std::string out = dir.File("out");
-  const auto result = RunCommand(AppPath("comic_stereo_eval") + " " + SceneArgs(dir) +
-                                 " --scale 4 --height 0 --methods harris/full,fast/full"
-                                 " --counts 60 --quiet --out " +
-                                 out);
+  const auto result =
+      RunCommand(AppPath("comic_stereo_eval") + " " + SceneArgs(dir) +
+                 " --disparity-scale 4 --resize-height 0 --methods harris/full,fast/full"
+                 " --counts 60 --quiet --output " +
+                 out);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_TRUE(result.output.empty()) << result.output;  // --quiet
   for (const char* file :
@@ -115,10 +116,11 @@ TEST(ComicStereoEval, SyntheticPairGivesTheConstructedAnswers) {
 TEST(ComicStereoEval, OutputIsDeterministic) {
   ScopedTempDir dir;
   WriteScene(dir);
-  const std::string command = AppPath("comic_stereo_eval") + " " + SceneArgs(dir) +
-                              " --scale 4 --height 0 --methods harris,fast --counts 40 --quiet";
-  ASSERT_EQ(RunCommand(command + " --out " + dir.File("a")).exit_code, 0);
-  ASSERT_EQ(RunCommand(command + " --out " + dir.File("b")).exit_code, 0);
+  const std::string command =
+      AppPath("comic_stereo_eval") + " " + SceneArgs(dir) +
+      " --disparity-scale 4 --resize-height 0 --methods harris,fast --counts 40 --quiet";
+  ASSERT_EQ(RunCommand(command + " --output " + dir.File("a")).exit_code, 0);
+  ASSERT_EQ(RunCommand(command + " --output " + dir.File("b")).exit_code, 0);
   for (const char* file : {"stereo_eval.json", "scores.csv", "stereo_eval.md"}) {
     std::ifstream a(dir.File("a") + "/" + file), b(dir.File("b") + "/" + file);
     const std::string ta((std::istreambuf_iterator<char>(a)), {});
@@ -131,7 +133,8 @@ TEST(ComicStereoEval, OutputIsDeterministic) {
 TEST(ComicStereoEval, BadInputGivesOneLineErrorAndNonZeroExit) {
   ScopedTempDir dir;
   WriteScene(dir);
-  const std::string out = " --out " + dir.File("out") + " --height 0 --methods harris --quiet";
+  const std::string out =
+      " --output " + dir.File("out") + " --resize-height 0 --methods harris --quiet";
   const std::string left = dir.File("left.png");
   const std::string right = dir.File("right.png");
   const std::string disp = " --disparity " + dir.File("disp.png");
@@ -141,24 +144,29 @@ TEST(ComicStereoEval, BadInputGivesOneLineErrorAndNonZeroExit) {
     std::string message;
   };
   const std::vector<Case> cases = {
-      {left + " " + dir.File("small.png") + disp + " --scale 4", 1, "right image is 40x30"},
-      {left + " " + right + " --disparity " + dir.File("small.png") + " --scale 4", 1,
+      {left + " " + dir.File("small.png") + disp + " --disparity-scale 4", 1,
+       "right image is 40x30"},
+      {left + " " + right + " --disparity " + dir.File("small.png") + " --disparity-scale 4", 1,
        "disparity map is 40x30"},
-      {left + " " + right + disp + " --scale 4 --disc " + dir.File("missing_disc.png"), 1,
+      {left + " " + right + disp + " --disparity-scale 4 --disc " + dir.File("missing_disc.png"), 1,
        "missing_disc.png: no such file"},
-      {left + " " + right + disp + " --scale 4 --nonocc " + dir.File("small.png"), 1,
+      {left + " " + right + disp + " --disparity-scale 4 --nonocc " + dir.File("small.png"), 1,
        "nonocc mask is 40x30"},
-      {left + " " + right + disp + " --scale 0", 2, "disparity scale must be > 0"},
-      {left + " " + right + disp, 2, "--scale is required"},
-      {left + " " + right + " --scale 4", 2, "missing --disparity"},
-      {left + " " + right + disp + " --scale 4 --middlebury " + dir.path(), 2, "not both"},
+      {left + " " + right + disp + " --disparity-scale 0", 2, "disparity scale must be > 0"},
+      {left + " " + right + disp, 2, "--disparity-scale is required"},
+      {left + " " + right + " --disparity-scale 4", 2, "missing --disparity"},
+      {left + " " + right + disp + " --disparity-scale 4 --middlebury " + dir.path(), 2,
+       "not both"},
       {"", 2, "missing input"},
       {"--middlebury " + dir.path(), 1, "no Middlebury pair found"},
       {"--middlebury " + dir.File("nowhere"), 1, "no such folder"},
-      {left + " " + right + disp + " --scale 4 --methods sift", 2, "unknown detector 'sift'"},
-      {left + " " + right + disp + " --scale 4 --max-cost 0", 2, "max_cost (T) must be > 0"},
-      {left + " " + right + disp + " --scale 4 --counts 10,x", 2, "expected a number"},
-      {left + " " + right + disp + " --scale 4 --out " + left, 1, "exists and is not a folder"},
+      {left + " " + right + disp + " --disparity-scale 4 --methods sift", 2,
+       "unknown detector 'sift'"},
+      {left + " " + right + disp + " --disparity-scale 4 --max-cost 0", 2,
+       "max_cost (T) must be > 0"},
+      {left + " " + right + disp + " --disparity-scale 4 --counts 10,x", 2, "expected a number"},
+      {left + " " + right + disp + " --disparity-scale 4 --output " + left, 1,
+       "exists and is not a folder"},
   };
   for (const Case& c : cases) {
     // The common options first, so a case's own options (given later) override them.
@@ -191,7 +199,7 @@ TEST(ComicStereoEval, MiddleburyFoldersWithThePapersNumbers) {
   const std::string data = comic::test::SharedDataDir();
   const auto result = RunCommand(
       AppPath("comic_stereo_eval") + " --middlebury " + data + "/middlebury2001_tsukuba," + data +
-      "/middlebury2003_cones --methods harris/full,fast/full --counts 300 --quiet --out " +
+      "/middlebury2003_cones --methods harris/full,fast/full --counts 300 --quiet --output " +
       dir.path());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json report = ReadJson(dir.File("stereo_eval.json"));

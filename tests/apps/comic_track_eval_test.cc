@@ -56,33 +56,33 @@ void WriteSyntheticSequence(const std::string& dir, int frames = 8) {
 }
 
 const std::string kFastArgs =
-    " --resize-height 0 --detectors harris,hessian,fast --num-features 15 --n 5 --frame-step 1";
+    " --resize-height 0 --detectors harris,hessian,fast --count 15 --n 5 --frame-step 1";
 
 TEST(ComicTrackEval, HelpDocumentsEveryOption) {
   const auto result = RunCommand(AppPath("comic_track_eval") + " --help");
   EXPECT_EQ(result.exit_code, 0);
   for (const char* option : {"--masks",
-                             "--boxes",
+                             "--regions",
                              "--region-format",
                              "--detectors",
                              "--comic-matchers",
                              "--n",
                              "--frame-step",
-                             "--num-features",
+                             "--count",
                              "--resize-height",
                              "--first",
                              "--last",
-                             "--radius",
+                             "--search-radius",
                              "--max-cost",
                              "--min-side-overlap",
-                             "--band",
+                             "--boundary-band",
                              "--poses",
                              "--calib",
                              "--epipolar-tolerance",
                              "--target-precision",
                              "--overlay-frames",
                              "--threads",
-                             "--out"}) {
+                             "--output"}) {
     EXPECT_NE(result.output.find(option), std::string::npos) << option;
   }
 }
@@ -93,7 +93,7 @@ TEST(ComicTrackEval, WritesTheTablesChartsAndOverlaysWithMasks) {
   const std::string out = dir.File("out");
   const auto result =
       RunCommand(AppPath("comic_track_eval") + " " + dir.File("frames") + " --masks " +
-                 dir.File("masks") + kFastArgs + " --overlay-frames 2 --out " + out);
+                 dir.File("masks") + kFastArgs + " --overlay-frames 2 --output " + out);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* file :
        {"scores_n5.md", "scores_n5.csv", "scores_n5.json", "scores_n5.png", "scores_n1.md",
@@ -149,9 +149,9 @@ TEST(ComicTrackEval, BoxesGiveTheSameRegionAsMasksOfTheBox) {
   ScopedTempDir dir;
   WriteSyntheticSequence(dir.path());
   const std::string base = AppPath("comic_track_eval") + " " + dir.File("frames") + kFastArgs +
-                           " --overlay-frames 0 --out ";
+                           " --overlay-frames 0 --output ";
   ASSERT_EQ(RunCommand(base + dir.File("m") + " --masks " + dir.File("masks")).exit_code, 0);
-  const auto boxes = RunCommand(base + dir.File("b") + " --boxes " + dir.File("boxes.txt"));
+  const auto boxes = RunCommand(base + dir.File("b") + " --regions " + dir.File("boxes.txt"));
   ASSERT_EQ(boxes.exit_code, 0) << boxes.output;
   EXPECT_EQ(ReadText(dir.File("m") + "/scores_n5.csv"), ReadText(dir.File("b") + "/scores_n5.csv"));
 }
@@ -163,7 +163,7 @@ TEST(ComicTrackEval, ReportsEpipolarPrecisionOnTheBundledKittiClip) {
       RunCommand(AppPath("comic_track_eval") + " " + example + "/image_l --poses " + example +
                  "/poses.txt --calib " + example +
                  "/calib.txt --resize-height 185 --last 6 "
-                 "--detectors harris,fast --num-features 150 --overlay-frames 1 --out " +
+                 "--detectors harris,fast --count 150 --overlay-frames 1 --output " +
                  dir.File("k"));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json precision =
@@ -184,7 +184,7 @@ TEST(ComicTrackEval, IsDeterministic) {
   ScopedTempDir dir;
   WriteSyntheticSequence(dir.path());
   const std::string base = AppPath("comic_track_eval") + " " + dir.File("frames") + " --masks " +
-                           dir.File("masks") + kFastArgs + " --overlay-frames 0 --out ";
+                           dir.File("masks") + kFastArgs + " --overlay-frames 0 --output ";
   ASSERT_EQ(RunCommand(base + dir.File("a")).exit_code, 0);
   ASSERT_EQ(RunCommand(base + dir.File("b") + " --threads 2").exit_code, 0);
   nlohmann::json a = nlohmann::json::parse(ReadText(dir.File("a") + "/evaluation.json"));
@@ -212,7 +212,7 @@ TEST(ComicTrackEval, BadInputGivesOneLineErrorAndNonZeroExit) {
     short_boxes << "10 10 20 20\n10 10 20 20\n";
   }
   const std::string frames = dir.File("frames");
-  const std::string ok = " --detectors harris --num-features 10 --out " + dir.File("o");
+  const std::string ok = " --detectors harris --count 10 --output " + dir.File("o");
   struct Case {
     std::string args;
     int exit_code;
@@ -225,20 +225,21 @@ TEST(ComicTrackEval, BadInputGivesOneLineErrorAndNonZeroExit) {
       {frames + " --masks " + dir.File("few_masks") + ok, 1, "1 masks for 8 frames"},
       {frames + " --masks " + dir.File("big_masks") + ok, 1,
        "mask is 200x151 but the frames are 200x150"},
-      {frames + " --detectors harris,sift --num-features 10", 2, "unknown detector 'sift'"},
+      {frames + " --detectors harris,sift --count 10", 2, "unknown detector 'sift'"},
       {frames + ok + " --n 8", 2, "--n 8 needs at least 9 frames"},
       {frames + ok + " --n 0", 2, "--n must be >= 1"},
-      {frames + " --masks " + dir.File("masks") + " --boxes " + dir.File("boxes.txt") + ok, 2,
-       "either --masks or --boxes"},
-      {frames + " --boxes " + dir.File("short.txt") + ok, 1, "2 regions, but frame 7 needs line 8"},
+      {frames + " --masks " + dir.File("masks") + " --regions " + dir.File("boxes.txt") + ok, 2,
+       "either --masks or --regions"},
+      {frames + " --regions " + dir.File("short.txt") + ok, 1,
+       "2 regions, but frame 7 needs line 8"},
       {frames + " --poses " + comic::test::ExampleDir() + "/poses.txt" + ok, 2,
        "--poses and --calib go together"},
       {frames + " --detectors harris", 2, "give the feature count N"},
       {frames + ok + " --comic-matchers ncc", 2, "unknown match cost 'ncc'"},
-      {frames + ok + " --radius 0", 2, "radius must be > 0"},
-      {frames + ok + " --sweep 100,x", 2, "--sweep: expected numbers or inf, got 'x'"},
+      {frames + ok + " --search-radius 0", 2, "radius must be > 0"},
+      {frames + ok + " --sweep 100,x", 2, "--sweep: expected a number or inf, got 'x'"},
       {frames + ok + " --bogus", 2, "unknown option --bogus"},
-      {frames + " --detectors harris --num-features 10 --out /proc/none", 1, "cannot create"},
+      {frames + " --detectors harris --count 10 --output /proc/none", 1, "cannot create"},
   };
   for (const Case& c : cases) {
     const auto result = RunCommand(AppPath("comic_track_eval") + " " + c.args);

@@ -117,7 +117,7 @@ TEST(Determinism, ComicDetectAtOneAndTwoThreads) {
   for (const char* threads : {"1", "2"}) {
     RunInto(dir,
             AppPath("comic_detect") + " " + ExampleDir() + "/image_l/000003.png --threads " +
-                threads + " --out {out}/overlay.png --json {out}/features.json",
+                threads + " --overlay {out}/overlay.png --json {out}/features.json",
             std::string("t") + threads);
   }
   ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 2);
@@ -130,7 +130,7 @@ TEST(Determinism, ComicSfmAtOneAndTwoThreadsAndTwiceAtTwo) {
     const std::string threads = std::string(run).substr(0, 1);
     RunInto(dir,
             AppPath("comic_sfm") + " " + ExampleDir() + "/image_l --gt " + ExampleDir() +
-                "/poses.txt --quiet --threads " + threads + " --out {out}",
+                "/poses.txt --quiet --threads " + threads + " --output {out}",
             std::string("t") + run);
   }
   // cameras.txt, images.txt, points3D.txt, points.ply, trajectory.png, report.json.
@@ -146,7 +146,7 @@ TEST(Determinism, ComicTrackEvalAtOneAndTwoThreads) {
             AppPath("comic_track_eval") + " " + ExampleDir() +
                 "/image_l --last 6 --resize-height 0 --detectors comic,harris --comic-matchers "
                 "split --n 2 --frame-step 2 --overlay-frames 1 --threads " +
-                threads + " --out {out}",
+                threads + " --output {out}",
             std::string("t") + threads);
   }
   ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 8);
@@ -158,7 +158,7 @@ TEST(Determinism, ComicExportColmapAtOneAndTwoThreads) {
   for (const char* threads : {"1", "2"}) {
     RunInto(dir,
             AppPath("comic_export_colmap") + " " + ExampleDir() + "/image_l --last 5 --threads " +
-                threads + " --output {out}/tracks.db",
+                threads + " --colmap-db {out}/tracks.db",
             std::string("t") + threads);
   }
   ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 1);
@@ -177,7 +177,7 @@ TEST(Determinism, ComicStereoEvalAtOneAndTwoThreads) {
     RunInto(dir,
             AppPath("comic_stereo_eval") + " " + dir.File("left.png") + " " +
                 dir.File("right.png") + " --disparity " + dir.File("disp.png") +
-                " --scale 4 --quiet --threads " + threads + " --out {out}",
+                " --disparity-scale 4 --quiet --threads " + threads + " --output {out}",
             std::string("t") + threads);
   }
   ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 9);

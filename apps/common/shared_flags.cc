@@ -1,0 +1,87 @@
+#include "apps/common/shared_flags.h"
+
+#include "frontend/detector_factory.h"
+
+namespace comic::apps {
+
+void AddOutputFolderFlag(ArgParser& parser, std::string* folder) {
+  parser.AddOption("output", "DIR", "output folder (created if needed)", folder);
+  parser.AddShortName('o', "output");
+  parser.AddDeprecatedAlias("out", "output");
+}
+
+void AddThreadsFlag(ArgParser& parser, int* threads) {
+  parser.AddOption("threads", "N",
+                   "worker threads for all the work (0 = one per core); the output does not "
+                   "depend on it",
+                   threads);
+}
+
+void AddQuietFlag(ArgParser& parser, bool* quiet) {
+  parser.AddFlag("quiet", "no progress messages", quiet);
+  parser.AddShortName('q', "quiet");
+}
+
+void AddJsonFlag(ArgParser& parser, std::string* path) {
+  parser.AddOption("json", "FILE", "also write the results as JSON", path);
+}
+
+void AddResizeHeightFlag(ArgParser& parser, int* height) {
+  parser.AddOption("resize-height", "H",
+                   "resize to height H first, keeping the aspect ratio (0 = original size)",
+                   height);
+}
+
+void AddDetectorFlag(ArgParser& parser, std::string* name) {
+  std::string names;
+  for (const std::string& detector : frontend::DetectorNames()) {
+    names += (names.empty() ? "" : ", ") + detector;
+  }
+  parser.AddOption("detector", "NAME", "feature detector: " + names, name);
+}
+
+void AddDetectorListFlag(ArgParser& parser, std::string* list) {
+  parser.AddOption("detectors", "LIST", "comma-separated detectors, one run each (empty = all)",
+                   list);
+}
+
+void AddMaxFeaturesFlag(ArgParser& parser, int* count) {
+  parser.AddOption("max-features", "N", "keep the N strongest features per frame (0 = all)", count);
+}
+
+void AddSearchRadiusFlag(ArgParser& parser, double* radius) {
+  parser.AddOption("search-radius", "PX",
+                   "matcher search radius r around a feature's (predicted) position (paper: 20)",
+                   radius);
+}
+
+void AddMaxCostFlag(ArgParser& parser, double* cost) {
+  parser.AddOption("max-cost", "T",
+                   "SSD threshold T: a match's largest mean squared grey difference", cost);
+}
+
+void AddMinSideOverlapFlag(ArgParser& parser, int* pixels) {
+  parser.AddOption("min-side-overlap", "PX",
+                   "split matching: fewest shared pixels for a side pairing to count (of 529)",
+                   pixels);
+}
+
+void AddIntrinsicsFlag(ArgParser& parser, std::string* path) {
+  parser.AddOption("intrinsics", "FILE",
+                   "intrinsics of the frames as stored: 'fx fy cx cy', a 3x3 K or a 3x4 P (KITTI "
+                   "calib.txt)",
+                   path);
+}
+
+void AddObjectRegionFlags(ArgParser& parser, ObjectRegionFlags* flags) {
+  parser.AddOption("masks", "DIR", "object region: a folder of per-frame masks (non-zero = object)",
+                   &flags->masks);
+  parser.AddOption("regions", "FILE",
+                   "object region: a region file, line k = frame k (VOT polygons or OTB boxes)",
+                   &flags->regions);
+  parser.AddOption("boundary-band", "PX",
+                   "boundary features: within PX pixels of the region's edge (either side)",
+                   &flags->boundary_band);
+}
+
+}  // namespace comic::apps

@@ -1,0 +1,30 @@
+// The tracker's flags (paper §4: frame-to-frame SSD patch matching within a radius, with the
+// motion prediction real driving video needs), shared by the apps that track a sequence
+// (comic_sfm, comic_export_colmap) so that both take the same options with the same defaults
+// and so build the same tracks from the same folder.
+#pragma once
+
+#include <string>
+
+#include "apps/common/arg_parser.h"
+#include "frontend/matching/tracker.h"
+
+namespace comic::apps {
+
+struct TrackerFlags {
+  // Starts from sfm::SequenceReconstructionOptions' tracker: 2000 features, constant-velocity
+  // prediction, 60 px where nothing predicts (the defaults of both apps).
+  TrackerFlags();
+
+  frontend::TrackerOptions options;  // the numeric and boolean fields are bound directly
+  std::string prediction;            // MotionPredictionName
+  std::string track_conflicts;       // TrackConflictRuleName
+};
+
+void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags);
+
+// flags.options with the names parsed, Check()ed. Throws comic::Error(kInvalidArgument) naming
+// the bad flag.
+frontend::TrackerOptions ToTrackerOptions(const TrackerFlags& flags);
+
+}  // namespace comic::apps

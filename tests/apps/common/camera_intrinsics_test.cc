@@ -1,0 +1,55 @@
+// LoadCameraIntrinsics: --intrinsics describes the frames as stored; resized frames scale it.
+#include "apps/common/camera_intrinsics.h"
+
+#include <gtest/gtest.h>
+
+#include "io/error.h"
+#include "io/file_utils.h"
+#include "tests/test_support.h"
+
+namespace {
+
+using comic::apps::LoadCameraIntrinsics;
+
+TEST(LoadCameraIntrinsics, KeepsTheFileAtTheStoredSize) {
+  comic::test::ScopedTempDir dir;
+  comic::io::WriteFileAtomically(dir.File("k.txt"), "700 710 600.5 180.25\n");
+  const comic::sfm::Camera camera =
+      LoadCameraIntrinsics(dir.File("k.txt"), {1226, 370}, {1226, 370});
+  EXPECT_EQ(camera.width, 1226);
+  EXPECT_EQ(camera.height, 370);
+  EXPECT_EQ(camera.fx, 700.0);
+  EXPECT_EQ(camera.fy, 710.0);
+  EXPECT_EQ(camera.cx, 600.5);
+  EXPECT_EQ(camera.cy, 180.25);
+}
+
+TEST(LoadCameraIntrinsics, ScalesToResizedFramesAboutPixelCentres) {
+  comic::test::ScopedTempDir dir;
+  comic::io::WriteFileAtomically(dir.File("k.txt"), "700 700 599.5 183.5\n");
+  // Half size: focal lengths halve, a pixel centre c maps to (c + 0.5) / 2 - 0.5.
+  const comic::sfm::Camera camera =
+      LoadCameraIntrinsics(dir.File("k.txt"), {1226, 370}, {613, 185});
+  EXPECT_EQ(camera.width, 613);
+  EXPECT_EQ(camera.height, 185);
+  EXPECT_DOUBLE_EQ(camera.fx, 350.0);
+  EXPECT_DOUBLE_EQ(camera.fy, 350.0);
+  EXPECT_DOUBLE_EQ(camera.cx, 299.5);
+  EXPECT_DOUBLE_EQ(camera.cy, 91.5);
+}
+
+TEST(LoadCameraIntrinsics, ReadsTheBundledKittiCalibration) {
+  const comic::sfm::Camera camera =
+      LoadCameraIntrinsics(comic::test::ExampleDir() + "/calib.txt", {1226, 370}, {1226, 370});
+  EXPECT_GT(camera.fx, 500.0);  // KITTI odometry sequence 06: fx = fy = 707.0912
+  EXPECT_EQ(camera.fx, camera.fy);
+}
+
+TEST(LoadCameraIntrinsics, MissingOrMalformedFilesThrow) {
+  comic::test::ScopedTempDir dir;
+  EXPECT_THROW(LoadCameraIntrinsics(dir.File("missing.txt"), {10, 10}, {10, 10}), comic::Error);
+  comic::io::WriteFileAtomically(dir.File("bad.txt"), "not numbers\n");
+  EXPECT_THROW(LoadCameraIntrinsics(dir.File("bad.txt"), {10, 10}, {10, 10}), comic::Error);
+}
+
+}  // namespace
