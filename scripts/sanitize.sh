@@ -24,7 +24,7 @@ tests_run=$(sed -n 's/.*tests failed out of \([0-9]*\).*/\1/p' "$log" | tail -1)
 example_out=$(mktemp -d)
 trap 'rm -f "$log"; rm -rf "$example_out"' EXIT
 "$build_dir"/bin/comic_sfm examples/data/kitti06_000-011/image_l \
-  --gt examples/data/kitti06_000-011/poses.txt --compare --quiet --out "$example_out" >/dev/null
+  --gt examples/data/kitti06_000-011/poses.txt --compare --quiet --output "$example_out" >/dev/null
 test -f "$example_out/compare.md"
 echo "sanitizer run (address, undefined, leak): ${tests_run:-0} tests and the bundled example" \
   "(comic_sfm --compare, 5 detectors) passed in $(($(date +%s) - start)) s"

@@ -15,7 +15,7 @@ TEST(PrintableOneLine, KeepsPrintableTextAndJoinsLines) {
 }
 
 TEST(PrintableOneLine, EscapesBinaryBytes) {
-  EXPECT_EQ(PrintableOneLine(std::string("x\x1b[31my\x01\xff", 8)), "x\\x1b[31my\\x01\\xff");
+  EXPECT_EQ(PrintableOneLine(std::string("x\x1b[31my\x01\xff", 9)), "x\\x1b[31my\\x01\\xff");
   EXPECT_EQ(PrintableOneLine(std::string("a\0b", 3)), "a\\x00b");
 }
 
