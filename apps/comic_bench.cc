@@ -144,10 +144,10 @@ int Run(int argc, char** argv) {
       &perturbations);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
-              "--resize-height must be in [0, " << comic::io::kMaxResizeHeight
-                                                << "] (0 = original), got " << resize_height);
+              "--resize-height must be >= 0 and <= " << comic::io::kMaxResizeHeight
+                                                     << " (0 = original), got " << resize_height);
   COMIC_CHECK(runs >= 1 && runs <= 1000, kInvalidArgument,
-              "--runs must be in [1, 1000], got " << runs);
+              "--runs must be >= 1 and <= 1000, got " << runs);
   comic::apps::CheckThreadCount("--threads", threads);
   COMIC_CHECK(comic::io::PathExists(input), kNotFound,
               input << ": no such file (pass a real frame as IMAGE, e.g. "

@@ -167,15 +167,15 @@ int Run(int argc, char** argv) {
       "the darker side; the line through each circle is its maximally stable iso-curve segment.\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
-              "--resize-height must be in [0, " << comic::io::kMaxResizeHeight
-                                                << "] (0 = original), got " << resize_height);
+              "--resize-height must be >= 0 and <= " << comic::io::kMaxResizeHeight
+                                                     << " (0 = original), got " << resize_height);
   comic::io::CheckMaxPixels(max_pixels);
-  comic::apps::CheckThreadCount("--threads", options.num_threads);
   COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
   options.coarse_initialisation = !full_resolution_init;
   options.seed_neighbouring_corners = !no_neighbour_seeds;
   options.skip_duplicate_paths = !every_path;
   options.Check();
+  comic::apps::CheckThreadCount("--threads", options.num_threads);
   // Both outputs are checked now and renamed into place together at the end (all or nothing).
   comic::io::StagedFiles outputs;
   if (!overlay_path.empty()) outputs.Stage(overlay_path);

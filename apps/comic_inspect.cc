@@ -32,7 +32,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddAllowTruncatedFlag(parser, &options.allow_truncated);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(sheet_frames >= 1 && sheet_frames <= 100, kInvalidArgument,
-              "--sheet-frames must be in [1, 100], got " << sheet_frames);
+              "--sheet-frames must be >= 1 and <= 100, got " << sheet_frames);
   if (!sheet_path.empty()) comic::io::CheckWritableFile(sheet_path);
 
   const auto sequence = comic::io::ImageSequence::Open(input, options);

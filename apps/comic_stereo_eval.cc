@@ -164,9 +164,9 @@ int Run(int argc, char** argv) {
   comic::apps::CheckThreadCount("--threads", options.detectors.comic.num_threads);
   COMIC_CHECK(options.working_height >= 0 && options.working_height <= io::kMaxResizeHeight,
               kInvalidArgument,
-              "--resize-height must be in [0, " << io::kMaxResizeHeight
-                                                << "] (0 = original size), got "
-                                                << options.working_height);
+              "--resize-height must be >= 0 and <= " << io::kMaxResizeHeight
+                                                     << " (0 = original size), got "
+                                                     << options.working_height);
 
   // Inputs next: every pair is loaded (and so checked) before any output is touched.
   const bool pair_mode = !left.empty() || !right.empty();

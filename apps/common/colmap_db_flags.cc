@@ -28,12 +28,13 @@ void AddColmapDbFlags(ArgParser& parser, ColmapDbFlags* flags) {
 void CheckColmapDbFlags(const ColmapDbFlags& flags) {
   COMIC_CHECK(!flags.overwrite || !flags.database.empty(), kInvalidArgument,
               "--overwrite needs --colmap-db");
+  COMIC_CHECK(flags.colmap_threads == -1 || flags.colmap_threads >= 1, kInvalidArgument,
+              "--colmap-threads must be -1 or >= 1, got " << flags.colmap_threads);
   // At most the machine's threads (issue 19: absurd counts were accepted).
-  COMIC_CHECK(flags.colmap_threads == -1 ||
-                  (flags.colmap_threads >= 1 && flags.colmap_threads <= HardwareThreads()),
-              kInvalidArgument,
-              "--colmap-threads must be -1 (every core) or in [1, "
-                  << HardwareThreads() << "], got " << flags.colmap_threads);
+  COMIC_CHECK(flags.colmap_threads <= HardwareThreads(), kInvalidArgument,
+              "--colmap-threads must be at most the " << HardwareThreads()
+                                                      << " hardware threads of this machine, got "
+                                                      << flags.colmap_threads);
   flags.export_options.Check();
   sfm::ColmapMapperOptions mapper;
   mapper.num_threads = flags.colmap_threads;

@@ -12,8 +12,8 @@ int HardwareThreads() { return std::max(1, static_cast<int>(std::thread::hardwar
 void CheckThreadCount(const std::string& flag, int threads) {
   const int hardware = HardwareThreads();
   COMIC_CHECK(threads >= 0 && threads <= hardware, kInvalidArgument,
-              flag << " must be in [0, " << hardware << "] (0 = all " << hardware
-                   << " hardware threads of this machine), got " << threads);
+              flag << " must be >= 0 and <= " << hardware << " (the hardware threads of this "
+                   << "machine; 0 = all), got " << threads);
 }
 
 }  // namespace comic::apps

@@ -20,16 +20,17 @@ void ComicDetectorOptions::Check() const {
   // Upper bounds keep every derived size (σ, filter supports, block origins, segment lengths) far
   // inside int: the paper's values (§3: s = 8.4, B = 100, δ = 5, k = 12) sit well within them.
   COMIC_CHECK(scale > 0 && scale <= kMaxScale, kInvalidArgument,
-              "comic: scale must be in (0, " << kMaxScale << "] px, got " << scale);
+              "comic: scale must be > 0 and <= " << kMaxScale << " px, got " << scale);
   COMIC_CHECK(block_size >= 8 && block_size <= kMaxBlockSize, kInvalidArgument,
-              "comic: block_size must be in [8, " << kMaxBlockSize << "], got " << block_size);
+              "comic: block_size must be >= 8 and <= " << kMaxBlockSize << ", got " << block_size);
   COMIC_CHECK(delta >= 1 && delta <= kMaxDelta, kInvalidArgument,
-              "comic: delta must be in [1, " << kMaxDelta << "] grey levels, got " << delta);
-  COMIC_CHECK(half_length >= 2 && half_length <= kMaxHalfLength, kInvalidArgument,
-              "comic: half_length must be in [2, " << kMaxHalfLength << "], got " << half_length);
+              "comic: delta must be >= 1 and <= " << kMaxDelta << " grey levels, got " << delta);
+  COMIC_CHECK(
+      half_length >= 2 && half_length <= kMaxHalfLength, kInvalidArgument,
+      "comic: half_length must be >= 2 and <= " << kMaxHalfLength << ", got " << half_length);
   COMIC_CHECK(
       max_iterations >= 1 && max_iterations <= kMaxIterations, kInvalidArgument,
-      "comic: max_iterations must be in [1, " << kMaxIterations << "], got " << max_iterations);
+      "comic: max_iterations must be >= 1 and <= " << kMaxIterations << ", got " << max_iterations);
   COMIC_CHECK(convergence_tolerance >= 0, kInvalidArgument,
               "comic: convergence_tolerance must be >= 0");
   COMIC_CHECK(stop_tolerance >= 0, kInvalidArgument, "comic: stop_tolerance must be >= 0");

@@ -54,7 +54,7 @@ const std::vector<Case> kCases = {
   {"comic_detect", "{d}/good.png --half-length 100000", 2, {"half_length", "100000"}},
   {"comic_detect", "{d}/good.png --block-size 100000", 2, {"block_size"}},
   {"comic_detect", "{d}/good.png --threads 100000", 2, {"--threads", "hardware"}},
-  {"comic_detect", "{d}/good.png --threads -1", 2, {"--threads"}},
+  {"comic_detect", "{d}/good.png --threads -1", 2, {"num_threads"}},
   {"comic_detect", "{d}/good.png --max-pixels 1000", 1, {"good.png", "--max-pixels"}},
   {"comic_detect", "{d}/good.png --max-pixels 0", 2, {"--max-pixels"}},
   {"comic_detect", "{d}/good.png --min-cornerness 0.3", 2, {"min_cornerness"}},
