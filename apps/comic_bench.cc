@@ -20,6 +20,7 @@
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/shared_flags.h"
+#include "apps/common/thread_count.h"
 #include "frontend/comic/comic_detector.h"
 #include "frontend/comic/comic_direct_detector.h"
 #include "frontend/detector_factory.h"
@@ -214,9 +215,12 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(match_features >= 1, kInvalidArgument, "--match-features must be >= 1");
   COMIC_CHECK(match_pair.empty() || comic::io::PathExists(match_pair), kNotFound,
               match_pair << ": no such file (--match-pair)");
-  COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
-  COMIC_CHECK(runs >= 1, kInvalidArgument, "--runs must be >= 1");
-  COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0");
+  COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
+              "--resize-height must be >= 0 and <= " << comic::io::kMaxResizeHeight
+                                                     << " (0 = original), got " << resize_height);
+  COMIC_CHECK(runs >= 1 && runs <= 1000, kInvalidArgument,
+              "--runs must be >= 1 and <= 1000, got " << runs);
+  comic::apps::CheckThreadCount("--threads", threads);
   COMIC_CHECK(comic::io::PathExists(input), kNotFound,
               input << ": no such file (pass a real frame as IMAGE, e.g. "
                        "../shared/data/middlebury2003_cones/im2.png)");

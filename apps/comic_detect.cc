@@ -8,12 +8,17 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/input_budget_flags.h"
 #include "apps/common/shared_flags.h"
+#include "apps/common/thread_count.h"
 #include "frontend/comic/comic_detector.h"
 #include "frontend/comic/comic_direct_detector.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_io.h"
+#include "io/interrupt_cleanup.h"
+#include "io/pixel_budget.h"
+#include "io/staged_files.h"
 
 namespace {
 
@@ -102,6 +107,7 @@ int Run(int argc, char** argv) {
   std::string detector_name = "comic";
   // Options shared by both searches are parsed into `options` (Algorithm 1's) and copied to
   // `direct`; the others belong to one search only.
+  int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::frontend::ComicDetectorOptions options;
   options.num_threads = 0;  // all cores: the output does not depend on the thread count
   comic::frontend::ComicDirectDetectorOptions direct;
@@ -173,6 +179,7 @@ int Run(int argc, char** argv) {
                    &direct.consensus_fraction);
   comic::apps::AddThreadsFlag(parser, &options.num_threads);
   comic::apps::AddMaxFeaturesFlag(parser, &max_features);
+  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddEpilog(
       "Example:\n"
       "  comic_detect ../shared/data/middlebury2003_cones/im2.png --resize-height 700 \\\n"
@@ -184,7 +191,10 @@ int Run(int argc, char** argv) {
       "into\n"
       "the darker side; the line through each circle is its maximally stable iso-curve segment.\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  COMIC_CHECK(resize_height >= 0, kInvalidArgument, "--resize-height must be >= 0");
+  COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
+              "--resize-height must be >= 0 and <= " << comic::io::kMaxResizeHeight
+                                                     << " (0 = original), got " << resize_height);
+  comic::io::CheckMaxPixels(max_pixels);
   COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
   options.coarse_initialisation = !full_resolution_init;
   options.seed_neighbouring_corners = !no_neighbour_seeds;
@@ -203,10 +213,13 @@ int Run(int argc, char** argv) {
   // Both searches' options are checked whichever runs: a bad value is an error, not ignored.
   options.Check();
   if (!paper) direct.Check();
-  if (!overlay_path.empty()) comic::io::CheckWritableFile(overlay_path);
-  if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
+  comic::apps::CheckThreadCount("--threads", options.num_threads);
+  // Both outputs are checked now and renamed into place together at the end (all or nothing).
+  comic::io::StagedFiles outputs;
+  if (!overlay_path.empty()) outputs.Stage(overlay_path);
+  if (!json_path.empty()) outputs.Stage(json_path);
 
-  const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height);
+  const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height, max_pixels);
   std::unique_ptr<comic::frontend::Detector> detector;
   if (paper) {
     detector = std::make_unique<comic::frontend::ComicDetector>(options);
@@ -228,8 +241,7 @@ int Run(int argc, char** argv) {
             << features.size() - bright << " dark)\n"
             << "time:     " << ms << " ms\n";
   if (!overlay_path.empty()) {
-    comic::io::WriteImageAtomically(overlay_path, DrawOverlay(image.color, features));
-    std::cout << "overlay:  " << overlay_path << "\n";
+    outputs.WriteImage(overlay_path, DrawOverlay(image.color, features));
   }
   if (!json_path.empty()) {
     nlohmann::json features_json = nlohmann::json::array();
@@ -264,14 +276,17 @@ int Run(int argc, char** argv) {
                                  {"detector", detector->Name()},
                                  {"options", options_json},
                                  {"features", features_json}};
-    comic::io::WriteFileAtomically(json_path, root.dump(1) + "\n");
-    std::cout << "json:     " << json_path << "\n";
+    outputs.WriteFile(json_path, root.dump(1) + "\n");
   }
+  outputs.Commit();
+  if (!overlay_path.empty()) std::cout << "overlay:  " << overlay_path << "\n";
+  if (!json_path.empty()) std::cout << "json:     " << json_path << "\n";
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_detect", [&] { return Run(argc, argv); });
 }

@@ -9,13 +9,17 @@
 #include "apps/common/camera_intrinsics.h"
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
 #include "apps/common/shared_flags.h"
+#include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
 #include "frontend/matching/tracker.h"
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_sequence.h"
+#include "io/interrupt_cleanup.h"
+#include "io/pixel_budget.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_runner.h"
 
@@ -42,6 +46,7 @@ int Run(int argc, char** argv) {
   std::string image_path;
   std::string sparse_path;
   int threads = 0;
+  int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
   comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
   comic::apps::ColmapDbFlags colmap;
@@ -71,6 +76,7 @@ int Run(int argc, char** argv) {
   parser.AddOption("sparse", "DIR",
                    "output folder in the printed mapper command (default: DB's folder/sparse)",
                    &sparse_path);
+  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddEpilog(
       "Without --intrinsics the camera is COLMAP's SIMPLE_RADIAL guess.\n"
       "Example (the bundled KITTI clip):\n"
@@ -87,7 +93,9 @@ int Run(int argc, char** argv) {
   // Everything that can be checked before the work starts.
   const std::string& output = colmap.database;
   COMIC_CHECK(!output.empty(), kInvalidArgument, "--colmap-db DB is required");
-  COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0, got " << threads);
+  comic::apps::CheckThreadCount("--threads", threads);
+  comic::io::CheckMaxPixels(max_pixels);
+  sequence_options.max_pixels = max_pixels;
   sequence_options.Check();
   comic::sfm::ColmapExportOptions export_options = colmap.export_options;
   export_options.num_threads = threads;
@@ -154,5 +162,6 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_export_colmap", [&] { return Run(argc, argv); });
 }

@@ -6,6 +6,7 @@
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
 #include "apps/common/shared_flags.h"
 #include "io/error.h"
 #include "io/file_utils.h"
@@ -26,12 +27,18 @@ int Run(int argc, char** argv) {
   comic::apps::AddResizeHeightFlag(parser, &options.resize_height);
   comic::apps::AddFrameRangeFlags(parser, &options);
   parser.AddOption("contact-sheet", "PNG", "write a contact sheet of sampled frames", &sheet_path);
-  parser.AddOption("sheet-frames", "N", "number of frames on the contact sheet", &sheet_frames);
+  parser.AddOption("sheet-frames", "N", "number of frames on the contact sheet (1-100)",
+                   &sheet_frames);
+  comic::apps::AddAllowTruncatedFlag(parser, &options.allow_truncated);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  COMIC_CHECK(sheet_frames >= 1, kInvalidArgument, "--sheet-frames must be >= 1");
+  COMIC_CHECK(sheet_frames >= 1 && sheet_frames <= 100, kInvalidArgument,
+              "--sheet-frames must be >= 1 and <= 100, got " << sheet_frames);
   if (!sheet_path.empty()) comic::io::CheckWritableFile(sheet_path);
 
   const auto sequence = comic::io::ImageSequence::Open(input, options);
+  if (!sequence.warning().empty()) {
+    std::cerr << "comic_inspect: warning: " << sequence.warning() << std::endl;
+  }
   std::cout << "source:      " << input << (sequence.IsVideo() ? " (video)" : " (images)") << "\n"
             << "frames:      " << sequence.NumFrames() << "\n"
             << "stored size: " << sequence.SourceFrameSize().width << "x"

@@ -20,7 +20,9 @@
 #include "apps/common/camera_intrinsics.h"
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
 #include "apps/common/shared_flags.h"
+#include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
 #include "frontend/evaluation/region_labels.h"
@@ -31,10 +33,13 @@
 #include "io/file_utils.h"
 #include "io/ground_truth_cameras.h"
 #include "io/image_sequence.h"
+#include "io/interrupt_cleanup.h"
 #include "io/mask_folder.h"
+#include "io/pixel_budget.h"
 #include "io/ply.h"
 #include "io/region_annotations.h"
 #include "io/report_table.h"
+#include "io/staged_folder.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"
 #include "sfm/colmap/colmap_comparison.h"
@@ -65,6 +70,8 @@ struct Flags {
   std::string intrinsics;
   std::string gt;
   std::string gt_format = "auto";
+  bool gt_partial = false;
+  int max_pixels = static_cast<int>(io::kDefaultMaxPixels);
   std::string out = "out/sfm";
   std::string model_format = "both";  // txt, bin or both
   std::string ply_format = "binary";
@@ -109,8 +116,7 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   // --threads is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no app's output may
   // depend on the thread count. They stay on one thread; detection and the export use --threads.
-  COMIC_CHECK(flags.threads >= 0, kInvalidArgument,
-              "--threads must be >= 0, got " << flags.threads);
+  comic::apps::CheckThreadCount("--threads", flags.threads);
   options.Check();
   return options;
 }
@@ -187,6 +193,8 @@ Inputs ResolveInputs(const Flags& flags) {
     inputs.gt_format = truth.format;
     inputs.ground_truth = sfm::MatchGroundTruthToFrames(
         truth, sequence.FrameNames(), inputs.source_indices, source_size, frame_size);
+    sfm::CheckGroundTruthCoverage(*inputs.ground_truth, sequence.FrameNames(), flags.gt,
+                                  flags.gt_partial);
   }
   if (!flags.intrinsics.empty()) {
     inputs.camera = comic::apps::LoadCameraIntrinsics(flags.intrinsics, source_size, frame_size);
@@ -451,7 +459,7 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
 
 // --compare-colmap: COLMAP's mapper on the same tracks, side by side with this run.
 void CompareWithColmap(const Flags& flags, const Inputs& inputs,
-                       const sfm::SequenceReconstruction& run) {
+                       const sfm::SequenceReconstruction& run, const io::StagedFolder& out) {
   sfm::ColmapComparisonOptions options;
   options.export_options = ExportOptions(flags);
   options.colmap_threads = flags.colmap.colmap_threads;
@@ -460,16 +468,18 @@ void CompareWithColmap(const Flags& flags, const Inputs& inputs,
                           : std::vector<std::optional<sfm::Rigid3d>>();
   const sfm::ColmapComparison comparison = sfm::CompareWithColmap(
       run.tracks, inputs.camera, IntrinsicsKnown(flags, inputs), truth, flags.frames,
-      io::JoinPaths(flags.out, "colmap"), options, &run.mapping);
+      io::JoinPaths(out.path(), "colmap"), options, &run.mapping);
   const io::ReportTable table = comparison.Table();
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.md"), table.ToMarkdown());
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.csv"), table.ToCsv());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.csv"), table.ToCsv());
   const nlohmann::json json = {
       {"table", table.ToJson()},
-      {"colmap_mapper_command", comparison.colmap_mapper_command},
-      {"colmap_model", comparison.colmap_model_path ? nlohmann::json(*comparison.colmap_model_path)
-                                                    : nlohmann::json(nullptr)},
-      {"colmap_log", comparison.log_path},
+      // Paths as they will be after the outputs move into place, not the staging folder's.
+      {"colmap_mapper_command", out.ToTargetPaths(comparison.colmap_mapper_command)},
+      {"colmap_model", comparison.colmap_model_path
+                           ? nlohmann::json(out.ToTargetPaths(*comparison.colmap_model_path))
+                           : nlohmann::json(nullptr)},
+      {"colmap_log", out.ToTargetPaths(comparison.log_path)},
       {"export_time_s", comparison.export_time_s},
       {"export",
        {{"images", comparison.export_summary.num_images},
@@ -478,9 +488,10 @@ void CompareWithColmap(const Flags& flags, const Inputs& inputs,
         {"matches", comparison.export_summary.num_matches},
         {"inlier_matches", comparison.export_summary.num_inlier_matches},
         {"known_intrinsics", comparison.export_summary.known_intrinsics}}}};
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "colmap_compare.json"), json.dump(2) + "\n");
-  std::cout << table.ToMarkdown() << "COLMAP ran: " << comparison.colmap_mapper_command
-            << "\n(log: " << comparison.log_path << ")" << std::endl;
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.json"), json.dump(2) + "\n");
+  std::cout << out.ToTargetPaths(table.ToMarkdown())
+            << "COLMAP ran: " << out.ToTargetPaths(comparison.colmap_mapper_command)
+            << "\n(log: " << out.ToTargetPaths(comparison.log_path) << ")" << std::endl;
 }
 
 int Run(int argc, char** argv) {
@@ -510,6 +521,12 @@ int Run(int argc, char** argv) {
                    &flags.gt);
   parser.AddOption("gt-format", "F", "format of --gt: auto, kitti, middlebury or strecha",
                    &flags.gt_format);
+  parser.AddFlag("gt-partial",
+                 "accept --gt that covers only some frames and evaluate on those (otherwise "
+                 "an error)",
+                 &flags.gt_partial);
+  comic::apps::AddAllowTruncatedFlag(parser, &flags.sequence.allow_truncated);
+  comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
   comic::apps::AddOutputFolderFlag(parser, &flags.out);
   parser.AddOption("model-format", "F",
                    "COLMAP model written: txt (cameras.txt ... in --output), bin (cameras.bin ... "
@@ -579,6 +596,10 @@ int Run(int argc, char** argv) {
                                                     "fast)");
     detectors = {flags.detector};
   }
+  comic::apps::CheckThreadCount("--threads", flags.threads);
+  io::CheckMaxPixels(flags.max_pixels);
+  flags.sequence.max_pixels = flags.max_pixels;
+  flags.sequence.Check();
   MakeOptions(flags);  // validates the numeric options before any work
   COMIC_CHECK(
       flags.model_format == "txt" || flags.model_format == "bin" || flags.model_format == "both",
@@ -588,8 +609,14 @@ int Run(int argc, char** argv) {
       flags.ply_format == "binary" || flags.ply_format == "ascii", kInvalidArgument,
       "--ply-format: unknown format '" << flags.ply_format << "' (expected binary or ascii)");
   CheckColmapFlags(flags);
-  io::EnsureWritableDirectory(flags.out);
+  // Validate, then write, all or nothing: --out is checked but not created; the outputs go to a
+  // staging folder beside it and move into place when the run has succeeded (issue 19).
+  io::CheckCreatableFolder(flags.out);
   const Inputs inputs = ResolveInputs(flags);
+  if (!inputs.sequence->warning().empty()) {
+    std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
+  }
+  io::StagedFolder out(flags.out);
   if (!flags.quiet) {
     std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames "
               << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
@@ -604,11 +631,14 @@ int Run(int argc, char** argv) {
   }
 
   if (!flags.compare) {
-    const DetectorRun result = RunDetector(flags.detector, flags, inputs, flags.out);
+    const DetectorRun result = RunDetector(flags.detector, flags, inputs, out.path());
     PrintSummary(result.report);
-    if (!flags.colmap.database.empty()) WriteColmapDatabase(flags, inputs, result.run);
-    if (flags.compare_colmap) CompareWithColmap(flags, inputs, result.run);
-    COMIC_CHECK(result.run.mapping.status == sfm::ReconstructionStatus::kSuccess, kInvalidData,
+    const bool success = result.run.mapping.status == sfm::ReconstructionStatus::kSuccess;
+    if (success && !flags.colmap.database.empty()) WriteColmapDatabase(flags, inputs, result.run);
+    if (success && flags.compare_colmap) CompareWithColmap(flags, inputs, result.run, out);
+    // A failed reconstruction commits its report.json (the documented exception): it says why.
+    out.Commit();
+    COMIC_CHECK(success, kInvalidData,
                 sfm::ReconstructionStatusMessage(result.run.mapping.status)
                     << " (report: " << io::JoinPaths(flags.out, "report.json") << ")");
     return 0;
@@ -616,18 +646,19 @@ int Run(int argc, char** argv) {
 
   std::vector<sfm::SfmRunReport> reports;
   for (const std::string& name : detectors) {
-    const DetectorRun result = RunDetector(name, flags, inputs, io::JoinPaths(flags.out, name));
+    const DetectorRun result = RunDetector(name, flags, inputs, io::JoinPaths(out.path(), name));
     PrintSummary(result.report);
     reports.push_back(result.report);
   }
   const io::ReportTable table = sfm::MakeComparisonTable(reports);
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.md"), table.ToMarkdown());
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.csv"), table.ToCsv());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.csv"), table.ToCsv());
   nlohmann::json json = {{"table", table.ToJson()}, {"runs", nlohmann::json::array()}};
   for (const sfm::SfmRunReport& report : reports)
     json["runs"].push_back(sfm::RunReportToJson(report));
   json["options"] = OptionsToJson(flags, inputs);
-  io::WriteFileAtomically(io::JoinPaths(flags.out, "compare.json"), json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.json"), json.dump(2) + "\n");
+  out.Commit();
   std::cout << table.ToMarkdown();
   return 0;
 }
@@ -637,5 +668,6 @@ int Run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Errors go to stderr as one line; Ceres' recoverable-trouble warnings would add noise there.
   comic::sfm::ShowOnlySolverErrors();
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_sfm", [&] { return Run(argc, argv); });
 }

@@ -10,12 +10,16 @@
 #include "apps/common/arg_parser.h"
 #include "apps/common/list_flags.h"
 #include "apps/common/shared_flags.h"
+#include "apps/common/thread_count.h"
 #include "frontend/evaluation/stereo_evaluation.h"
 #include "frontend/evaluation/stereo_evaluation_report.h"
 #include "frontend/evaluation/stereo_match_figure.h"
 #include "io/error.h"
 #include "io/file_utils.h"
+#include "io/image_io.h"
+#include "io/interrupt_cleanup.h"
 #include "io/middlebury.h"
+#include "io/staged_folder.h"
 
 namespace {
 
@@ -161,6 +165,12 @@ int Run(int argc, char** argv) {
   options.precision_reference = precision_methods.front();
   const std::vector<fe::StereoMethod> drawn = fe::ParseStereoMethods(figure_methods);
   options.Check();
+  comic::apps::CheckThreadCount("--threads", options.detectors.comic.num_threads);
+  COMIC_CHECK(options.working_height >= 0 && options.working_height <= io::kMaxResizeHeight,
+              kInvalidArgument,
+              "--resize-height must be >= 0 and <= " << io::kMaxResizeHeight
+                                                     << " (0 = original size), got "
+                                                     << options.working_height);
 
   // Inputs next: every pair is loaded (and so checked) before any output is touched.
   const bool pair_mode = !left.empty() || !right.empty();
@@ -194,16 +204,18 @@ int Run(int argc, char** argv) {
     }
   }
 
-  // Outputs: checked up front, written atomically at the end.
-  io::EnsureWritableDirectory(out_dir);
+  // Outputs: checked up front, written into a staging folder beside --out and moved into place
+  // together at the end (all or nothing; --out itself is created only then).
+  io::StagedFolder out(out_dir);
   const std::vector<std::string> tables = {
       "protocol",          "pairs",         "detections",      "scores",
       "matched_precision", "repeatability", "paper_comparison"};
-  std::vector<std::string> outputs = {io::JoinPaths(out_dir, "stereo_eval.md"),
-                                      io::JoinPaths(out_dir, "stereo_eval.json")};
-  for (const std::string& table : tables) outputs.push_back(io::JoinPaths(out_dir, table + ".csv"));
+  std::vector<std::string> outputs = {io::JoinPaths(out.path(), "stereo_eval.md"),
+                                      io::JoinPaths(out.path(), "stereo_eval.json")};
+  for (const std::string& table : tables)
+    outputs.push_back(io::JoinPaths(out.path(), table + ".csv"));
   for (const io::MiddleburyPair& pair : pairs) {
-    outputs.push_back(io::JoinPaths(out_dir, "matches_" + Safe(pair.name) + ".png"));
+    outputs.push_back(io::JoinPaths(out.path(), "matches_" + Safe(pair.name) + ".png"));
   }
   for (const std::string& path : outputs) io::CheckWritableFile(path);
 
@@ -229,6 +241,7 @@ int Run(int argc, char** argv) {
   for (size_t p = 0; p < pairs.size(); ++p) {
     io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
   }
+  out.Commit();
   if (!quiet) std::cout << "wrote " << outputs.size() << " files to " << out_dir << "\n";
   return 0;
 }
@@ -236,5 +249,6 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_stereo_eval", [&] { return Run(argc, argv); });
 }

@@ -16,8 +16,10 @@
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/frame_range_flags.h"
+#include "apps/common/input_budget_flags.h"
 #include "apps/common/list_flags.h"
 #include "apps/common/shared_flags.h"
+#include "apps/common/thread_count.h"
 #include "frontend/evaluation/epipolar_check.h"
 #include "frontend/evaluation/track_drawing.h"
 #include "frontend/evaluation/track_evaluation.h"
@@ -25,9 +27,12 @@
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_sequence.h"
+#include "io/interrupt_cleanup.h"
 #include "io/kitti_odometry.h"
 #include "io/mask_folder.h"
+#include "io/pixel_budget.h"
 #include "io/region_annotations.h"
+#include "io/staged_folder.h"
 
 namespace {
 
@@ -125,6 +130,7 @@ int Run(int argc, char** argv) {
   std::string poses_file, calib_file, out_dir = "track_eval";
   std::string sweep_list = "100,200,400,800,1600,inf";
   int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 0;
+  int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
   sequence_options.resize_height = 700;
   fe::TrackEvaluationOptions options;
@@ -197,6 +203,8 @@ int Run(int argc, char** argv) {
                    &overlay_frames);
   comic::apps::AddThreadsFlag(parser, &threads);
   comic::apps::AddOutputFolderFlag(parser, &out_dir);
+  comic::apps::AddAllowTruncatedFlag(parser, &sequence_options.allow_truncated);
+  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddEpilog(
       "Outputs in DIR: scores_n<n>.{md,csv,json} (Table 1/2 layout), scores_n<n>.png (bar\n"
       "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
@@ -220,7 +228,9 @@ int Run(int argc, char** argv) {
               "--poses and --calib go together");
   COMIC_CHECK(n >= 1, kInvalidArgument, "--n must be >= 1, got " << n);
   COMIC_CHECK(overlay_frames >= 0, kInvalidArgument, "--overlay-frames must be >= 0");
-  COMIC_CHECK(threads >= 0, kInvalidArgument, "--threads must be >= 0");
+  comic::apps::CheckThreadCount("--threads", threads);
+  comic::io::CheckMaxPixels(max_pixels);
+  sequence_options.max_pixels = max_pixels;
   options.detectors = detector_list.empty() ? comic::frontend::DetectorNames()
                                             : comic::frontend::ParseDetectorList(detector_list);
   options.baseline_costs.clear();
@@ -245,7 +255,9 @@ int Run(int argc, char** argv) {
   options.sweep_costs = comic::apps::ParseNumberList(sweep_list, "sweep");
   options.Check();
   const comic::io::RegionFileFormat format = comic::io::ParseRegionFileFormat(region_format);
-  comic::io::EnsureWritableDirectory(out_dir);
+  // --out is checked, not created: the outputs are staged beside it and moved into place when
+  // the whole evaluation has succeeded (issue 19: a rejected run left an empty folder).
+  comic::io::CheckCreatableFolder(out_dir);
 
   const auto sequence = comic::io::ImageSequence::Open(frames_path, sequence_options);
   const size_t num_frames = sequence.NumFrames();
@@ -299,6 +311,10 @@ int Run(int argc, char** argv) {
     ground_truth = truth;
   }
 
+  if (!sequence.warning().empty()) {
+    std::cerr << "comic_track_eval: warning: " << sequence.warning() << std::endl;
+  }
+  comic::io::StagedFolder out(out_dir);
   std::cout << "comic_track_eval: " << num_frames << " frames of " << frames_path << " at "
             << frame_size.width << "x" << frame_size.height << ", detectors " << detector_list
             << std::endl;
@@ -335,18 +351,18 @@ int Run(int argc, char** argv) {
     const int nk = options.ns[k];
     const ReportTable table = fe::ScoreTable(evaluation, nk);
     const std::string name = "scores_n" + std::to_string(nk);
-    WriteTable(out_dir, name, table);
-    comic::io::WriteImageAtomically(comic::io::JoinPaths(out_dir, name + ".png"),
+    WriteTable(out.path(), name, table);
+    comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), name + ".png"),
                                     ScoreChart(evaluation, k, comic::io::FileName(frames_path)));
     report << "## M_score(" << nk << ") and ResM_" << nk << "\n\n" << table.ToMarkdown() << "\n";
     const ReportTable sweep = fe::ThresholdSweepTable(evaluation, nk);
-    WriteTable(out_dir, "threshold_sweep_n" + std::to_string(nk), sweep);
+    WriteTable(out.path(), "threshold_sweep_n" + std::to_string(nk), sweep);
     report << "## M_score(" << nk << ") and ResM_" << nk
            << " at other SSD thresholds T (same matches, re-thresholded)\n\n"
            << sweep.ToMarkdown() << "\n";
     if (ground_truth) {
       const ReportTable precision = fe::PrecisionTable(evaluation, nk);
-      WriteTable(out_dir, "precision_n" + std::to_string(nk), precision);
+      WriteTable(out.path(), "precision_n" + std::to_string(nk), precision);
       report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
              << "\n\n"
              << precision.ToMarkdown() << "\n";
@@ -364,7 +380,7 @@ int Run(int argc, char** argv) {
   }
   nlohmann::json json = fe::EvaluationToJson(evaluation);
   json["command"] = command;
-  comic::io::WriteFileAtomically(comic::io::JoinPaths(out_dir, "evaluation.json"),
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "evaluation.json"),
                                  json.dump(2) + "\n");
 
   // Overlays on frames spread over the sequence, late enough to show some history.
@@ -377,10 +393,11 @@ int Run(int argc, char** argv) {
     const comic::io::Frame frame = sequence.ReadFrame(index);
     const cv::Mat labels = regions ? fe::LabelRegion(regions(index), band) : cv::Mat();
     const std::string stem = frame.name.substr(0, frame.name.find_last_of('.'));
-    comic::io::WriteImageAtomically(comic::io::JoinPaths(out_dir, "tracks_" + stem + ".png"),
+    comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), "tracks_" + stem + ".png"),
                                     OverlayMosaic(evaluation, frame, index, labels));
   }
-  comic::io::WriteFileAtomically(comic::io::JoinPaths(out_dir, "report.md"), report.str());
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "report.md"), report.str());
+  out.Commit();
   std::cout << fe::ScoreTable(evaluation, n).ToMarkdown() << "wrote " << out_dir << "/\n";
   return 0;
 }
@@ -388,5 +405,6 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  comic::io::InstallInterruptCleanup();
   return comic::apps::RunMain("comic_track_eval", [&] { return Run(argc, argv); });
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "io/error.h"
+#include "io/interrupt_cleanup.h"
 #include "io/natural_sort.h"
 
 namespace comic::io {
@@ -67,11 +68,28 @@ void EnsureWritableDirectory(const std::string& folder) {
   if (PathExists(folder)) {
     COMIC_CHECK(IsDirectory(folder), kIo, folder << ": exists and is not a folder");
   } else {
+    CheckCreatableFolder(folder);
     fs::create_directories(folder, ec);
     COMIC_CHECK(!ec, kIo, folder << ": cannot create folder: " << ec.message());
   }
   COMIC_CHECK(::access(folder.c_str(), W_OK | X_OK) == 0, kIo,
               folder << ": folder is not writable");
+}
+
+std::string CheckCreatableFolder(const std::string& folder) {
+  COMIC_CHECK(!folder.empty(), kInvalidArgument, "output folder name is empty");
+  COMIC_CHECK(!PathExists(folder) || IsDirectory(folder), kIo,
+              folder << ": exists and is not a folder");
+  // The nearest existing ancestor must be a writable folder (a file there: "X is not a folder").
+  fs::path existing = fs::path(folder);
+  std::error_code ec;
+  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+  const std::string ancestor = existing.empty() ? "." : existing.string();
+  COMIC_CHECK(IsDirectory(ancestor), kIo,
+              folder << ": cannot create it, " << ancestor << " is not a folder");
+  COMIC_CHECK(::access(ancestor.c_str(), W_OK | X_OK) == 0, kIo,
+              folder << ": folder " << ancestor << " is not writable");
+  return ancestor;
 }
 
 void CheckWritableFile(const std::string& path, bool overwrite) {
@@ -80,6 +98,8 @@ void CheckWritableFile(const std::string& path, bool overwrite) {
   COMIC_CHECK(overwrite || !PathExists(path), kIo,
               path << ": already exists (refusing to overwrite)");
   const std::string parent = ParentPath(path).empty() ? "." : ParentPath(path);
+  COMIC_CHECK(!PathExists(parent) || IsDirectory(parent), kIo,
+              path << ": " << parent << " is not a folder");
   COMIC_CHECK(IsDirectory(parent), kIo, path << ": folder " << parent << " does not exist");
   COMIC_CHECK(::access(parent.c_str(), W_OK | X_OK) == 0, kIo,
               path << ": folder " << parent << " is not writable");
@@ -105,15 +125,30 @@ void WriteAtomically(const std::string& path, const std::function<void(const std
       (target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
                                target.extension().string()))
           .string();
+  // Removed on SIGINT/SIGTERM too, with an SQLite -journal beside it.
+  const ScopedTempPath registered(temp);
+  auto remove_temp = [&] {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    fs::remove(temp + "-journal", ec);
+  };
   try {
     write(temp);
     COMIC_CHECK(IsRegularFile(temp), kIo, path << ": writing failed");
     std::error_code ec;
     fs::rename(temp, path, ec);
     COMIC_CHECK(!ec, kIo, path << ": cannot rename temporary file into place: " << ec.message());
+  } catch (const Error& e) {
+    remove_temp();
+    // The user knows the path they gave, not our hidden temporary name.
+    std::string message = e.what();
+    for (size_t at = message.find(temp); at != std::string::npos; at = message.find(temp, at)) {
+      message.replace(at, temp.size(), path);
+      at += path.size();
+    }
+    throw Error(e.kind(), message);
   } catch (...) {
-    std::error_code ec;
-    fs::remove(temp, ec);
+    remove_temp();
     throw;
   }
 }

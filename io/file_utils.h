@@ -31,6 +31,11 @@ std::vector<std::string> ListFiles(const std::string& folder);
 // Throws comic::Error(kIo) naming the folder otherwise.
 void EnsureWritableDirectory(const std::string& folder);
 
+// Checks, without creating anything, that `folder` is a writable folder or could be created:
+// it is not a file, and its nearest existing ancestor is a writable folder. Returns that
+// ancestor. Throws comic::Error(kIo) naming the path ("X is not a folder" when X is a file).
+std::string CheckCreatableFolder(const std::string& folder);
+
 // Checks, before any work is done, that a file can later be written at `path`: its folder exists
 // and is writable and `path` is not a folder (nor, unless `overwrite`, an existing file). Apps call
 // this up front so a bad output path fails in a second, not after a long run. Throws

@@ -1,11 +1,13 @@
 #include "io/image_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
 #include "io/file_utils.h"
+#include "io/library_messages.h"
 
 namespace comic::io {
 namespace {
@@ -78,32 +80,47 @@ cv::Mat ToBgr8(const cv::Mat& image) {
   return color;
 }
 
+cv::Size ResizedSize(cv::Size size, int height) {
+  if (height <= 0 || height == size.height || size.height <= 0) return size;
+  const double width = std::lround(size.width * static_cast<double>(height) / size.height);
+  return cv::Size(static_cast<int>(std::clamp(width, 1.0, 1e9)), height);
+}
+
 cv::Mat ResizeToHeight(const cv::Mat& image, int height) {
   if (height <= 0 || height == image.rows) return image.clone();
-  const int width = std::max(
-      1, static_cast<int>(std::lround(image.cols * static_cast<double>(height) / image.rows)));
   cv::Mat out;
-  cv::resize(image, out, cv::Size(width, height), 0, 0,
+  cv::resize(image, out, ResizedSize(image.size(), height), 0, 0,
              height < image.rows ? cv::INTER_AREA : cv::INTER_LINEAR);
   return out;
 }
 
 cv::Mat ReadImageUnchanged(const std::string& path) {
   COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
+  COMIC_CHECK(!IsDirectory(path), kInvalidData, path << ": is a folder, not an image file");
   COMIC_CHECK(IsRegularFile(path), kInvalidData, path << ": not a regular file");
   cv::Mat image;
-  try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    throw Error(ErrorKind::kInvalidData, path + ": cannot decode image: " + e.what());
-  }
+  std::string opencv_error;
+  // libpng and libjpeg print to stderr instead of reporting (a truncated JPEG even decodes, grey
+  // below the cut): their words are captured and become part of our one line.
+  const std::string library_message = CaptureLibraryMessages([&] {
+    try {
+      image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception& e) {
+      opencv_error = e.err;
+    }
+  });
+  const std::string detail = !library_message.empty() ? library_message : opencv_error;
   COMIC_CHECK(!image.empty(), kInvalidData,
-              path << ": cannot decode image (corrupt, truncated or not an image)");
+              path << ": cannot decode image (corrupt, truncated or not an image"
+                   << (detail.empty() ? "" : ": " + detail) << ")");
+  COMIC_CHECK(!MessageReportsCorruptData(library_message), kInvalidData,
+              path << ": corrupt or truncated image (" << library_message << ")");
   return image;
 }
 
-LoadedImage LoadImage(const std::string& path, int resize_height) {
+LoadedImage LoadImage(const std::string& path, int resize_height, int64_t max_pixels) {
   const cv::Mat raw = ReadImageUnchanged(path);
+  CheckPixelBudget(path, ResizedSize(raw.size(), resize_height), max_pixels);
   LoadedImage loaded;
   try {
     loaded.gray = ResizeToHeight(ToGray8(raw), resize_height);

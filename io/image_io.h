@@ -5,6 +5,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "io/pixel_budget.h"
+
 namespace comic::io {
 
 // True for the extensions ImageSequence reads as images: png, jpg, jpeg, ppm, pgm, pnm, pbm,
@@ -22,6 +24,12 @@ cv::Mat ToBgr8(const cv::Mat& image);
 // shrinking, INTER_LINEAR when enlarging. height <= 0 or equal to the current height: a copy.
 cv::Mat ResizeToHeight(const cv::Mat& image, int height);
 
+// The size ResizeToHeight gives an image of `size` (height <= 0: `size`).
+cv::Size ResizedSize(cv::Size size, int height);
+
+// The largest --resize-height accepted: 16384 px (beyond it a frame alone takes gigabytes).
+constexpr int kMaxResizeHeight = 16384;
+
 struct LoadedImage {
   cv::Mat gray;   // CV_8UC1
   cv::Mat color;  // CV_8UC3, BGR
@@ -29,8 +37,10 @@ struct LoadedImage {
 
 // Reads `path` (any format OpenCV decodes) and returns grey and colour at `resize_height`
 // (0 = original size). Throws comic::Error: kNotFound for a missing file, kInvalidData for a
-// file that is not a decodable image or has an unsupported depth, naming the file.
-LoadedImage LoadImage(const std::string& path, int resize_height = 0);
+// file that is not a decodable image or has an unsupported depth, or whose size after resizing
+// exceeds `max_pixels` (io/pixel_budget.h; checked before resizing), naming the file.
+LoadedImage LoadImage(const std::string& path, int resize_height = 0,
+                      int64_t max_pixels = kDefaultMaxPixels);
 
 // Reads `path` unchanged (depth and channels as stored). Same errors as LoadImage.
 cv::Mat ReadImageUnchanged(const std::string& path);

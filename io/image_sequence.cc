@@ -2,10 +2,12 @@
 
 #include <cstdio>
 #include <opencv2/videoio.hpp>
+#include <sstream>
 
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "io/image_io.h"
+#include "io/library_messages.h"
 
 namespace comic::io {
 
@@ -19,6 +21,10 @@ void ImageSequenceOptions::Check() const {
               "resize_height must be >= 0 (0 = keep), got " << resize_height);
   COMIC_CHECK(resize_height == 0 || resize_height >= 8, kInvalidArgument,
               "resize_height must be at least 8 pixels, got " << resize_height);
+  COMIC_CHECK(
+      resize_height <= kMaxResizeHeight, kInvalidArgument,
+      "resize_height must be at most " << kMaxResizeHeight << " pixels, got " << resize_height);
+  CheckMaxPixels(max_pixels);
   COMIC_CHECK(first_frame >= 0, kInvalidArgument, "first_frame must be >= 0, got " << first_frame);
   COMIC_CHECK(last_frame == -1 || last_frame >= first_frame, kInvalidArgument,
               "last_frame must be -1 (to the end) or >= first_frame (" << first_frame << "), got "
@@ -79,17 +85,44 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
     sequence.names_.push_back(FileName(path));
   } else {
     sequence.is_video_ = true;
+    SilenceLibraryLogging();
     cv::VideoCapture capture;
-    try {
-      capture.open(path);
-    } catch (const cv::Exception&) {
-    }
+    // FFmpeg prints what it finds wrong ("moov atom not found", "overread 8"): captured per call,
+    // it becomes our one line, and tells where a damaged stream stops decoding.
+    std::string message = CaptureLibraryMessages([&] {
+      try {
+        capture.open(path, cv::CAP_FFMPEG);
+      } catch (const cv::Exception&) {
+      }
+    });
     COMIC_CHECK(capture.isOpened(), kInvalidData,
-                path << ": cannot open as a video (unknown format, unsupported codec or corrupt)");
+                path << ": cannot open as a video (unknown format, unsupported codec or corrupt"
+                     << (message.empty() ? "" : "; FFmpeg: " + message) << ")");
     // Count frames by grabbing: CAP_PROP_FRAME_COUNT is an estimate for many containers.
     int count = 0;
-    while (capture.grab()) ++count;
-    COMIC_CHECK(count > 0, kInvalidData, path << ": video has no decodable frames");
+    bool corrupt = false;
+    while (true) {
+      bool grabbed = false;
+      message = CaptureLibraryMessages([&] { grabbed = capture.grab(); });
+      if (MessageReportsCorruptData(message)) corrupt = true;
+      if (!grabbed || corrupt) break;
+      ++count;
+    }
+    const double announced = capture.get(cv::CAP_PROP_FRAME_COUNT);
+    const int header_count = announced > 0 && announced < 1e9 ? static_cast<int>(announced) : 0;
+    COMIC_CHECK(count > 0, kInvalidData,
+                path << ": video has no decodable frames"
+                     << (message.empty() ? "" : " (FFmpeg: " + message + ")"));
+    if (corrupt || count < header_count) {
+      std::ostringstream what;
+      what << path << ": video stops decoding after frame " << count - 1;
+      if (header_count > 0) what << " of the " << header_count << " its header announces";
+      if (!message.empty()) what << " (FFmpeg: " << message << ")";
+      COMIC_CHECK(
+          options.allow_truncated, kInvalidData,
+          what.str() << "; --allow-truncated uses the " << count << " frames before the break");
+      sequence.warning_ = what.str() + "; using its first " + std::to_string(count) + " frames";
+    }
     sequence.source_indices_ = SelectIndices(count, options);
     COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,
                 path << ": frame range [" << options.first_frame << ", " << options.last_frame
@@ -101,6 +134,7 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
   std::string what;
   const cv::Mat raw = sequence.ReadRaw(0, &what);
   sequence.source_size_ = raw.size();
+  CheckPixelBudget(what, ResizedSize(raw.size(), options.resize_height), options.max_pixels);
   sequence.frame_size_ = sequence.MakeFrame(raw, 0, what).gray.size();
   return sequence;
 }
@@ -154,20 +188,29 @@ cv::Mat ImageSequence::ReadImageRaw(size_t i, std::string* what) const {
 
 cv::Mat ImageSequence::ReadVideoRaw(size_t i, std::string* what) const {
   const int target = source_indices_[i];
-  if (!video_ || video_->next_index > target) {
-    // (Re)open and read forward: seeking is unreliable across codecs, reading is exact.
-    video_ = std::make_unique<VideoState>();
-    video_->capture.open(path_);
-    COMIC_CHECK(video_->capture.isOpened(), kInvalidData, path_ << ": cannot reopen video");
-  }
-  while (video_->next_index < target) {
-    COMIC_CHECK(video_->capture.grab(), kInvalidData,
-                path_ << ": video ended before frame " << target);
-    ++video_->next_index;
-  }
   cv::Mat raw;
-  COMIC_CHECK(video_->capture.read(raw) && !raw.empty(), kInvalidData,
-              path_ << ": cannot decode frame " << target);
+  bool decoded = false;
+  bool ended = false;
+  // Open() decoded every selected frame once; FFmpeg's messages stay off the terminal here too.
+  CaptureLibraryMessages([&] {
+    if (!video_ || video_->next_index > target) {
+      // (Re)open and read forward: seeking is unreliable across codecs, reading is exact.
+      video_ = std::make_unique<VideoState>();
+      video_->capture.open(path_, cv::CAP_FFMPEG);
+    }
+    if (!video_->capture.isOpened()) return;
+    while (video_->next_index < target) {
+      if (!video_->capture.grab()) {
+        ended = true;
+        return;
+      }
+      ++video_->next_index;
+    }
+    decoded = video_->capture.read(raw) && !raw.empty();
+  });
+  COMIC_CHECK(video_ && video_->capture.isOpened(), kInvalidData, path_ << ": cannot reopen video");
+  COMIC_CHECK(!ended, kInvalidData, path_ << ": video ended before frame " << target);
+  COMIC_CHECK(decoded, kInvalidData, path_ << ": cannot decode frame " << target);
   ++video_->next_index;
   *what = path_ + " frame " + std::to_string(target);
   return raw;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "io/pixel_budget.h"
+
 namespace comic::io {
 
 struct ImageSequenceOptions {
@@ -24,6 +26,12 @@ struct ImageSequenceOptions {
   int last_frame = -1;
   // Use every `stride`-th frame from first_frame on.
   int stride = 1;
+  // A video whose frames stop decoding before the end its header announces is an error naming
+  // the last good frame; true uses the frames before the break and sets ImageSequence::warning().
+  bool allow_truncated = false;
+  // Frames with more pixels than this after resizing are refused before any is resized
+  // (io/pixel_budget.h).
+  int64_t max_pixels = kDefaultMaxPixels;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -51,6 +59,9 @@ class ImageSequence {
   ~ImageSequence();
 
   const std::string& path() const { return path_; }
+  // Non-empty when the source was accepted with a problem the user should hear about (a truncated
+  // video opened with allow_truncated: how many frames are used). Apps print it as one line.
+  const std::string& warning() const { return warning_; }
   bool IsVideo() const { return is_video_; }
   size_t NumFrames() const { return source_indices_.size(); }
   // Size of every frame after resizing (that of the first frame; others must match).
@@ -78,6 +89,7 @@ class ImageSequence {
   Frame MakeFrame(const cv::Mat& raw, size_t i, const std::string& what) const;
 
   std::string path_;
+  std::string warning_;
   ImageSequenceOptions options_;
   bool is_video_ = false;
   std::string folder_;               // folder holding the image files

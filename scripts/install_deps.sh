@@ -23,6 +23,8 @@ PACKAGES=(
   python3-pybind11
   python3-numpy  # its arrays
   python3-pytest # its test suite (ctest python/pytest)
+  clang          # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
+  libfuzzer-14-dev
 )
 
 missing=()

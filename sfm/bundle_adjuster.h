@@ -29,9 +29,9 @@ struct BundleAdjustmentOptions {
   double parameter_tolerance = 1e-8;
   // Refine fx and fy (the principal point stays fixed); otherwise intrinsics are constant.
   bool refine_focal_length = false;
-  // Threads for Ceres. More than one can change the last bits of the result between runs (Ceres
-  // sums partial results in thread order), so the default is 1, which is bit-for-bit
-  // deterministic.
+  // Threads the caller offers. Ceres itself always runs on one thread (bundle_adjuster.cc: its
+  // threaded sums depend on the thread schedule), so the result is identical bit for bit for any
+  // value; kept so that one --threads reaches every stage.
   int num_threads = 1;
 
   void Check() const;

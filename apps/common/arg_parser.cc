@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "io/error.h"
+#include "io/library_messages.h"
+#include "io/printable_text.h"
 #include "io/version.h"
 
 namespace comic::apps {
@@ -198,16 +200,20 @@ std::string ArgParser::Help() const {
 }
 
 int RunMain(const std::string& program, const std::function<int()>& body) {
+  // One line, ours: OpenCV's own log stays quiet, and every message is made one printable line
+  // (a file's binary garbage quoted in a parse error is escaped, never echoed raw).
+  io::SilenceLibraryLogging();
   try {
     return body();
   } catch (const Error& e) {
-    std::cerr << program << ": error: " << e.what() << "\n";
+    std::cerr << program << ": error: " << io::PrintableOneLine(e.what()) << "\n";
     return e.kind() == ErrorKind::kInvalidArgument ? 2 : 1;
   } catch (const cv::Exception& e) {
-    std::cerr << program << ": error: OpenCV: " << e.err << " (" << e.func << ")\n";
+    std::cerr << program << ": error: OpenCV: " << io::PrintableOneLine(e.err) << " (" << e.func
+              << ")\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << program << ": error: " << e.what() << "\n";
+    std::cerr << program << ": error: " << io::PrintableOneLine(e.what()) << "\n";
     return 1;
   }
 }

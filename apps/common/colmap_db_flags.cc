@@ -1,5 +1,6 @@
 #include "apps/common/colmap_db_flags.h"
 
+#include "apps/common/thread_count.h"
 #include "io/error.h"
 #include "sfm/colmap/colmap_runner.h"
 
@@ -29,6 +30,11 @@ void CheckColmapDbFlags(const ColmapDbFlags& flags) {
               "--overwrite needs --colmap-db");
   COMIC_CHECK(flags.colmap_threads == -1 || flags.colmap_threads >= 1, kInvalidArgument,
               "--colmap-threads must be -1 or >= 1, got " << flags.colmap_threads);
+  // At most the machine's threads (issue 19: absurd counts were accepted).
+  COMIC_CHECK(flags.colmap_threads <= HardwareThreads(), kInvalidArgument,
+              "--colmap-threads must be at most the " << HardwareThreads()
+                                                      << " hardware threads of this machine, got "
+                                                      << flags.colmap_threads);
   flags.export_options.Check();
   sfm::ColmapMapperOptions mapper;
   mapper.num_threads = flags.colmap_threads;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "frontend/grid_cell_key.h"
 #include "io/error.h"
 
 namespace comic::frontend {
@@ -181,8 +182,8 @@ void DetectDarkRegions(const cv::Mat& gray, const MserDetectorOptions& options, 
 FeatureSet SuppressNearDuplicates(const FeatureSet& sorted, double radius) {
   if (radius <= 0) return sorted;
   const double cell = radius;
-  std::unordered_map<int64_t, std::vector<int>> grid;
-  auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); };
+  std::unordered_map<uint64_t, std::vector<int>> grid;
+  auto key = [](int64_t cx, int64_t cy) { return GridCellKey(cx, cy); };
   FeatureSet kept;
   for (const Feature& f : sorted) {
     const int64_t cx = static_cast<int64_t>(std::floor(f.x / cell));

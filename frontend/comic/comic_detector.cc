@@ -10,20 +10,27 @@
 #include "frontend/comic/corner_convergence.h"
 #include "frontend/comic/initial_corners.h"
 #include "frontend/comic/side_mask.h"
+#include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
 #include "io/error.h"
 
 namespace comic::frontend {
 
 void ComicDetectorOptions::Check() const {
-  COMIC_CHECK(scale > 0, kInvalidArgument, "comic: scale must be > 0, got " << scale);
-  COMIC_CHECK(block_size >= 8, kInvalidArgument,
-              "comic: block_size must be >= 8, got " << block_size);
-  COMIC_CHECK(delta >= 1, kInvalidArgument, "comic: delta must be >= 1, got " << delta);
-  COMIC_CHECK(half_length >= 2, kInvalidArgument,
-              "comic: half_length must be >= 2, got " << half_length);
-  COMIC_CHECK(max_iterations >= 1, kInvalidArgument,
-              "comic: max_iterations must be >= 1, got " << max_iterations);
+  // Upper bounds keep every derived size (σ, filter supports, block origins, segment lengths) far
+  // inside int: the paper's values (§3: s = 8.4, B = 100, δ = 5, k = 12) sit well within them.
+  COMIC_CHECK(scale > 0 && scale <= kMaxScale, kInvalidArgument,
+              "comic: scale must be > 0 and <= " << kMaxScale << " px, got " << scale);
+  COMIC_CHECK(block_size >= 8 && block_size <= kMaxBlockSize, kInvalidArgument,
+              "comic: block_size must be >= 8 and <= " << kMaxBlockSize << ", got " << block_size);
+  COMIC_CHECK(delta >= 1 && delta <= kMaxDelta, kInvalidArgument,
+              "comic: delta must be >= 1 and <= " << kMaxDelta << " grey levels, got " << delta);
+  COMIC_CHECK(
+      half_length >= 2 && half_length <= kMaxHalfLength, kInvalidArgument,
+      "comic: half_length must be >= 2 and <= " << kMaxHalfLength << ", got " << half_length);
+  COMIC_CHECK(
+      max_iterations >= 1 && max_iterations <= kMaxIterations, kInvalidArgument,
+      "comic: max_iterations must be >= 1 and <= " << kMaxIterations << ", got " << max_iterations);
   COMIC_CHECK(convergence_tolerance >= 0, kInvalidArgument,
               "comic: convergence_tolerance must be >= 0");
   COMIC_CHECK(stop_tolerance >= 0, kInvalidArgument, "comic: stop_tolerance must be >= 0");
@@ -49,8 +56,8 @@ std::vector<T> SuppressNeighbours(std::vector<T> items, double radius, Position 
                                   SameGroup same_group) {
   if (radius <= 0) return items;
   const double cell = radius;
-  std::unordered_map<int64_t, std::vector<int>> grid;
-  auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); };
+  std::unordered_map<uint64_t, std::vector<int>> grid;
+  auto key = [](int64_t cx, int64_t cy) { return GridCellKey(cx, cy); };
   std::vector<T> kept;
   kept.reserve(items.size());
   for (T& item : items) {
@@ -115,9 +122,9 @@ class StateGrid {
     int run;
   };
   int64_t Cell(float v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
-  static int64_t Key(int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); }
+  static uint64_t Key(int64_t cx, int64_t cy) { return GridCellKey(cx, cy); }
   double cell_;
-  std::unordered_map<int64_t, std::vector<State>> cells_;
+  std::unordered_map<uint64_t, std::vector<State>> cells_;
 };
 
 }  // namespace

@@ -15,6 +15,13 @@
 namespace comic::frontend {
 
 struct ComicDetectorOptions {
+  // Documented ranges, checked by Check() before any work (docs/robustness.md).
+  static constexpr double kMaxScale = 64.0;
+  static constexpr int kMaxBlockSize = 4096;
+  static constexpr int kMaxDelta = 127;
+  static constexpr int kMaxHalfLength = 500;
+  static constexpr int kMaxIterations = 1000;
+
   // Final detection scale s in pixels (paper §3: s = 8.4). Initialisation runs at 2s. The
   // along-curve Gaussians (ρ weights, κ window) have σ = s/√2 samples, ≈ k/2 at the defaults, so
   // that the segment of ±k points spans ±2σ.

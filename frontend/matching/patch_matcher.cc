@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "frontend/matching/level_line_sides.h"
+#include "frontend/grid_cell_key.h"
 #include "io/error.h"
 
 namespace comic::frontend {
@@ -197,10 +198,10 @@ class FeatureGrid {
 
  private:
   int64_t Cell(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
-  static int64_t Key(int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); }
+  static uint64_t Key(int64_t cx, int64_t cy) { return GridCellKey(cx, cy); }
 
   double cell_;
-  std::unordered_map<int64_t, std::vector<int>> cells_;
+  std::unordered_map<uint64_t, std::vector<int>> cells_;
 };
 
 }  // namespace

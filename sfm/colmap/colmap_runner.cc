@@ -1,6 +1,7 @@
 #include "sfm/colmap/colmap_runner.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -134,10 +135,19 @@ void RunColmap(const std::vector<std::string>& args, const std::string& log_path
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
                                    O_WRONLY | O_APPEND | O_CREAT, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  // The apps block SIGINT/SIGTERM in every thread (io/interrupt_cleanup.h); COLMAP must not inherit
+  // that mask, or Ctrl-C would leave it running.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t no_signals;
+  sigemptyset(&no_signals);
+  posix_spawnattr_setsigmask(&attributes, &no_signals);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
   pid_t pid = -1;
   const int spawn_error =
-      posix_spawnp(&pid, executable.c_str(), &actions, nullptr, argv.data(), envp.data());
+      posix_spawnp(&pid, executable.c_str(), &actions, &attributes, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
   COMIC_CHECK(
       spawn_error == 0, kExternal,
       command << ": cannot start " << executable << ": " << std::strerror(spawn_error)

@@ -95,4 +95,16 @@ std::vector<std::optional<Rigid3d>> RegisteredPosesByName(
   return poses;
 }
 
+void CheckGroundTruthCoverage(const FrameGroundTruth& truth,
+                              const std::vector<std::string>& frame_names, const std::string& path,
+                              bool allow_partial) {
+  if (allow_partial) return;
+  for (size_t i = 0; i < truth.cams_from_world.size() && i < frame_names.size(); ++i) {
+    COMIC_CHECK(truth.cams_from_world[i].has_value(), kInvalidData,
+                path << ": ground truth covers " << truth.num_matched << " of the "
+                     << frame_names.size() << " frames (none for " << frame_names[i]
+                     << "); --gt-partial evaluates on the frames it covers");
+  }
+}
+
 }  // namespace comic::sfm

@@ -50,4 +50,11 @@ FrameGroundTruth MatchGroundTruthToFrames(const io::GroundTruthCameras& truth,
 std::vector<std::optional<Rigid3d>> RegisteredPosesByName(
     const Reconstruction& reconstruction, const std::vector<std::string>& frame_names);
 
+// Ground truth that does not cover every frame of the run is an error unless `allow_partial`
+// (--gt-partial: evaluate on the frames it covers): throws comic::Error(kInvalidData) naming
+// `path`, how many frames it covers and the first frame it misses (issue 19).
+void CheckGroundTruthCoverage(const FrameGroundTruth& truth,
+                              const std::vector<std::string>& frame_names, const std::string& path,
+                              bool allow_partial);
+
 }  // namespace comic::sfm

@@ -208,6 +208,69 @@ TEST(ImageSequenceErrors, VideoThatCannotBeOpened) {
               "broken.mp4: cannot open as a video");
 }
 
+// An MJPEG video of `frames` frames cut after `keep` of its bytes (issue 19: a truncated video
+// was read up to the break and the lost frames went unmentioned).
+std::string WriteTruncatedVideo(const ScopedTempDir& dir, int frames, double keep) {
+  const std::string full = dir.File("full.avi");
+  {
+    cv::VideoWriter writer(full, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10, cv::Size(64, 48),
+                           true);
+    EXPECT_TRUE(writer.isOpened());
+    cv::Mat frame(48, 64, CV_8UC3);
+    for (int id = 0; id < frames; ++id) {
+      cv::randu(frame, cv::Scalar::all(0), cv::Scalar::all(255));  // incompressible: even sizes
+      writer.write(frame);
+    }
+  }
+  std::ifstream in(full, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = dir.File("cut.avi");
+  std::ofstream(cut, std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size() * keep));
+  return cut;
+}
+
+TEST(ImageSequenceErrors, TruncatedVideoNamesTheLastGoodFrame) {
+  ScopedTempDir dir;
+  const std::string cut = WriteTruncatedVideo(dir, 20, 0.5);
+  ExpectError([&] { ImageSequence::Open(cut); }, ErrorKind::kInvalidData,
+              "cut.avi: video stops decoding after frame ");
+  ExpectError([&] { ImageSequence::Open(cut); }, ErrorKind::kInvalidData, "--allow-truncated");
+}
+
+TEST(ImageSequence, AllowTruncatedUsesTheFramesBeforeTheBreakAndWarns) {
+  ScopedTempDir dir;
+  const std::string cut = WriteTruncatedVideo(dir, 20, 0.5);
+  ImageSequenceOptions options;
+  options.allow_truncated = true;
+  const auto sequence = ImageSequence::Open(cut, options);
+  EXPECT_GE(sequence.NumFrames(), 5u);
+  EXPECT_LT(sequence.NumFrames(), 20u);
+  EXPECT_NE(sequence.warning().find("using its first " + std::to_string(sequence.NumFrames())),
+            std::string::npos)
+      << sequence.warning();
+  const Frame last = sequence.ReadFrame(sequence.NumFrames() - 1);
+  EXPECT_EQ(last.gray.size(), cv::Size(64, 48));
+  // A whole video is no warning.
+  const auto whole = ImageSequence::Open(dir.File("full.avi"));
+  EXPECT_EQ(whole.NumFrames(), 20u);
+  EXPECT_TRUE(whole.warning().empty()) << whole.warning();
+}
+
+TEST(ImageSequenceErrors, FramesOverThePixelBudgetAreRefusedBeforeResizing) {
+  ScopedTempDir dir;
+  cv::imwrite(dir.File("f1.png"), NumberedFrame(1, {400, 300}));
+  ImageSequenceOptions options;
+  options.max_pixels = 100000;
+  ExpectError([&] { ImageSequence::Open(dir.path(), options); }, ErrorKind::kInvalidData,
+              "--max-pixels 120000");
+  options.resize_height = 150;  // 200x150 = 30000 pixels after resizing: inside the budget
+  EXPECT_EQ(ImageSequence::Open(dir.path(), options).FrameSize(), cv::Size(200, 150));
+  options.resize_height = 100000;
+  ExpectError([&] { ImageSequence::Open(dir.path(), options); }, ErrorKind::kInvalidArgument,
+              "resize_height must be at most");
+}
+
 TEST(ImageSequenceErrors, BadOptionsAndRanges) {
   ScopedTempDir dir;
   cv::imwrite(dir.File("f1.png"), NumberedFrame(1));

@@ -88,6 +88,14 @@ TEST(ComicDetector, NameAndOptionValidation) {
   };
   EXPECT_FALSE(rejects([](ComicDetectorOptions*) {}));
   EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->scale = 0; }));
+  // Upper bounds (issue 19: scale 1e9 overflowed int in the initial corners' filter supports).
+  EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->scale = 1e9; }));
+  EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->scale = 64.5; }));
+  EXPECT_FALSE(rejects([](ComicDetectorOptions* o) { o->scale = 64.0; }));
+  EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->block_size = 5000; }));
+  EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->delta = 1000; }));
+  EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->half_length = 100000; }));
+  EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->max_iterations = 1000000; }));
   EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->block_size = 4; }));
   EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->delta = 0; }));
   EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->half_length = 1; }));
@@ -98,6 +106,25 @@ TEST(ComicDetector, NameAndOptionValidation) {
   EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->min_stability = -0.5; }));
   EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->num_threads = -1; }));
   EXPECT_TRUE(rejects([](ComicDetectorOptions* o) { o->min_cornerness = 0.3; }));
+}
+
+// The largest accepted values run to the end without overflow (under the sanitizer build, a signed
+// overflow in the filter supports or block origins fails this test) and keep their contract.
+TEST(ComicDetector, LargestAcceptedOptionsRunOnASmallImage) {
+  ComicDetectorOptions options;
+  options.scale = ComicDetectorOptions::kMaxScale;
+  options.delta = ComicDetectorOptions::kMaxDelta;
+  options.half_length = ComicDetectorOptions::kMaxHalfLength;
+  const ComicDetector detector(options);
+  const cv::Mat image = test::RenderPolygons(test::FlatBackground({240, 200}, 50),
+                                             {test::MakeSquare({60.3, 50.6}, 80, 200)}, 1.0);
+  const FeatureSet features = detector.Detect(image);
+  for (const Feature& f : features) {
+    EXPECT_GE(f.x, 0);
+    EXPECT_LT(f.x, image.cols);
+    EXPECT_GE(f.y, 0);
+    EXPECT_LT(f.y, image.rows);
+  }
 }
 
 TEST(ComicDetector, RejectsImagesThatAreNotEightBitGrey) {

@@ -1,0 +1,19 @@
+#include "apps/common/input_budget_flags.h"
+
+namespace comic::apps {
+
+void AddMaxPixelsFlag(ArgParser& parser, int* max_pixels) {
+  parser.AddOption("max-pixels", "N",
+                   "refuse an image or frame with more pixels than N after resizing (about 200 "
+                   "bytes each; docs/robustness.md)",
+                   max_pixels);
+}
+
+void AddAllowTruncatedFlag(ArgParser& parser, bool* allow) {
+  parser.AddFlag("allow-truncated",
+                 "use a video whose frames stop decoding before its end up to the break, with a "
+                 "warning line (otherwise an error naming the last good frame)",
+                 allow);
+}
+
+}  // namespace comic::apps

@@ -1,0 +1,344 @@
+// The bad-input matrix (issue 19) as one data-driven test: every row is an app, its arguments, the
+// exit code it must give and words its one stderr line must hold. Each row runs against a fixture
+// folder made here (corrupt, truncated, empty and mismatched images, garbage and truncated
+// videos, short and garbage ground truth, files where folders are expected, an existing
+// database), and the fixture folder, where every row's outputs would go, must be unchanged
+// afterwards: the same files, sizes and checksums, no output folder, no hidden temp file.
+// New apps and options add rows to kCases.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tests/test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using comic::test::AppPath;
+using comic::test::CountLines;
+using comic::test::ExampleDir;
+using comic::test::ScopedTempDir;
+
+// {d} = the fixture folder, {e} = the bundled example's frames, {x} = the bundled example.
+struct Case {
+  const char* app;
+  const char* args;
+  int exit_code;
+  std::vector<const char*> words;
+};
+
+// clang-format off
+const std::vector<Case> kCases = {
+  // comic_detect
+  {"comic_detect", "{d}/missing.png", 1, {"missing.png", "no such file"}},
+  {"comic_detect", "{d}/empty.png", 1, {"empty.png", "cannot decode"}},
+  {"comic_detect", "{d}/garbage.png", 1, {"garbage.png", "cannot decode"}},
+  {"comic_detect", "{d}/truncated.png", 1, {"truncated.png", "truncated"}},
+  {"comic_detect", "{d}/truncated.jpg", 1, {"truncated.jpg", "truncated"}},
+  {"comic_detect", "{d}/frames", 1, {"frames", "is a folder"}},
+  {"comic_detect", "{d}/good.png --resize-height 100000", 2, {"--resize-height", "100000"}},
+  {"comic_detect", "{d}/good.png --scale 1e9", 2, {"scale", "1e+09"}},
+  {"comic_detect", "{d}/good.png --scale 0", 2, {"scale"}},
+  {"comic_detect", "{d}/good.png --scale nan", 2, {"scale", "nan"}},
+  {"comic_detect", "{d}/good.png --delta 1000", 2, {"delta", "1000"}},
+  {"comic_detect", "{d}/good.png --half-length 100000", 2, {"half_length", "100000"}},
+  {"comic_detect", "{d}/good.png --block-size 100000", 2, {"block_size"}},
+  {"comic_detect", "{d}/good.png --threads 100000", 2, {"--threads", "hardware"}},
+  {"comic_detect", "{d}/good.png --threads -1", 2, {"num_threads"}},
+  {"comic_detect", "{d}/good.png --max-pixels 1000", 1, {"good.png", "--max-pixels"}},
+  {"comic_detect", "{d}/good.png --max-pixels 0", 2, {"--max-pixels"}},
+  {"comic_detect", "{d}/good.png --min-cornerness 0.3", 2, {"min_cornerness"}},
+  {"comic_detect", "{d}/good.png --max-features -1", 2, {"--max-features"}},
+  {"comic_detect", "{d}/good.png --overlay {d}/o.png --json /proc/features.json", 1,
+   {"/proc/features.json"}},
+  {"comic_detect", "{d}/good.png --json {d}/notes.txt/f.json", 1, {"notes.txt", "is not a folder"}},
+  {"comic_detect", "{d}/good.png --overlay {d}/frames", 1, {"frames", "is a folder"}},
+  {"comic_detect", "{d}/good.png --bogus", 2, {"--bogus"}},
+  {"comic_detect", "{d}/good.png --scale abc", 2, {"--scale", "abc"}},
+  {"comic_detect", "", 2, {"IMAGE"}},
+  // comic_sfm
+  {"comic_sfm", "{d}/missing --output {d}/out", 1, {"missing", "no such file"}},
+  {"comic_sfm", "{d}/emptydir --output {d}/out", 2, {"emptydir", "no images"}},
+  {"comic_sfm", "{d}/notes.txt --output {d}/out", 1, {"notes.txt", "cannot open as a video"}},
+  {"comic_sfm", "{d}/garbage.mp4 --output {d}/out", 1, {"garbage.mp4", "cannot open as a video"}},
+  {"comic_sfm", "{d}/truncated.avi --output {d}/out", 1,
+   {"truncated.avi", "stops decoding after frame", "--allow-truncated"}},
+  {"comic_sfm", "{d}/mismatched --output {d}/out", 1, {"b.png", "differs"}},
+  {"comic_sfm", "{e} --gt {d}/poses_short.txt --output {d}/out", 1,
+   {"poses_short.txt", "covers 3 of the 12 frames", "--gt-partial"}},
+  {"comic_sfm", "{e} --gt {d}/garbage.txt --gt-format kitti --output {d}/out", 1, {"garbage.txt"}},
+  {"comic_sfm", "{e} --gt {d}/missing.txt --output {d}/out", 1, {"missing.txt"}},
+  {"comic_sfm", "{e} --gt {x}/poses.txt --gt-format bogus --output {d}/out", 2, {"bogus"}},
+  {"comic_sfm", "{e} --intrinsics {d}/garbage.txt --output {d}/out", 1, {"garbage.txt"}},
+  {"comic_sfm", "{e} --intrinsics {d}/missing.txt --output {d}/out", 1, {"missing.txt"}},
+  {"comic_sfm", "{e} --regions {d}/garbage.txt --output {d}/out", 1, {"garbage.txt"}},
+  {"comic_sfm", "{e} --regions {d}/boxes_short.txt --output {d}/out", 1, {"boxes_short.txt"}},
+  {"comic_sfm", "{e} --masks {d}/emptydir --output {d}/out", 2, {"emptydir", "holds no images"}},
+  {"comic_sfm", "{e} --regions {d}/boxes_short.txt --masks {d}/emptydir --output {d}/out", 2,
+   {"--regions", "--masks"}},
+  {"comic_sfm", "{e} --output {d}/notes.txt", 1, {"notes.txt", "is not a folder"}},
+  {"comic_sfm", "{e} --output {d}/notes.txt/sub", 1, {"notes.txt", "is not a folder"}},
+  {"comic_sfm", "{e} --output {d}/out --colmap-db {d}/existing.db", 1,
+   {"existing.db", "already exists"}},
+  {"comic_sfm", "{e} --output {d}/out --colmap-db {d}/notes.txt/a.db", 1,
+   {"notes.txt", "is not a folder"}},
+  // The database fails only after the reconstruction: no model may be left in --out.
+  {"comic_sfm", "{e} --output {d}/out --quiet --colmap-db /proc/tracks.db", 1, {"/proc/tracks.db"}},
+  {"comic_sfm", "{e} --output {d}/out --overwrite", 2, {"--overwrite", "--colmap-db"}},
+  {"comic_sfm", "{e} --output {d}/out --threads 100000", 2, {"--threads", "hardware"}},
+  {"comic_sfm", "{e} --output {d}/out --resize-height 100000", 2, {"resize_height", "100000"}},
+  {"comic_sfm", "{e} --output {d}/out --detector bogus", 2, {"bogus"}},
+  {"comic_sfm", "{e} --output {d}/out --stride 0", 2, {"stride"}},
+  {"comic_sfm", "{e} --output {d}/out --first 100", 2, {"selects none"}},
+  {"comic_sfm", "{e} --output {d}/out --max-pixels 1000", 1, {"000000.png", "--max-pixels"}},
+  {"comic_sfm", "{e} --output {d}/out --plot-plane bogus", 2, {"--plot-plane", "bogus"}},
+  {"comic_sfm", "{e} --output {d}/out --colmap-threads 100000", 2, {"--colmap-threads"}},
+  // comic_track_eval
+  {"comic_track_eval", "{d}/missing --output {d}/out", 1, {"missing", "no such file"}},
+  {"comic_track_eval", "{d}/truncated.avi --output {d}/out", 1, {"truncated.avi", "stops decoding"}},
+  {"comic_track_eval", "{e} --regions {d}/garbage.txt --output {d}/out", 1, {"garbage.txt"}},
+  {"comic_track_eval", "{e} --regions {d}/boxes_short.txt --output {d}/out", 1, {"boxes_short.txt"}},
+  {"comic_track_eval", "{e} --regions {d}/boxes_short.txt --masks {d}/emptydir --output {d}/out", 2,
+   {"--masks", "--regions"}},
+  {"comic_track_eval", "{e} --poses {x}/poses.txt --output {d}/out", 2, {"--poses", "--calib"}},
+  {"comic_track_eval", "{e} --poses {d}/poses_short.txt --calib {x}/calib.txt --output {d}/out", 1,
+   {"poses_short.txt", "3 poses"}},
+  {"comic_track_eval", "{e} --threads 100000 --output {d}/out", 2, {"--threads", "hardware"}},
+  {"comic_track_eval", "{e} --output {d}/notes.txt", 1, {"notes.txt", "is not a folder"}},
+  {"comic_track_eval", "{e} --n 0 --output {d}/out", 2, {"--n"}},
+  {"comic_track_eval", "{e} --n 100 --output {d}/out", 2, {"--n 100", "frames"}},
+  {"comic_track_eval", "{e} --detectors bogus --output {d}/out", 2, {"bogus"}},
+  {"comic_track_eval", "{e} --resize-height 100000 --output {d}/out", 2, {"resize_height"}},
+  // comic_stereo_eval
+  {"comic_stereo_eval", "{d}/missing.png {d}/good.png --disparity {d}/good.png --disparity-scale 4 "
+   "--output {d}/out", 1, {"missing.png"}},
+  {"comic_stereo_eval", "{d}/good.png {d}/good.png --output {d}/out", 2, {"--disparity"}},
+  {"comic_stereo_eval", "{d}/garbage.png {d}/good.png --disparity {d}/good.png --disparity-scale 4 "
+   "--output {d}/out", 1, {"garbage.png", "cannot decode"}},
+  {"comic_stereo_eval", "{d}/good.png {d}/good.png --disparity {d}/good.png --disparity-scale 4 "
+   "--threads 100000 --output {d}/out", 2, {"--threads", "hardware"}},
+  {"comic_stereo_eval", "{d}/good.png {d}/good.png --disparity {d}/good.png --disparity-scale 4 "
+   "--resize-height 100000 --output {d}/out", 2, {"--resize-height", "100000"}},
+  {"comic_stereo_eval", "--middlebury {d}/emptydir --output {d}/out", 1, {"emptydir"}},
+  {"comic_stereo_eval", "--middlebury {d}/missing --output {d}/out", 1, {"missing"}},
+  // comic_export_colmap
+  {"comic_export_colmap", "{e}", 2, {"--colmap-db"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/existing.db", 1, {"existing.db", "already exists"}},
+  {"comic_export_colmap", "{d}/missing --colmap-db {d}/a.db", 1, {"missing", "no such file"}},
+  {"comic_export_colmap", "{d}/good.png --colmap-db {d}/a.db", 2, {"good.png", "not a folder"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/a.db --threads 100000", 2, {"--threads", "hardware"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/a.db --intrinsics {d}/garbage.txt", 1,
+   {"garbage.txt"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/notes.txt/a.db", 1, {"notes.txt", "is not a folder"}},
+  {"comic_export_colmap", "{d}/emptydir --colmap-db {d}/a.db", 2, {"emptydir", "no images"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/a.db --max-pixels 1000", 1, {"--max-pixels"}},
+  // comic_inspect
+  {"comic_inspect", "{d}/missing", 1, {"missing", "no such file"}},
+  {"comic_inspect", "{d}/garbage.mp4", 1, {"garbage.mp4", "cannot open as a video"}},
+  {"comic_inspect", "{d}/truncated.avi", 1, {"truncated.avi", "stops decoding", "frame"}},
+  {"comic_inspect", "{d}/emptydir", 2, {"emptydir", "no images"}},
+  {"comic_inspect", "{e} --contact-sheet {d}/notes.txt/s.png", 1, {"notes.txt", "not a folder"}},
+  {"comic_inspect", "{e} --sheet-frames 0", 2, {"--sheet-frames"}},
+  {"comic_inspect", "{e} --stride 0", 2, {"stride"}},
+  {"comic_inspect", "{e} --resize-height 100000", 2, {"resize_height"}},
+  {"comic_inspect", "{d}/truncated.png", 1, {"truncated.png", "truncated"}},
+  // comic_bench
+  {"comic_bench", "{d}/missing.png", 1, {"missing.png", "no such file"}},
+  {"comic_bench", "{d}/garbage.png", 1, {"garbage.png", "cannot decode"}},
+  {"comic_bench", "{d}/good.png --threads 100000", 2, {"--threads", "hardware"}},
+  {"comic_bench", "{d}/good.png --runs 0", 2, {"--runs"}},
+  {"comic_bench", "{d}/good.png --json {d}/notes.txt/b.json", 1, {"notes.txt", "not a folder"}},
+};
+// clang-format on
+
+std::string Substitute(std::string text, const std::string& dir) {
+  const std::vector<std::pair<std::string, std::string>> keys = {
+      {"{d}", dir}, {"{e}", ExampleDir() + "/image_l"}, {"{x}", ExampleDir()}};
+  for (const auto& [key, value] : keys) {
+    for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at)) {
+      text.replace(at, key.size(), value);
+      at += value.size();
+    }
+  }
+  return text;
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::string RandomBytes(size_t n, uint32_t seed) {
+  std::mt19937 random(seed);
+  std::string bytes(n, '\0');
+  for (char& c : bytes) c = static_cast<char>(random() & 0xff);
+  return bytes;
+}
+
+// A textured frame, so that the detectors find something on it.
+cv::Mat TexturedFrame(int width, int height, int shift) {
+  cv::Mat image(height, width, CV_8UC3, cv::Scalar(60, 60, 60));
+  for (int k = 0; k < 12; ++k) {
+    const cv::Point corner(20 + (k * 37) % (width - 60) + shift, 15 + (k * 53) % (height - 50));
+    cv::rectangle(image, corner, corner + cv::Point(25, 20), cv::Scalar::all(120 + 10 * k), -1);
+  }
+  return image;
+}
+
+// The fixture: every bad input the rows refer to, in one folder.
+void MakeFixture(const std::string& dir) {
+  const std::string good = ExampleDir() + "/image_l/000000.png";
+  fs::copy_file(good, dir + "/good.png");
+  fs::create_directories(dir + "/frames");
+  fs::copy_file(good, dir + "/frames/000000.png");
+  fs::create_directories(dir + "/emptydir");
+  WriteBytes(dir + "/empty.png", "");
+  WriteBytes(dir + "/garbage.png", RandomBytes(3000, 1));
+  WriteBytes(dir + "/garbage.mp4", RandomBytes(5000, 2));
+  // Binary garbage with line breaks and escape sequences: must never reach the terminal raw.
+  WriteBytes(dir + "/garbage.txt", "\x1b[31m\x01\x02 1 2 3\n" + RandomBytes(500, 3));
+  WriteBytes(dir + "/notes.txt", "not a folder\n");
+  WriteBytes(dir + "/existing.db", "an existing database\n");
+  const std::string png = ReadBytes(good);
+  WriteBytes(dir + "/truncated.png", png.substr(0, png.size() / 2));
+  std::vector<uchar> jpeg;
+  cv::imencode(".jpg", cv::imread(good), jpeg);
+  WriteBytes(dir + "/truncated.jpg",
+             std::string(reinterpret_cast<const char*>(jpeg.data()), jpeg.size() / 2));
+  fs::create_directories(dir + "/mismatched");
+  cv::imwrite(dir + "/mismatched/a.png", TexturedFrame(320, 240, 0));
+  cv::imwrite(dir + "/mismatched/b.png", TexturedFrame(300, 240, 0));
+  // Ground truth for 3 of the example's 12 frames, and 2 boxes.
+  const std::string poses = ReadBytes(ExampleDir() + "/poses.txt");
+  size_t third_line = 0;
+  for (int k = 0; k < 3; ++k) third_line = poses.find('\n', third_line) + 1;
+  WriteBytes(dir + "/poses_short.txt", poses.substr(0, third_line));
+  WriteBytes(dir + "/boxes_short.txt", "10,10,50,40\n12,10,50,40\n");
+  // An MJPEG video of 20 frames, cut after 60 % of its bytes.
+  const std::string video = dir + "/video_full.avi";
+  {
+    cv::VideoWriter writer(video, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10,
+                           cv::Size(320, 240));
+    ASSERT_TRUE(writer.isOpened());
+    for (int k = 0; k < 20; ++k) writer.write(TexturedFrame(320, 240, k));
+  }
+  const std::string bytes = ReadBytes(video);
+  WriteBytes(dir + "/truncated.avi", bytes.substr(0, bytes.size() * 6 / 10));
+  fs::remove(video);
+}
+
+// Every entry below `dir` (hidden ones too): size and FNV-1a checksum of files, -1 for folders.
+std::map<std::string, std::pair<int64_t, uint64_t>> Snapshot(const std::string& dir) {
+  std::map<std::string, std::pair<int64_t, uint64_t>> entries;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    const std::string name = fs::relative(entry.path(), dir).string();
+    if (entry.is_directory()) {
+      entries[name] = {-1, 0};
+      continue;
+    }
+    uint64_t hash = 1469598103934665603ull;
+    for (const char c : ReadBytes(entry.path().string())) {
+      hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    }
+    entries[name] = {static_cast<int64_t>(entry.file_size()), hash};
+  }
+  return entries;
+}
+
+bool IsPrintableText(const std::string& text) {
+  for (const char c : text) {
+    const unsigned char byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && byte != '\n') || byte >= 0x7f) return false;
+  }
+  return true;
+}
+
+class BadInputMatrix : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    fixture_ = new ScopedTempDir();
+    captures_ = new ScopedTempDir();
+    MakeFixture(fixture_->path());
+  }
+  static void TearDownTestSuite() {
+    delete fixture_;
+    delete captures_;
+  }
+  static ScopedTempDir* fixture_;
+  static ScopedTempDir* captures_;
+};
+ScopedTempDir* BadInputMatrix::fixture_ = nullptr;
+ScopedTempDir* BadInputMatrix::captures_ = nullptr;
+
+TEST_F(BadInputMatrix, EveryRowFailsWithOneLineOfOursAndLeavesTheFilesAsTheyWere) {
+  ASSERT_GE(kCases.size(), 60u);
+  std::set<std::string> apps;
+  const std::string dir = fixture_->path();
+  const std::string out_file = captures_->File("stdout");
+  const std::string err_file = captures_->File("stderr");
+  for (const Case& row : kCases) {
+    apps.insert(row.app);
+    const std::string args = Substitute(row.args, dir);
+    SCOPED_TRACE(std::string(row.app) + " " + args);
+    const auto before = Snapshot(dir);
+    const int status = std::system(
+        (AppPath(row.app) + " " + args + " >" + out_file + " 2>" + err_file + " </dev/null")
+            .c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal";
+    EXPECT_EQ(WEXITSTATUS(status), row.exit_code);
+    const std::string err = ReadBytes(err_file);
+    EXPECT_EQ(CountLines(err), 1) << err;
+    EXPECT_TRUE(IsPrintableText(err)) << err;
+    EXPECT_EQ(err.rfind(std::string(row.app) + ": error: ", 0), 0u) << err;
+    for (const char* word : row.words) {
+      EXPECT_NE(err.find(Substitute(word, dir)), std::string::npos)
+          << "'" << word << "' missing in: " << err;
+    }
+    EXPECT_EQ(err.find(".tmp"), std::string::npos) << "names a temp file: " << err;
+    EXPECT_EQ(err.find(".staging"), std::string::npos) << "names a temp folder: " << err;
+    EXPECT_EQ(Snapshot(dir), before) << "the fixture folder changed";
+  }
+  // Every app has rows.
+  EXPECT_EQ(apps.size(), 7u);
+}
+
+// --allow-truncated turns the truncated video into a warning line and the frames used.
+TEST_F(BadInputMatrix, AllowTruncatedWarnsAndUsesTheFramesBeforeTheBreak) {
+  const std::string dir = fixture_->path();
+  const std::string err_file = captures_->File("stderr_truncated");
+  const std::string out_file = captures_->File("stdout_truncated");
+  const int status =
+      std::system((AppPath("comic_inspect") + " " + dir + "/truncated.avi --allow-truncated >" +
+                   out_file + " 2>" + err_file)
+                      .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const std::string err = ReadBytes(err_file);
+  EXPECT_EQ(CountLines(err), 1) << err;
+  EXPECT_NE(err.find("comic_inspect: warning: "), std::string::npos) << err;
+  EXPECT_NE(err.find("using its first"), std::string::npos) << err;
+  const std::string out = ReadBytes(out_file);
+  const size_t at = out.find("frames:");
+  ASSERT_NE(at, std::string::npos) << out;
+  const int frames = std::stoi(out.substr(at + 7));
+  EXPECT_GE(frames, 1);
+  EXPECT_LT(frames, 20);
+  EXPECT_NE(err.find("first " + std::to_string(frames) + " frames"), std::string::npos) << err;
+}
+
+}  // namespace
