@@ -1,6 +1,7 @@
-// comic_export_colmap: tracks features through a folder of frames and writes a COLMAP 3.8
-// database (cameras, images, keypoints, raw and verified matches) for `colmap mapper`, then
-// prints the exact mapper command the sequence needs.
+// comic_export_colmap: tracks features through a folder of frames or a video and writes a COLMAP
+// 3.8 database (cameras, images, keypoints, raw and verified matches) for `colmap mapper`, then
+// prints the exact mapper command the sequence needs. A video's frames are written as PNGs
+// (--write-frames), since COLMAP reads image files.
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -10,6 +11,7 @@
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
+#include "apps/common/progress_line.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
@@ -17,15 +19,20 @@
 #include "frontend/matching/tracker.h"
 #include "io/error.h"
 #include "io/file_utils.h"
+#include "io/frame_export.h"
 #include "io/image_sequence.h"
 #include "io/interrupt_cleanup.h"
 #include "io/pixel_budget.h"
+#include "io/staged_folder.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+
+// --write-frames without a folder: images/ beside the database.
+const char kFramesBesideDatabase[] = "<DB's folder>/images";
 
 // COLMAP's image names are paths relative to its --image_path: the path from `image_path` to the
 // frames' folder (empty when they are the same), which must lie inside it.
@@ -46,6 +53,8 @@ int Run(int argc, char** argv) {
   std::string image_path;
   std::string sparse_path;
   int threads = 0;
+  bool quiet = false;
+  std::string write_frames;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
   comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
@@ -53,14 +62,19 @@ int Run(int argc, char** argv) {
 
   comic::apps::ArgParser parser(
       "comic_export_colmap", "FRAMES --colmap-db DB [options]",
-      "Detects and tracks features through FRAMES (a folder of images) and writes them as a\n"
-      "COLMAP 3.8 database: one camera, one image per frame with its features as keypoints, and\n"
-      "for every pair of frames at most --window apart that share tracks the raw matches and the\n"
-      "matches verified by two-view geometry (essential matrix with --intrinsics, fundamental\n"
+      "Detects and tracks features through FRAMES (a folder of images or a video) and writes\n"
+      "them as a COLMAP 3.8 database: one camera, one image per frame with its features as\n"
+      "keypoints, and for every pair of frames at most --window apart that share tracks the raw\n"
+      "matches and the matches verified by two-view geometry (essential matrix with --intrinsics, "
+      "fundamental\n"
       "matrix without). Then prints the `colmap mapper` command to run on it, with the options\n"
       "the sequence needs. The database is written completely or not at all. With the same\n"
-      "options `comic_sfm FRAMES --colmap-db DB` writes the same database.");
-  parser.AddPositional("FRAMES", "folder of images (COLMAP needs the image files)", &frames);
+      "options `comic_sfm FRAMES --colmap-db DB` writes the same database. A video's frames are\n"
+      "written as PNGs (--write-frames) and are COLMAP's --image_path.");
+  parser.AddPositional("FRAMES",
+                       "folder of images, or video file (its frames are written as images, see "
+                       "--write-frames)",
+                       &frames);
   comic::apps::AddColmapDbFlags(parser, &colmap);
   parser.AddDeprecatedAlias("output", "colmap-db");
   comic::apps::AddIntrinsicsFlag(parser, &intrinsics_path);
@@ -77,6 +91,13 @@ int Run(int argc, char** argv) {
                    "output folder in the printed mapper command (default: DB's folder/sparse)",
                    &sparse_path);
   comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
+  comic::apps::AddResizeHeightFlag(parser, &sequence_options.resize_height);
+  parser.AddOptionalValueOption(
+      "write-frames", "DIR",
+      "video input: write each frame once as DIR/frame_000000.png ..., the names the database "
+      "uses, and use DIR as COLMAP's --image_path (default, and alone: images/ beside DB)",
+      kFramesBesideDatabase, &write_frames);
+  comic::apps::AddQuietFlag(parser, &quiet);
   parser.AddEpilog(
       "Without --intrinsics the camera is COLMAP's SIMPLE_RADIAL guess.\n"
       "Example (the bundled KITTI clip):\n"
@@ -109,16 +130,35 @@ int Run(int argc, char** argv) {
       comic::apps::ToTrackerOptions(tracker_flags);
   comic::io::CheckWritableFile(output, colmap.overwrite);
   COMIC_CHECK(comic::io::PathExists(frames), kNotFound, frames << ": no such file or folder");
-  COMIC_CHECK(comic::io::IsDirectory(frames), kInvalidArgument,
-              frames << ": not a folder (COLMAP needs the frames as image files in a folder)");
-  if (image_path.empty()) image_path = frames;
-  COMIC_CHECK(comic::io::IsDirectory(image_path), kNotFound,
+  const bool video = !comic::io::IsDirectory(frames);
+  COMIC_CHECK(video || write_frames.empty(), kInvalidArgument,
+              "--write-frames: " << frames
+                                 << " is a folder of images already (COLMAP reads them there); "
+                                    "--write-frames is for a video");
+  // A folder's images are COLMAP's as stored; a video's frames are written as the tracker saw
+  // them (resized too).
+  COMIC_CHECK(video || sequence_options.resize_height == 0, kInvalidArgument,
+              "--resize-height needs a video FRAMES (COLMAP reads a folder's image files at "
+              "their stored size)");
+  // Where COLMAP will find the frames: FRAMES itself, or the folder a video's frames go to.
+  std::string frames_folder = frames;
+  if (video) {
+    frames_folder = write_frames.empty() || write_frames == kFramesBesideDatabase
+                        ? comic::io::JoinPaths(comic::io::ParentPath(output), "images")
+                        : write_frames;
+    comic::io::CheckCreatableFolder(frames_folder);
+  }
+  if (image_path.empty()) image_path = frames_folder;
+  COMIC_CHECK(comic::io::IsDirectory(image_path) || image_path == frames_folder, kNotFound,
               image_path << ": --image-path is not a folder");
-  export_options.image_name_prefix = ImageNamePrefix(frames, image_path);
+  export_options.image_name_prefix = ImageNamePrefix(frames_folder, image_path);
   if (sparse_path.empty())
     sparse_path = comic::io::JoinPaths(comic::io::ParentPath(output), "sparse");
 
   const auto sequence = comic::io::ImageSequence::Open(frames, sequence_options);
+  COMIC_CHECK(sequence.IsVideo() == video, kInvalidArgument,
+              frames << ": a single image, not a folder of images or a video (COLMAP export "
+                        "needs at least two frames)");
   COMIC_CHECK(sequence.NumFrames() >= 2, kInvalidArgument,
               frames << ": COLMAP export needs at least two frames, got " << sequence.NumFrames());
   std::optional<comic::sfm::Camera> camera;
@@ -128,18 +168,29 @@ int Run(int argc, char** argv) {
   }
 
   const auto detector = comic::frontend::MakeDetector(detector_options);
-  const comic::frontend::TrackingResult tracking =
-      comic::frontend::TrackSequence(sequence, *detector, tracker_options);
+  // Staged: the frames appear with the database or not at all.
+  std::unique_ptr<comic::io::StagedFolder> frames_out;
+  if (video) frames_out = std::make_unique<comic::io::StagedFolder>(frames_folder);
+  comic::apps::ProgressLine tracking_progress(
+      "comic_export_colmap: [" + detector_name + "] detection and tracking", quiet);
+  const comic::frontend::TrackingResult tracking = comic::frontend::TrackSequence(
+      sequence, *detector, tracker_options, tracking_progress.Callback());
   const comic::frontend::FeatureTracks& tracks = tracking.tracks;
+  if (frames_out) {
+    comic::apps::ProgressLine progress("comic_export_colmap: writing frames", quiet);
+    comic::io::WriteSequenceFrames(sequence, frames_out->path(), progress.Callback());
+  }
   const comic::sfm::ColmapExportSummary summary = comic::sfm::ExportTracksToColmapDatabase(
       tracks, camera, export_options, output, colmap.overwrite);
+  if (frames_out) frames_out->Commit();
 
   comic::sfm::ColmapMapperOptions mapper_options =
       comic::sfm::RecommendedColmapMapperOptions(summary);
   mapper_options.num_threads = colmap.colmap_threads;
   size_t observations = 0;
   for (const auto& track : tracks.tracks) observations += track.Length();
-  std::cout << "frames:     " << sequence.NumFrames() << " (" << frames << ")\n"
+  std::cout << "frames:     " << sequence.NumFrames() << " (" << frames
+            << (video ? ", written as PNG to " + frames_folder : std::string()) << ")\n"
             << "tracks:     " << tracks.tracks.size() << " (" << detector_name << ", "
             << observations << " observations)\n"
             << "camera:     "

@@ -21,6 +21,7 @@
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
+#include "apps/common/progress_line.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
@@ -31,6 +32,7 @@
 #include "io/colmap_text_model.h"
 #include "io/error.h"
 #include "io/file_utils.h"
+#include "io/frame_export.h"
 #include "io/ground_truth_cameras.h"
 #include "io/image_sequence.h"
 #include "io/interrupt_cleanup.h"
@@ -50,6 +52,7 @@
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/evaluation/sfm_report.h"
 #include "sfm/evaluation/trajectory_plot.h"
+#include "sfm/reconstruction_diagnosis.h"
 #include "sfm/sequence_reconstruction.h"
 #include "sfm/trajectory_evaluation.h"
 
@@ -89,7 +92,13 @@ struct Flags {
   bool quiet = false;
   comic::apps::ColmapDbFlags colmap;
   bool compare_colmap = false;
+  // --write-frames: where a video's frames are written as PNGs (empty: not written, unless
+  // --colmap-db needs them; kFramesInOutput: images/ in --output).
+  std::string write_frames;
 };
+
+// --write-frames without a folder: images/ in --output, beside the model (COLMAP's layout).
+const char kFramesInOutput[] = "<--output>/images";
 
 // What every run shares, resolved and validated before any heavy work.
 struct Inputs {
@@ -293,9 +302,14 @@ cv::Mat RenderPlot(const Inputs& inputs, const sfm::Reconstruction& reconstructi
   return sfm::RenderTrajectoryPlot(estimated_centers, true_centers, plane, options);
 }
 
+bool IntrinsicsKnown(const Flags& flags, const Inputs& inputs);
+sfm::ColmapExportOptions ExportOptions(const Flags& flags);
+
 struct DetectorRun {
   sfm::SequenceReconstruction run;
   sfm::SfmRunReport report;
+  sfm::ReconstructionDiagnosis diagnosis;  // failed = false for a model
+  bool wrote_tracks = false;               // no model: tracks.db holds the tracks
 };
 
 // Reconstructs with one detector and writes its outputs into `out_dir`.
@@ -308,9 +322,12 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_options);
   const sfm::SequenceReconstructionOptions options = MakeOptions(flags);
   const std::string tag = "[" + detector_name + "] ";
+  // Detection and tracking are most of a run's time (issue 17: 39.5 s of 48 s silent on KITTI).
+  comic::apps::ProgressLine tracking_progress(tag + "detection and tracking", flags.quiet);
   DetectorRun result;
   result.run = sfm::ReconstructSequence(
-      *inputs.sequence, *detector, inputs.camera, options, {}, [&](const sfm::MapperProgress& p) {
+      *inputs.sequence, *detector, inputs.camera, options, tracking_progress.Callback(),
+      [&](const sfm::MapperProgress& p) {
         if (flags.quiet) return;
         std::cout << tag << (p.attempt > 0 ? "model " + std::to_string(p.attempt + 1) + ": " : "")
                   << "registered " << p.frame_name << (p.initial_pair ? " (initial pair)" : "")
@@ -338,6 +355,20 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   nlohmann::json json = sfm::RunReportToJson(result.report);
   json["options"] = OptionsToJson(flags, inputs);
   const frontend::TrackBuildSummary& building = result.run.track_building;
+  result.diagnosis = sfm::DiagnoseReconstruction(result.run.mapping, options.mapper,
+                                                 inputs.sequence->FrameNames());
+  if (result.diagnosis.failed) {
+    const sfm::ReconstructionDiagnosis& d = result.diagnosis;
+    json["diagnosis"] = {{"stage", d.stage},
+                         {"check", d.check},
+                         {"value", d.value},
+                         {"needed", d.needed},
+                         {"frame1", d.frame1},
+                         {"frame2", d.frame2},
+                         {"rotation_only", d.rotation_only},
+                         {"message", d.message},
+                         {"suggestion", d.suggestion}};
+  }
   json["track_building"] = {{"matches", building.num_matches},
                             {"tracks", result.run.tracks.tracks.size()},
                             {"conflicting_components_dropped", building.num_conflicting_components},
@@ -368,6 +399,15 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
                    "comic_sfm --detector " + detector_name + "  " + flags.frames));
     outputs.insert(outputs.end(), {"points.ply", "trajectory.png"});
     json["outputs"] = outputs;
+  } else if (inputs.sequence->NumFrames() >= 2 && !result.run.tracks.tracks.empty()) {
+    // No model, but never a silent nothing (issue 17): the tracks found, as a COLMAP database
+    // (`colmap mapper` or the GUI can be tried on them; docs/footage.md).
+    sfm::ExportTracksToColmapDatabase(
+        result.run.tracks,
+        IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
+        ExportOptions(flags), io::JoinPaths(out_dir, "tracks.db"), /*overwrite=*/true);
+    json["outputs"] = {"tracks.db"};
+    result.wrote_tracks = true;
   }
   io::WriteFileAtomically(io::JoinPaths(out_dir, "report.json"), json.dump(2) + "\n");
   return result;
@@ -407,12 +447,15 @@ void CheckColmapFlags(const Flags& flags) {
   if (flags.colmap.database.empty() && !flags.compare_colmap) return;
   COMIC_CHECK(!flags.compare, kInvalidArgument,
               "--colmap-db and --compare-colmap work on one detector's run, not with --compare");
-  COMIC_CHECK(flags.sequence.resize_height == 0, kInvalidArgument,
+  // A folder's frames are COLMAP's images as stored; a video's are written by --write-frames as
+  // the model sees them (resized too), so only a folder needs --resize-height 0.
+  const bool video = io::PathExists(flags.frames) && !io::IsDirectory(flags.frames);
+  COMIC_CHECK(video || flags.sequence.resize_height == 0, kInvalidArgument,
               "--colmap-db and --compare-colmap need --resize-height 0 (COLMAP reads the image "
               "files at their stored size)");
-  COMIC_CHECK(io::IsDirectory(flags.frames), kInvalidArgument,
-              "--colmap-db and --compare-colmap need FRAMES to be a folder of images (COLMAP reads "
-              "the image files)");
+  COMIC_CHECK(!flags.compare_colmap || io::IsDirectory(flags.frames), kInvalidArgument,
+              "--compare-colmap needs FRAMES to be a folder of images (for a video use "
+              "--colmap-db, which writes the frames, and run COLMAP on it)");
   if (!flags.colmap.database.empty()) {
     io::CheckWritableFile(flags.colmap.database, flags.colmap.overwrite);
   }
@@ -439,8 +482,9 @@ sfm::ColmapExportOptions ExportOptions(const Flags& flags) {
 }
 
 // --colmap-db: the tracks of this run as a COLMAP database, and the command to run on it.
+// `image_path` holds the frames as files: FRAMES, or for a video where --write-frames puts them.
 void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
-                         const sfm::SequenceReconstruction& run) {
+                         const sfm::SequenceReconstruction& run, const std::string& image_path) {
   const std::string& database = flags.colmap.database;
   const sfm::ColmapExportSummary summary = sfm::ExportTracksToColmapDatabase(
       run.tracks,
@@ -451,9 +495,8 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
   std::cout << "wrote " << database << " (" << summary.num_images << " images, "
             << summary.num_verified_pairs << " of " << summary.num_matched_pairs
             << " pairs verified); run COLMAP on it with:\n  "
-            << sfm::ColmapMapperCommandLine(database, flags.frames,
-                                            io::JoinPaths(io::ParentPath(database), "sparse"),
-                                            mapper)
+            << sfm::ColmapMapperCommandLine(
+                   database, image_path, io::JoinPaths(io::ParentPath(database), "sparse"), mapper)
             << std::endl;
 }
 
@@ -565,6 +608,11 @@ int Run(int argc, char** argv) {
                    &flags.plot_plane);
   comic::apps::AddQuietFlag(parser, &flags.quiet);
   comic::apps::AddColmapDbFlags(parser, &flags.colmap);
+  parser.AddOptionalValueOption(
+      "write-frames", "DIR",
+      "video input: write each frame once as DIR/frame_000000.png ..., the names the model and "
+      "--colmap-db use, so that COLMAP's image tools find them (alone: images/ in --output)",
+      kFramesInOutput, &flags.write_frames);
   parser.AddFlag("compare-colmap",
                  "also run COLMAP's mapper on the same tracks and write the side-by-side table "
                  "--output/colmap_compare.md (.csv, .json); COLMAP's files go to --output/colmap/",
@@ -574,9 +622,11 @@ int Run(int argc, char** argv) {
       "its poses.txt):\n"
       "  comic_sfm examples/data/kitti06_000-011/image_l \\\n"
       "      --gt examples/data/kitti06_000-011/poses.txt --output out/example --compare\n"
-      "--regions/--masks add boundary and interior point statistics. --colmap-db needs FRAMES\n"
-      "to be a folder and --resize-height 0, and writes what comic_export_colmap writes with\n"
-      "the same options. --threads: detection and the export; the bundle adjustments run on\n"
+      "--regions/--masks add boundary and interior point statistics. --colmap-db writes what\n"
+      "comic_export_colmap writes with the same options; for a folder of images it needs\n"
+      "--resize-height 0, a video's frames it writes as --write-frames does (the folder given,\n"
+      "or images/ in --output), and COLMAP's --image_path is that folder. --threads: detection and "
+      "the export; the bundle adjustments run on\n"
       "one thread (Ceres' multi-threaded sums are not bit-for-bit repeatable).\n"
       "Exit codes: 0 success, 2 usage error, 1 anything else (including a sequence that cannot\n"
       "be reconstructed without --compare).");
@@ -616,8 +666,43 @@ int Run(int argc, char** argv) {
   if (!inputs.sequence->warning().empty()) {
     std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
   }
+  const bool video = inputs.sequence->IsVideo();
+  COMIC_CHECK(flags.write_frames.empty() || video, kInvalidArgument,
+              "--write-frames: " << flags.frames
+                                 << " is a folder of images already (COLMAP reads them there); "
+                                    "--write-frames is for a video");
+  // A video's frames as files: asked for, or needed by COLMAP for the database.
+  std::string frames_folder = flags.write_frames;
+  if (frames_folder.empty() && video && !flags.colmap.database.empty()) {
+    frames_folder = kFramesInOutput;
+  }
   io::StagedFolder out(flags.out);
-  if (!flags.quiet) {
+  std::unique_ptr<io::StagedFolder> frames_out;  // a --write-frames folder outside --output
+  std::string frames_staging;                    // where the frames are written
+  std::string frames_target;                     // where they will be after the commit
+  if (frames_folder == kFramesInOutput) {
+    frames_staging = io::JoinPaths(out.path(), "images");
+    frames_target = io::JoinPaths(flags.out, "images");
+  } else if (!frames_folder.empty()) {
+    frames_out = std::make_unique<io::StagedFolder>(frames_folder);
+    frames_staging = frames_out->path();
+    frames_target = frames_folder;
+  }
+  auto write_frames = [&] {
+    if (frames_staging.empty()) return;
+    comic::apps::ProgressLine progress("comic_sfm: writing frames", flags.quiet);
+    io::WriteSequenceFrames(*inputs.sequence, frames_staging, progress.Callback());
+    if (!flags.quiet) {
+      std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames as PNG in "
+                << frames_target << " (COLMAP's --image_path)" << std::endl;
+    }
+  };
+  auto commit = [&] {
+    out.Commit();
+    if (frames_out) frames_out->Commit();
+  };
+  // The line saying where the intrinsics came from is printed even with --quiet (issue 17).
+  {
     std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames "
               << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
               << ", fx=" << inputs.camera.fx << " fy=" << inputs.camera.fy
@@ -634,13 +719,22 @@ int Run(int argc, char** argv) {
     const DetectorRun result = RunDetector(flags.detector, flags, inputs, out.path());
     PrintSummary(result.report);
     const bool success = result.run.mapping.status == sfm::ReconstructionStatus::kSuccess;
-    if (success && !flags.colmap.database.empty()) WriteColmapDatabase(flags, inputs, result.run);
+    write_frames();
+    if (success && !flags.colmap.database.empty()) {
+      WriteColmapDatabase(flags, inputs, result.run, video ? frames_target : flags.frames);
+    }
     if (success && flags.compare_colmap) CompareWithColmap(flags, inputs, result.run, out);
     // A failed reconstruction commits its report.json (the documented exception): it says why.
-    out.Commit();
+    commit();
+    // The error line says which check failed, by how much, and what to try (issue 17).
+    const bool wrote_tracks = result.wrote_tracks;
     COMIC_CHECK(success, kInvalidData,
-                sfm::ReconstructionStatusMessage(result.run.mapping.status)
-                    << " (report: " << io::JoinPaths(flags.out, "report.json") << ")");
+                result.diagnosis.message
+                    << "; try " << result.diagnosis.suggestion
+                    << " (report: " << io::JoinPaths(flags.out, "report.json")
+                    << (wrote_tracks ? ", tracks: " + io::JoinPaths(flags.out, "tracks.db")
+                                     : std::string())
+                    << ")");
     return 0;
   }
 
@@ -658,7 +752,8 @@ int Run(int argc, char** argv) {
     json["runs"].push_back(sfm::RunReportToJson(report));
   json["options"] = OptionsToJson(flags, inputs);
   io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.json"), json.dump(2) + "\n");
-  out.Commit();
+  write_frames();
+  commit();
   std::cout << table.ToMarkdown();
   return 0;
 }

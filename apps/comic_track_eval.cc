@@ -4,8 +4,6 @@
 // M_score(n) for boundary / non-boundary / overall features — and writes the tables (Markdown,
 // CSV, JSON), bar charts and track overlays. With KITTI poses it also reports the epipolar
 // precision of the matches and the scores at equal precision.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +16,7 @@
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
 #include "apps/common/list_flags.h"
+#include "apps/common/progress_line.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "frontend/evaluation/epipolar_check.h"
@@ -130,6 +129,7 @@ int Run(int argc, char** argv) {
   std::string poses_file, calib_file, out_dir = "track_eval";
   std::string sweep_list = "100,200,400,800,1600,inf";
   int n = 5, frame_step = 5, num_features = 0, overlay_frames = 4, threads = 0;
+  bool quiet = false;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
   sequence_options.resize_height = 700;
@@ -203,6 +203,7 @@ int Run(int argc, char** argv) {
                    &overlay_frames);
   comic::apps::AddThreadsFlag(parser, &threads);
   comic::apps::AddOutputFolderFlag(parser, &out_dir);
+  comic::apps::AddQuietFlag(parser, &quiet);
   comic::apps::AddAllowTruncatedFlag(parser, &sequence_options.allow_truncated);
   comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddEpilog(
@@ -318,18 +319,11 @@ int Run(int argc, char** argv) {
   std::cout << "comic_track_eval: " << num_frames << " frames of " << frames_path << " at "
             << frame_size.width << "x" << frame_size.height << ", detectors " << detector_list
             << std::endl;
-  const bool tty = ::isatty(STDOUT_FILENO);
-  size_t last_reported = 0;
-  const fe::TrackEvaluation evaluation = fe::EvaluateTracking(
-      sequence, regions, ground_truth, options, [&](size_t done, size_t total) {
-        if (tty) {
-          std::cout << "\rframe " << done << "/" << total << std::flush;
-          if (done == total) std::cout << "\n";
-        } else if (done == total || done * 10 / total != last_reported * 10 / total) {
-          std::cout << "frame " << done << "/" << total << std::endl;
-        }
-        last_reported = done;
-      });
+  // Per frame (of all detectors' passes) with elapsed time and an estimate of what remains,
+  // on stdout (issue 17); --quiet silences it.
+  comic::apps::ProgressLine progress("comic_track_eval: detection and tracking", quiet);
+  const fe::TrackEvaluation evaluation =
+      fe::EvaluateTracking(sequence, regions, ground_truth, options, progress.Callback());
 
   // Tables, charts, report.
   const std::string command = JoinArgs(argc, argv);

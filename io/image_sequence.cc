@@ -38,9 +38,11 @@ ImageSequence::~ImageSequence() = default;
 
 namespace {
 
+// The name of the PNG file `comic_sfm --write-frames` writes for the frame (issue 17): a model's
+// images.txt and a COLMAP database name their images so, and COLMAP's image tools find them.
 std::string VideoFrameName(int index) {
   char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "frame_%06d", index);
+  std::snprintf(buffer, sizeof(buffer), "frame_%06d.png", index);
   return buffer;
 }
 

@@ -39,7 +39,7 @@ struct ImageSequenceOptions {
 
 struct Frame {
   int source_index = -1;  // index in the folder's sorted file list or the video's frame number
-  std::string name;       // file name relative to the folder, or "frame_000123" for a video
+  std::string name;       // file name relative to the folder, or "frame_000123.png" for a video
   cv::Mat gray;           // CV_8UC1
   cv::Mat color;          // CV_8UC3 BGR (grey sources replicated)
 };
@@ -68,7 +68,8 @@ class ImageSequence {
   cv::Size FrameSize() const { return frame_size_; }
   // Size of the frames as stored, before resizing.
   cv::Size SourceFrameSize() const { return source_size_; }
-  // Names of the selected frames, in order (file names, or "frame_%06d" for videos).
+  // Names of the selected frames, in order (file names, or "frame_%06d.png" for videos:
+  // the files io/frame_export.h writes).
   const std::vector<std::string>& FrameNames() const { return names_; }
   // Absolute or as-given path of frame i's file (folders only; empty for videos).
   std::string FramePath(size_t i) const;

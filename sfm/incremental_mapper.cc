@@ -98,7 +98,29 @@ std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair
 }
 
 std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
-    const std::set<image_t>& excluded) const {
+    const std::set<image_t>& excluded, InitialPairSearch* search) const {
+  using Stage = InitialPairSearch::Stage;
+  InitialPairSearch seen;
+  // Keeps `candidate` if it came closer than the pair kept so far (InitialPairSearch).
+  const auto consider = [&seen](const InitialPairSearch& candidate, double measure,
+                                double* kept_measure) {
+    if (candidate.stage > seen.stage ||
+        (candidate.stage == seen.stage && measure > *kept_measure)) {
+      const int verified = seen.num_pairs_verified, qualified = seen.num_pairs_qualified;
+      seen = candidate;
+      seen.num_pairs_verified = verified;
+      seen.num_pairs_qualified = qualified;
+      *kept_measure = measure;
+    }
+  };
+  double seen_measure = -1.0;
+  struct Report {
+    InitialPairSearch* search;
+    InitialPairSearch* seen;
+    ~Report() {
+      if (search) *search = *seen;
+    }
+  } report{search, &seen};
   std::vector<InitialPair> pairs;
   const int num_frames = static_cast<int>(tracks_->NumFrames());
   if (num_frames < 2) return pairs;
@@ -121,7 +143,9 @@ std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
   const int num_anchors = std::min<int>(options_.init_num_anchors, anchors.size());
   for (int a = 0; a < num_anchors && num_trials < options_.init_max_num_trials; ++a) {
     const int frame1 = anchors[a];
-    if (num_tracked[frame1] < options_.init_min_num_matches) break;
+    // (The first anchor is looked at anyway, so that a search that fails says how many tracks
+    // its best pair shared; it cannot qualify.)
+    if (num_tracked[frame1] < options_.init_min_num_matches && a > 0) break;
     // Tracks through the anchor.
     std::vector<int> anchor_tracks;
     for (size_t f = 0; f < track_of_feature_[frame1].size(); ++f) {
@@ -150,13 +174,42 @@ std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
         points1.emplace_back(f1.x, f1.y);
         points2.emplace_back(f2.x, f2.y);
       }
+      InitialPairSearch candidate;
+      candidate.image_id1 = pair.image_id1;
+      candidate.image_id2 = pair.image_id2;
+      candidate.num_shared_tracks = static_cast<int>(pair.track_ids.size());
       // Tracks only end as the gap grows, so larger gaps will not do better.
-      if (static_cast<int>(pair.track_ids.size()) < options_.init_min_num_matches) break;
+      if (static_cast<int>(pair.track_ids.size()) < options_.init_min_num_matches) {
+        candidate.stage = Stage::kSharedTracks;
+        if (!pair.track_ids.empty())
+          consider(candidate, candidate.num_shared_tracks, &seen_measure);
+        break;
+      }
       if (num_trials++ >= options_.init_max_num_trials) break;
       pair.geometry =
           EstimateCalibratedTwoViewGeometry(camera, camera, points1, points2, options_.two_view);
-      if (pair.geometry.configuration != TwoViewConfiguration::kCalibrated ||
-          pair.geometry.num_inliers < options_.init_min_num_inliers) {
+      ++seen.num_pairs_verified;
+      candidate.configuration = pair.geometry.configuration;
+      candidate.num_inliers = pair.geometry.num_inliers;
+      candidate.num_essential_inliers = pair.geometry.num_essential_inliers;
+      candidate.num_homography_inliers = pair.geometry.num_homography_inliers;
+      candidate.median_triangulation_angle_deg = pair.geometry.median_triangulation_angle_deg;
+      if (pair.geometry.configuration != TwoViewConfiguration::kCalibrated) {
+        candidate.stage = Stage::kGeometry;
+        // Closest to a general pose: the smallest share of inliers a homography explains; a
+        // degenerate pair (too few inliers for any pose) comes after every such pair.
+        const double homography_share = static_cast<double>(candidate.num_homography_inliers) /
+                                        std::max(candidate.num_essential_inliers, 1);
+        consider(candidate,
+                 candidate.configuration == TwoViewConfiguration::kPlanarOrPanoramic
+                     ? 1.0 - homography_share
+                     : -1.0 + 1e-9 * candidate.num_essential_inliers,
+                 &seen_measure);
+        continue;
+      }
+      if (pair.geometry.num_inliers < options_.init_min_num_inliers) {
+        candidate.stage = Stage::kInliers;
+        consider(candidate, candidate.num_inliers, &seen_measure);
         continue;
       }
       double score = 0.0;
@@ -164,9 +217,15 @@ std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
         score += std::min(angle / options_.init_tri_angle_deg, 1.0);
       }
       pair.score = score;
+      candidate.score = score;
+      candidate.stage = score >= options_.init_min_score ? Stage::kQualified : Stage::kParallax;
+      consider(candidate, score, &seen_measure);
       const bool saturated =
           pair.geometry.median_triangulation_angle_deg >= options_.init_tri_angle_deg;
-      if (score >= options_.init_min_score) pairs.push_back(std::move(pair));
+      if (score >= options_.init_min_score) {
+        ++seen.num_pairs_qualified;
+        pairs.push_back(std::move(pair));
+      }
       // Past this anchor's peak, or most inliers already count fully so that larger gaps can
       // only lose matches.
       if (score < 0.5 * anchor_best_score || saturated) break;

@@ -114,6 +114,35 @@ class IncrementalMapper {
     double score = 0.0;
   };
 
+  // What an initial pair search saw, so that a failure can say which check failed and by how
+  // much (issue 17). The pair reported is the one that came closest: the search's checks are
+  // stages (shared tracks >= init_min_num_matches, a general relative pose that a homography
+  // does not explain, inliers >= init_min_num_inliers, parallax score >= init_min_score) and the
+  // pair that passed the most of them wins, ties by its measure at the stage it failed.
+  struct InitialPairSearch {
+    enum class Stage {
+      kNone,          // no two frames share a track
+      kSharedTracks,  // failed: too few shared tracks
+      kGeometry,      // failed: no general relative pose (degenerate, or a homography explains it)
+      kInliers,       // failed: too few inliers of the relative pose
+      kParallax,      // failed: parallax score too low
+      kQualified,     // passed every check
+    };
+    Stage stage = Stage::kNone;
+    image_t image_id1 = 0;
+    image_t image_id2 = 0;
+    int num_shared_tracks = 0;
+    // From the two-view geometry (stages after kSharedTracks).
+    TwoViewConfiguration configuration = TwoViewConfiguration::kDegenerate;
+    int num_inliers = 0;
+    int num_essential_inliers = 0;
+    int num_homography_inliers = 0;
+    double median_triangulation_angle_deg = 0.0;
+    double score = 0.0;
+    int num_pairs_verified = 0;   // pairs whose two-view geometry was estimated
+    int num_pairs_qualified = 0;  // pairs that passed every check
+  };
+
   // Builds an empty reconstruction with one camera and one unregistered image per frame of
   // `tracks` (which must outlive the mapper). Throws comic::Error for invalid tracks, camera or
   // options.
@@ -129,7 +158,9 @@ class IncrementalMapper {
   // Every qualifying pair the search verified, best score first (FindInitialPair returns the
   // first). Pairs are independent of the mapper's state, so a pipeline may compute them once and
   // start several models from them.
-  std::vector<InitialPair> FindInitialPairs(const std::set<image_t>& excluded = {}) const;
+  // With `search`, also says what the search saw (InitialPairSearch).
+  std::vector<InitialPair> FindInitialPairs(const std::set<image_t>& excluded = {},
+                                            InitialPairSearch* search = nullptr) const;
 
   // Sets the pair's poses (first at the origin, unit baseline), registers both and triangulates
   // their inlier tracks. Returns the number of 3-D points created (0: the pair is unusable).

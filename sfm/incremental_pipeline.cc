@@ -128,10 +128,12 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
   if (!pair) return finish(ReconstructionStatus::kNoInitialPair);
   result.initial_frame1 = IncrementalMapper::FrameOfImageId(pair->image_id1);
   result.initial_frame2 = IncrementalMapper::FrameOfImageId(pair->image_id2);
-  if (mapper.RegisterInitialPair(*pair) < static_cast<size_t>(options.min_num_initial_points)) {
+  result.initial_pair_num_points = mapper.RegisterInitialPair(*pair);
+  if (result.initial_pair_num_points < static_cast<size_t>(options.min_num_initial_points)) {
     return finish(ReconstructionStatus::kTooFewPoints);
   }
   global_ba();
+  result.initial_pair_num_points = mapper.reconstruction().NumPoints3D();
   if (mapper.reconstruction().NumPoints3D() < static_cast<size_t>(options.min_num_initial_points)) {
     return finish(ReconstructionStatus::kTooFewPoints);
   }
@@ -233,7 +235,9 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
     // The initial pairs are searched once and reused; only when every remaining candidate
     // touches a frame an earlier model reached is the search repeated without those frames.
     const IncrementalMapper searcher(tracks, camera, options.mapper);
-    std::vector<IncrementalMapper::InitialPair> candidates = searcher.FindInitialPairs();
+    IncrementalMapper::InitialPairSearch first_search;
+    std::vector<IncrementalMapper::InitialPair> candidates =
+        searcher.FindInitialPairs({}, &first_search);
     std::set<image_t> excluded;
     std::vector<Reconstruction> earlier_models;
     for (int attempt = 0; attempt < options.max_num_models; ++attempt) {
@@ -281,6 +285,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
       best.global_ba_cpu_time_s = global_ba_cpu_time;
       if (complete || !started) break;
     }
+    best.initial_pair_search = first_search;
   }
   best.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -87,6 +87,11 @@ struct IncrementalReconstruction {
   std::vector<int> unregistered_frames;  // ascending
   int initial_frame1 = -1;
   int initial_frame2 = -1;
+  // What the first initial pair search saw: why kNoInitialPair, and how close it came
+  // (sfm/reconstruction_diagnosis.h words it).
+  IncrementalMapper::InitialPairSearch initial_pair_search;
+  // The 3-D points the initial pair kept (after its bundle adjustment): why kTooFewPoints.
+  size_t initial_pair_num_points = 0;
   int num_models = 0;  // models grown (the best is returned)
   // Over all models grown:
   int num_local_ba = 0;

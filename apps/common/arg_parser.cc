@@ -68,6 +68,15 @@ void ArgParser::AddOption(const std::string& name, const std::string& value_name
        }});
 }
 
+void ArgParser::AddOptionalValueOption(const std::string& name, const std::string& value_name,
+                                       const std::string& help, const std::string& implicit_value,
+                                       std::string* value) {
+  Option option{name, value_name, help, "", [value](const std::string& text) { *value = text; }};
+  option.value_optional = true;
+  option.implicit_value = implicit_value;
+  options_.push_back(std::move(option));
+}
+
 void ArgParser::AddShortName(char letter, const std::string& name) {
   Option* option = FindOption(name);
   COMIC_CHECK(option != nullptr, kInvalidArgument, "AddShortName: no option --" << name);
@@ -158,6 +167,10 @@ ArgParser::Result ArgParser::Parse(int argc, char** argv) {
     }
     if (option->value_name.empty()) {
       COMIC_CHECK(!has_inline_value, kInvalidArgument, "--" << name << " takes no value");
+    } else if (option->value_optional) {
+      if (!has_inline_value) value = option->implicit_value;
+      COMIC_CHECK(!value.empty(), kInvalidArgument,
+                  "--" << name << "= needs a value (" << option->value_name << ")");
     } else if (!has_inline_value) {
       COMIC_CHECK(i + 1 < argc, kInvalidArgument,
                   "--" << name << " needs a value (" << option->value_name << ")");
@@ -187,7 +200,11 @@ std::string ArgParser::Help() const {
   for (const Option& option : options_) {
     std::string left = "--" + option.name;
     if (option.short_name != '\0') left = std::string("-") + option.short_name + ", " + left;
-    if (!option.value_name.empty()) left += " " + option.value_name;
+    if (option.value_optional) {
+      left += "[=" + option.value_name + "]";
+    } else if (!option.value_name.empty()) {
+      left += " " + option.value_name;
+    }
     // The meaning starts in column 30; a longer name gets a line of its own so that name and
     // meaning stay apart (tests/apps/option_vocabulary_test.cc reads them back).
     if (left.size() >= 28) left += "\n" + std::string(30, ' ');

@@ -27,6 +27,12 @@ class ArgParser {
                  int* value);
   void AddOption(const std::string& name, const std::string& value_name, const std::string& help,
                  double* value);
+  // An option whose value may be left out: `--name` alone sets `implicit_value`, `--name=VALUE`
+  // sets VALUE (GNU getopt's optional arguments: `--name VALUE` would be ambiguous with a
+  // positional, so the value must be attached with '='). Shown in --help as `--name[=VALUE]`.
+  void AddOptionalValueOption(const std::string& name, const std::string& value_name,
+                              const std::string& help, const std::string& implicit_value,
+                              std::string* value);
   // `-<letter>` as a short name of the option `name` (added before); shown in --help.
   void AddShortName(char letter, const std::string& name);
   // `--<alias>` as an old spelling of the option `name` (added before): accepted, not shown in
@@ -57,6 +63,8 @@ class ArgParser {
     std::function<void(const std::string&)> assign;
     bool seen = false;
     char short_name = '\0';
+    bool value_optional = false;  // AddOptionalValueOption: the value may be left out
+    std::string implicit_value{};
   };
   struct Alias {
     std::string alias;

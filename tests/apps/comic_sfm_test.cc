@@ -3,11 +3,15 @@
 // progress lines, bit-for-bit repeatable results, --compare, and bad input failing early with
 // one line.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/colmap_binary_model.h"
+#include "io/colmap_database.h"
 #include "io/colmap_text_model.h"
 #include "io/file_utils.h"
 #include "io/ply.h"
@@ -216,6 +220,36 @@ TEST(ComicSfm, TempleSparseRingClosesWithTheImageSetOptions) {
   EXPECT_LT(upright_report["registered_frames"].get<int>(), 16);
 }
 
+// Issue 17: a progress line per frame during detection and tracking (stdout is not a terminal
+// here), with elapsed time and an estimate of what remains; --quiet keeps only the line that
+// says where the intrinsics came from.
+TEST(ComicSfm, ReportsProgressPerFrameAndQuietKeepsTheIntrinsicsLine) {
+  ScopedTempDir dir;
+  const std::string command = AppPath("comic_sfm") + " " + Example() + "/image_l --last 5 --gt " +
+                              Example() + "/poses.txt --output ";
+  const auto result = RunCommand(command + dir.File("a"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (int frame = 1; frame <= 6; ++frame) {
+    EXPECT_EQ(CountOccurrences(result.output, "[harris] detection and tracking: frame " +
+                                                  std::to_string(frame) + "/6, "),
+              1)
+        << frame << "\n"
+        << result.output;
+  }
+  EXPECT_EQ(CountOccurrences(result.output, " s elapsed, about "), 5) << result.output;
+  EXPECT_EQ(CountOccurrences(result.output, " s left"), 5) << result.output;
+  // Progress comes before the mapper's lines.
+  EXPECT_LT(result.output.find("frame 6/6"), result.output.find("[harris] registered "));
+
+  const auto quiet = RunCommand(command + dir.File("b") + " --quiet");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("detection and tracking"), std::string::npos) << quiet.output;
+  EXPECT_EQ(quiet.output.find("] registered "), std::string::npos) << quiet.output;
+  EXPECT_EQ(CountOccurrences(quiet.output, "fx=707.091"), 1) << quiet.output;
+  EXPECT_NE(quiet.output.find("(ground truth " + Example() + "/poses.txt)"), std::string::npos)
+      << quiet.output;
+}
+
 TEST(ComicSfm, UnreconstructableInputIsReportedNotCrashed) {
   ScopedTempDir dir;
   // One frame: nothing to reconstruct. Exit 1, a clear message, and the report still written.
@@ -227,6 +261,36 @@ TEST(ComicSfm, UnreconstructableInputIsReportedNotCrashed) {
       nlohmann::json::parse(comic::io::ReadFileToString(dir.File("report.json")));
   EXPECT_EQ(report["status"], "too_few_frames");
   EXPECT_FALSE(comic::io::PathExists(dir.File("points3D.txt")));
+}
+
+// Issue 17: frames without parallax (one frame four times) end in one error line that names the
+// failing check of the initial pair and what to try; report.json holds the diagnosis and the
+// tracks found are written as a COLMAP database.
+TEST(ComicSfm, NoParallaxIsDiagnosedAndTheTracksAreStillWritten) {
+  ScopedTempDir dir;
+  comic::io::EnsureWritableDirectory(dir.File("still"));
+  for (const char* name : {"a.png", "b.png", "c.png", "d.png"}) {
+    std::filesystem::copy_file(Example() + "/image_l/000000.png", dir.File("still/") + name);
+  }
+  const std::string out = dir.File("out");
+  const int status = std::system((AppPath("comic_sfm") + " " + dir.File("still") + " --output " +
+                                  out + " >" + dir.File("stdout") + " 2>" + dir.File("stderr"))
+                                     .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string err = comic::io::ReadFileToString(dir.File("stderr"));
+  EXPECT_EQ(comic::test::CountLines(err), 1) << err;
+  EXPECT_NE(err.find("no initial pair: best pair "), std::string::npos) << err;
+  EXPECT_NE(err.find("; try "), std::string::npos) << err;
+  EXPECT_NE(err.find("tracks: " + out + "/tracks.db"), std::string::npos) << err;
+  const nlohmann::json report =
+      nlohmann::json::parse(comic::io::ReadFileToString(out + "/report.json"));
+  EXPECT_EQ(report["status"], "no_initial_pair");
+  EXPECT_EQ(report["diagnosis"]["stage"], "initial_pair");
+  EXPECT_EQ(err.find(report["diagnosis"]["message"].get<std::string>()), err.find("no initial"));
+  EXPECT_EQ(report["outputs"], nlohmann::json({"tracks.db"}));
+  EXPECT_EQ(comic::io::ColmapDatabase::Open(out + "/tracks.db").ReadAllImages().size(), 4u);
+  EXPECT_FALSE(comic::io::PathExists(out + "/points3D.txt"));
 }
 
 TEST(ComicSfm, BadInputGivesOneLineErrorAndNonZeroExit) {

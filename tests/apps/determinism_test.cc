@@ -12,6 +12,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
 #include <set>
 #include <string>
 #include <thread>
@@ -136,6 +137,46 @@ TEST(Determinism, ComicSfmAtOneAndTwoThreadsAndTwiceAtTwo) {
   // cameras.txt, images.txt, points3D.txt, points.ply, trajectory.png, report.json.
   ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 6);
   ExpectSameOutputs(dir.File("t2"), dir.File("t2b"), 6);
+}
+
+// CoMIC's detection runs on --threads in comic_sfm (issue 17); the model must not change.
+TEST(Determinism, ComicSfmWithCoMICAtOneAndTwoThreads) {
+  if (!HasTwoThreads()) GTEST_SKIP() << "one hardware thread";
+  ScopedTempDir dir;
+  for (const char* threads : {"1", "2"}) {
+    RunInto(dir,
+            AppPath("comic_sfm") + " " + ExampleDir() + "/image_l --last 5 --detector comic --gt " +
+                ExampleDir() + "/poses.txt --quiet --threads " + threads + " --output {out}",
+            std::string("t") + threads);
+  }
+  ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 6);
+}
+
+// A video with --write-frames: the model and the frames written (issue 17).
+TEST(Determinism, ComicSfmOnAVideoWithWriteFramesAtOneAndTwoThreads) {
+  if (!HasTwoThreads()) GTEST_SKIP() << "one hardware thread";
+  ScopedTempDir dir;
+  const std::string video = dir.File("clip.avi");
+  {
+    cv::VideoWriter writer;
+    for (int i = 0; i < 6; ++i) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "/image_l/%06d.png", i);
+      const cv::Mat frame = cv::imread(ExampleDir() + name, cv::IMREAD_COLOR);
+      if (!writer.isOpened()) {
+        writer.open(video, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10, frame.size(), true);
+      }
+      writer.write(frame);
+    }
+  }
+  for (const char* threads : {"1", "2"}) {
+    RunInto(dir,
+            AppPath("comic_sfm") + " " + video + " --intrinsics " + ExampleDir() +
+                "/calib.txt --write-frames --quiet --threads " + threads + " --output {out}",
+            std::string("t") + threads);
+  }
+  // The six of the model and six frames.
+  ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 12);
 }
 
 TEST(Determinism, ComicTrackEvalAtOneAndTwoThreads) {

@@ -138,7 +138,7 @@ TEST(ImageSequence, ReadsAVideoFile) {
   const auto sequence = ImageSequence::Open(video, options);
   EXPECT_TRUE(sequence.IsVideo());
   ASSERT_EQ(sequence.NumFrames(), 3u);  // frames 0, 2, 4
-  EXPECT_EQ(sequence.FrameNames()[1], "frame_000002");
+  EXPECT_EQ(sequence.FrameNames()[1], "frame_000002.png");
   // Read out of order: the sequence reopens the video when going backwards.
   const Frame third = sequence.ReadFrame(2);
   const Frame first = sequence.ReadFrame(0);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "io/error.h"
@@ -127,3 +128,30 @@ TEST(ArgParser, RefusesAShortNameOrAliasTakenTwice) {
 }
 
 }  // namespace
+
+// --write-frames[=DIR]: alone it takes the implicit value, with '=' the given one, and the next
+// argument stays a positional (GNU getopt's optional arguments).
+TEST(ArgParser, OptionalValueTakesTheImplicitValueOrTheAttachedOne) {
+  for (const auto& [args, expected, input] :
+       std::vector<std::tuple<std::vector<std::string>, std::string, std::string>>{
+           {{"--frames", "clip.mp4"}, "<beside>", "clip.mp4"},
+           {{"clip.mp4", "--frames=out/img"}, "out/img", "clip.mp4"},
+           {{"clip.mp4"}, "", "clip.mp4"}}) {
+    std::string input_value;
+    std::string frames;
+    ArgParser parser("prog", "INPUT [options]", "A test program.");
+    parser.AddPositional("INPUT", "the input", &input_value);
+    parser.AddOptionalValueOption("frames", "DIR", "write the frames", "<beside>", &frames);
+    EXPECT_EQ(Parse(parser, args), ArgParser::Result::kRun);
+    EXPECT_EQ(frames, expected);
+    EXPECT_EQ(input_value, input);
+    EXPECT_EQ(parser.WasSet("frames"), !expected.empty());
+    EXPECT_NE(parser.Help().find("--frames[=DIR]"), std::string::npos) << parser.Help();
+  }
+  std::string input_value;
+  std::string frames;
+  ArgParser parser("prog", "INPUT [options]", "A test program.");
+  parser.AddPositional("INPUT", "the input", &input_value);
+  parser.AddOptionalValueOption("frames", "DIR", "write the frames", "<beside>", &frames);
+  EXPECT_THROW(Parse(parser, {"in", "--frames="}), comic::Error);
+}
