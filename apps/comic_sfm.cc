@@ -53,6 +53,7 @@
 #include "sfm/evaluation/sfm_report.h"
 #include "sfm/evaluation/trajectory_plot.h"
 #include "sfm/reconstruction_diagnosis.h"
+#include "sfm/rotation_only_path.h"
 #include "sfm/sequence_reconstruction.h"
 #include "sfm/trajectory_evaluation.h"
 
@@ -310,6 +311,7 @@ struct DetectorRun {
   sfm::SfmRunReport report;
   sfm::ReconstructionDiagnosis diagnosis;  // failed = false for a model
   bool wrote_tracks = false;               // no model: tracks.db holds the tracks
+  int rotation_only_frames = 0;            // panning: frames of rotation_only/ (0: none)
 };
 
 // Reconstructs with one detector and writes its outputs into `out_dir`.
@@ -408,6 +410,25 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
         ExportOptions(flags), io::JoinPaths(out_dir, "tracks.db"), /*overwrite=*/true);
     json["outputs"] = {"tracks.db"};
     result.wrote_tracks = true;
+    if (result.diagnosis.rotation_only) {
+      // Panning: no points, but the rotations are observable; a COLMAP model of the cameras
+      // alone, all at the origin (sfm/rotation_only_path.h).
+      const sfm::RotationOnlyPath path =
+          sfm::EstimateRotationOnlyPath(result.run.tracks, inputs.camera);
+      result.rotation_only_frames = path.num_registered;
+      double mean_rms = 0.0;
+      for (double rms : path.rms_error_px) mean_rms += rms / path.rms_error_px.size();
+      json["rotation_only_path"] = {{"registered_frames", path.num_registered},
+                                    {"frames", inputs.sequence->NumFrames()},
+                                    {"mean_rms_error_px", mean_rms}};
+      if (path.num_registered >= 2) {
+        io::WriteColmapTextModel(sfm::ToColmapTextModel(path.reconstruction),
+                                 io::JoinPaths(out_dir, "rotation_only"));
+        json["outputs"].push_back("rotation_only/cameras.txt");
+        json["outputs"].push_back("rotation_only/images.txt");
+        json["outputs"].push_back("rotation_only/points3D.txt");
+      }
+    }
   }
   io::WriteFileAtomically(io::JoinPaths(out_dir, "report.json"), json.dump(2) + "\n");
   return result;
@@ -727,14 +748,20 @@ int Run(int argc, char** argv) {
     // A failed reconstruction commits its report.json (the documented exception): it says why.
     commit();
     // The error line says which check failed, by how much, and what to try (issue 17).
-    const bool wrote_tracks = result.wrote_tracks;
+    if (!success && result.wrote_tracks) {
+      // What was found, on stdout even with --quiet: the error line stays short.
+      std::cout << "comic_sfm: no model; what was found: " << io::JoinPaths(flags.out, "tracks.db")
+                << " (the tracks, a COLMAP database)"
+                << (result.rotation_only_frames >= 2
+                        ? ", " + io::JoinPaths(flags.out, "rotation_only/") +
+                              " (a rotation-only camera path of " +
+                              std::to_string(result.rotation_only_frames) + " frames)"
+                        : std::string())
+                << std::endl;
+    }
     COMIC_CHECK(success, kInvalidData,
-                result.diagnosis.message
-                    << "; try " << result.diagnosis.suggestion
-                    << " (report: " << io::JoinPaths(flags.out, "report.json")
-                    << (wrote_tracks ? ", tracks: " + io::JoinPaths(flags.out, "tracks.db")
-                                     : std::string())
-                    << ")");
+                result.diagnosis.message << "; try " << result.diagnosis.suggestion << " (report: "
+                                         << io::JoinPaths(flags.out, "report.json") << ")");
     return 0;
   }
 

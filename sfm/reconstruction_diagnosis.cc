@@ -70,6 +70,10 @@ ReconstructionDiagnosis DiagnoseReconstruction(const IncrementalReconstruction& 
     diagnosis.suggestion = suggestion.str();
     return diagnosis;
   }
+  // A larger --init-max-gap can only help while it reaches frames the search has not paired.
+  const int num_frames = static_cast<int>(frame_names.size());
+  const bool gap_can_grow = mapper.init_max_frame_gap + 1 < num_frames;
+  const int larger_gap = std::min(2 * mapper.init_max_frame_gap, std::max(num_frames - 1, 1));
   diagnosis.frame1 = FrameName(frame_names, search.image_id1);
   diagnosis.frame2 = FrameName(frame_names, search.image_id2);
   message << "no initial pair: best pair " << diagnosis.frame1 << "-" << diagnosis.frame2 << ": "
@@ -98,8 +102,11 @@ ReconstructionDiagnosis DiagnoseReconstruction(const IncrementalReconstruction& 
                 << " % of its " << search.num_essential_inliers << " inliers (at most "
                 << 100.0 * diagnosis.needed
                 << " %): the camera only turns (panning) or the scene is flat, no parallax";
-        suggestion << "--init-max-gap " << 2 * mapper.init_max_frame_gap
-                   << " if the camera moves at all, else footage that moves sideways";
+        if (gap_can_grow) {
+          suggestion << "--init-max-gap " << larger_gap << " if the camera moves at all, else ";
+        }
+        suggestion << "footage where the camera moves sideways or around the scene (turning on "
+                      "the spot gives no depth)";
       } else {
         diagnosis.value = search.num_essential_inliers;
         diagnosis.needed = mapper.two_view.min_num_inliers;
@@ -134,10 +141,12 @@ ReconstructionDiagnosis DiagnoseReconstruction(const IncrementalReconstruction& 
       const double angle =
           std::floor(10.0 * mapper.init_tri_angle_deg * search.score / mapper.init_min_score) /
           10.0;
-      suggestion << "frames farther apart (--init-max-gap " << 2 * mapper.init_max_frame_gap << ")";
+      if (gap_can_grow) suggestion << "frames farther apart (--init-max-gap " << larger_gap << ")";
       if (angle >= 0.1) {
-        suggestion << " or accepting less parallax (--init-angle " << angle
-                   << ", a less accurate start)";
+        suggestion << (gap_can_grow ? " or " : "") << "accepting less parallax (--init-angle "
+                   << angle << ", a less accurate start)";
+      } else if (!gap_can_grow) {
+        suggestion << "footage where the camera moves more between frames";
       }
       break;
     }

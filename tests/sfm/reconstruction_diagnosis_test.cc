@@ -10,15 +10,15 @@
 namespace comic::sfm {
 namespace {
 
-struct Run {
+struct DiagnosedRun {
   SyntheticScene scene;
   IncrementalReconstruction result;
   ReconstructionDiagnosis diagnosis;
 };
 
-Run Reconstruct(const SyntheticSceneOptions& scene_options,
-                const IncrementalPipelineOptions& options) {
-  Run run;
+DiagnosedRun Reconstruct(const SyntheticSceneOptions& scene_options,
+                         const IncrementalPipelineOptions& options) {
+  DiagnosedRun run;
   run.scene = MakeSyntheticScene(scene_options);
   run.result = ReconstructIncrementally(run.scene.tracks, run.scene.camera, options);
   run.diagnosis = DiagnoseReconstruction(run.result, options, run.scene.tracks.frame_names);
@@ -33,7 +33,7 @@ TEST(ReconstructionDiagnosis, APanningCameraIsReportedAsRotationOnly) {
   SyntheticSceneOptions scene_options;
   scene_options.motion = SyntheticMotion::kPureRotation;
   scene_options.num_frames = 12;
-  const Run run = Reconstruct(scene_options, IncrementalPipelineOptions());
+  const DiagnosedRun run = Reconstruct(scene_options, IncrementalPipelineOptions());
   ASSERT_EQ(run.result.status, ReconstructionStatus::kNoInitialPair);
   const ReconstructionDiagnosis& d = run.diagnosis;
   EXPECT_TRUE(d.failed);
@@ -48,18 +48,21 @@ TEST(ReconstructionDiagnosis, APanningCameraIsReportedAsRotationOnly) {
   EXPECT_TRUE(Contains(d.message, "homography")) << d.message;
   EXPECT_TRUE(Contains(d.message, "panning")) << d.message;
   EXPECT_EQ(d.message.find('\n'), std::string::npos);
-  EXPECT_TRUE(Contains(d.suggestion, "--init-max-gap")) << d.suggestion;
+  // 12 frames, all within the default gap of 20: a larger gap cannot help, only other footage.
+  EXPECT_FALSE(Contains(d.suggestion, "--init-max-gap")) << d.suggestion;
+  EXPECT_TRUE(Contains(d.suggestion, "moves sideways")) << d.suggestion;
   EXPECT_GT(run.result.initial_pair_search.num_pairs_verified, 0);
   EXPECT_EQ(run.result.initial_pair_search.num_pairs_qualified, 0);
 }
 
 TEST(ReconstructionDiagnosis, AParallaxScoreOutOfReachSaysHowCloseTheBestPairCame) {
   SyntheticSceneOptions scene_options;
-  scene_options.num_frames = 8;
+  scene_options.num_frames = 12;
   scene_options.num_points = 400;
   IncrementalPipelineOptions options;
   options.mapper.init_min_score = 1e6;
-  const Run run = Reconstruct(scene_options, options);
+  options.mapper.init_max_frame_gap = 4;
+  const DiagnosedRun run = Reconstruct(scene_options, options);
   ASSERT_EQ(run.result.status, ReconstructionStatus::kNoInitialPair);
   const ReconstructionDiagnosis& d = run.diagnosis;
   EXPECT_EQ(d.check, "parallax");
@@ -73,7 +76,15 @@ TEST(ReconstructionDiagnosis, AParallaxScoreOutOfReachSaysHowCloseTheBestPairCam
   EXPECT_LE(search.num_shared_tracks, 400);
   EXPECT_TRUE(Contains(d.message, "parallax score")) << d.message;
   EXPECT_TRUE(Contains(d.message, "needs 1000000.0")) << d.message;
-  EXPECT_TRUE(Contains(d.suggestion, "--init-max-gap 40")) << d.suggestion;
+  EXPECT_TRUE(Contains(d.suggestion, "--init-max-gap 8")) << d.suggestion;
+
+  // Twice the best score needed: half the --init-angle would double an unsaturated score.
+  options.mapper.init_min_score = 2.0 * d.value * (1.0 - 1e-9);
+  const DiagnosedRun twice = Reconstruct(scene_options, options);
+  ASSERT_EQ(twice.result.status, ReconstructionStatus::kNoInitialPair);
+  EXPECT_DOUBLE_EQ(twice.diagnosis.value, d.value);  // the same search, the same best pair
+  EXPECT_TRUE(Contains(twice.diagnosis.suggestion, "--init-angle 2.0"))
+      << twice.diagnosis.suggestion;
 }
 
 TEST(ReconstructionDiagnosis, TooFewSharedTracksNamesTheCountAndTheThreshold) {
@@ -82,7 +93,7 @@ TEST(ReconstructionDiagnosis, TooFewSharedTracksNamesTheCountAndTheThreshold) {
   scene_options.num_points = 200;
   IncrementalPipelineOptions options;
   options.mapper.init_min_num_matches = 100000;
-  const Run run = Reconstruct(scene_options, options);
+  const DiagnosedRun run = Reconstruct(scene_options, options);
   ASSERT_EQ(run.result.status, ReconstructionStatus::kNoInitialPair);
   EXPECT_EQ(run.diagnosis.check, "shared_tracks");
   EXPECT_GT(run.diagnosis.value, 50.0);
@@ -100,7 +111,7 @@ TEST(ReconstructionDiagnosis, TooFewInitialPointsNamesThePairAndItsPoints) {
   IncrementalPipelineOptions options;
   options.min_num_initial_points = 100000;
   options.max_num_models = 1;
-  const Run run = Reconstruct(scene_options, options);
+  const DiagnosedRun run = Reconstruct(scene_options, options);
   ASSERT_EQ(run.result.status, ReconstructionStatus::kTooFewPoints);
   EXPECT_EQ(run.diagnosis.stage, "initial_points");
   EXPECT_GT(run.diagnosis.value, 30.0);  // it triangulated points, just not 100000
@@ -113,12 +124,12 @@ TEST(ReconstructionDiagnosis, TooFewInitialPointsNamesThePairAndItsPoints) {
 TEST(ReconstructionDiagnosis, TooFewFramesAndSuccess) {
   SyntheticSceneOptions scene_options;
   scene_options.num_frames = 1;
-  const Run single = Reconstruct(scene_options, IncrementalPipelineOptions());
+  const DiagnosedRun single = Reconstruct(scene_options, IncrementalPipelineOptions());
   EXPECT_EQ(single.diagnosis.check, "frames");
   EXPECT_TRUE(Contains(single.diagnosis.message, "too few frames"));
   scene_options.num_frames = 5;
   scene_options.num_points = 300;
-  const Run success = Reconstruct(scene_options, IncrementalPipelineOptions());
+  const DiagnosedRun success = Reconstruct(scene_options, IncrementalPipelineOptions());
   ASSERT_EQ(success.result.status, ReconstructionStatus::kSuccess);
   EXPECT_FALSE(success.diagnosis.failed);
   EXPECT_TRUE(success.diagnosis.message.empty());
