@@ -646,9 +646,11 @@ int Run(int argc, char** argv) {
       "--regions/--masks add boundary and interior point statistics. --colmap-db writes what\n"
       "comic_export_colmap writes with the same options; for a folder of images it needs\n"
       "--resize-height 0, a video's frames it writes as --write-frames does (the folder given,\n"
-      "or images/ in --output), and COLMAP's --image_path is that folder. --threads: detection and "
-      "the export; the bundle adjustments run on\n"
-      "one thread (Ceres' multi-threaded sums are not bit-for-bit repeatable).\n"
+      "or images/ in --output), and COLMAP's --image_path is that folder.\n"
+      "--threads: detection and the export; the bundle adjustments run on one thread (Ceres'\n"
+      "multi-threaded sums are not bit-for-bit repeatable). Progress goes to stdout (-q: off);\n"
+      "a failed run writes report.json with a diagnosis, tracks.db and, when the camera only\n"
+      "turned, rotation_only/ (a camera path without points).\n"
       "Exit codes: 0 success, 2 usage error, 1 anything else (including a sequence that cannot\n"
       "be reconstructed without --compare).");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;

@@ -143,6 +143,10 @@ TEST(ComicTrackEval, WritesTheTablesChartsAndOverlaysWithMasks) {
   }
   EXPECT_TRUE(sweep[5]["T"].is_null());  // infinity
   EXPECT_NE(result.output.find("frame 8/8"), std::string::npos) << result.output;
+  // Issue 17: a line per frame with the time elapsed and an estimate of what remains.
+  EXPECT_NE(result.output.find("detection and tracking: frame 1/8, "), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find(" s left"), std::string::npos) << result.output;
 }
 
 TEST(ComicTrackEval, BoxesGiveTheSameRegionAsMasksOfTheBox) {
