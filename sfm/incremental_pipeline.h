@@ -41,8 +41,9 @@ struct IncrementalPipelineOptions {
   // Bundle adjustment of everything, as the model grows and at the end. Its refine_* flags say
   // which intrinsics may be refined; they are refined in global adjustments only (local windows
   // keep them, COLMAP's policy of refining a camera once many images constrain it), once
-  // refine_intrinsics_min_num_images images are registered, and the focal length only while the
-  // motion makes it observable (focal_observability); otherwise the prior stays.
+  // refine_intrinsics_min_num_images images are registered, and the focal length (and the
+  // distortion, which would absorb its error) only while the motion makes it observable
+  // (focal_observability); otherwise the priors stay.
   BundleAdjustmentOptions global_ba;
   int refine_intrinsics_min_num_images = 5;
   FocalObservabilityOptions focal_observability;
