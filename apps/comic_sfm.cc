@@ -153,9 +153,8 @@ nlohmann::json CameraReport(const sfm::SequenceReconstruction& run, const Inputs
                          {"prior", CameraToJson(inputs.camera)},
                          {"refined", mapping.intrinsics_refined}};
   const sfm::Reconstruction& reconstruction = mapping.reconstruction;
-  const sfm::Camera& camera = reconstruction.cameras().empty()
-                                  ? inputs.camera
-                                  : reconstruction.cameras().begin()->second;
+  const sfm::Camera& camera =
+      reconstruction.cameras().empty() ? inputs.camera : reconstruction.cameras().begin()->second;
   json["final"] = CameraToJson(camera);
   json["focal_length_px"] = camera.fx;
   if (mapping.focal_assessed) {
@@ -719,8 +718,7 @@ int Run(int argc, char** argv) {
   if (!flags.quiet) {
     std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames "
               << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
-              << ", camera " << inputs.camera.Describe() << " ("
-              << inputs.intrinsics_source << ")"
+              << ", camera " << inputs.camera.Describe() << " (" << inputs.intrinsics_source << ")"
               << (inputs.ground_truth
                       ? ", ground truth for " + std::to_string(inputs.ground_truth->num_matched) +
                             " frames"

@@ -67,7 +67,8 @@ CameraCalibration ReadOpenCvFile(const std::string& path) {
   try {
     storage.open(path, cv::FileStorage::READ);
   } catch (const cv::Exception&) {
-    throw Error(ErrorKind::kInvalidData, path + ": not a readable OpenCV FileStorage (YAML/XML) file");
+    throw Error(ErrorKind::kInvalidData,
+                path + ": not a readable OpenCV FileStorage (YAML/XML) file");
   }
   COMIC_CHECK(storage.isOpened(), kInvalidData,
               path << ": not a readable OpenCV FileStorage (YAML/XML) file");
@@ -88,8 +89,7 @@ CameraCalibration ReadOpenCvFile(const std::string& path) {
   const auto k = [&](int r, int c) { return camera_matrix.at<double>(r, c); };
   COMIC_CHECK(std::abs(k(0, 1)) < 1e-9 * std::abs(k(0, 0)) && k(1, 0) == 0 && k(2, 0) == 0 &&
                   k(2, 1) == 0 && k(2, 2) == 1,
-              kInvalidData,
-              path << ": camera_matrix must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)");
+              kInvalidData, path << ": camera_matrix must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)");
   COMIC_CHECK(k(0, 0) > 0 && k(1, 1) > 0, kInvalidData,
               path << ": camera_matrix focal lengths must be positive");
   std::vector<double> coefficients;
@@ -100,10 +100,11 @@ CameraCalibration ReadOpenCvFile(const std::string& path) {
     coefficients.assign(distortion.begin<double>(), distortion.end<double>());
   }
   const size_t count = coefficients.size();
-  COMIC_CHECK(count == 0 || count == 4 || count == 5 || count == 8, kInvalidData,
-              path << ": distortion_coefficients must have 4, 5 or 8 values (k1 k2 p1 p2 [k3 [k4 k5 "
-                      "k6]]), got "
-                   << count);
+  COMIC_CHECK(
+      count == 0 || count == 4 || count == 5 || count == 8, kInvalidData,
+      path << ": distortion_coefficients must have 4, 5 or 8 values (k1 k2 p1 p2 [k3 [k4 k5 "
+              "k6]]), got "
+           << count);
   for (size_t i = 4; i < count; ++i) {
     COMIC_CHECK(coefficients[i] == 0.0, kInvalidData,
                 path << ": distortion coefficient " << (i == 4 ? "k3" : "k" + std::to_string(i))
@@ -119,12 +120,13 @@ CameraCalibration ReadOpenCvFile(const std::string& path) {
   calibration.height = height;
   calibration.model = "OPENCV";
   calibration.params = {k(0, 0), k(1, 1), k(0, 2), k(1, 2), 0.0, 0.0, 0.0, 0.0};
-  for (size_t i = 0; i < std::min<size_t>(count, 4); ++i) calibration.params[4 + i] = coefficients[i];
+  for (size_t i = 0; i < std::min<size_t>(count, 4); ++i)
+    calibration.params[4 + i] = coefficients[i];
   return calibration;
 }
 
-CameraCalibration ReadColmapCameras(const std::string& path,
-                                    const std::vector<std::pair<int, std::vector<std::string>>>& lines) {
+CameraCalibration ReadColmapCameras(
+    const std::string& path, const std::vector<std::pair<int, std::vector<std::string>>>& lines) {
   COMIC_CHECK(!lines.empty(), kInvalidData, path << ": no camera in this COLMAP cameras.txt");
   const auto& [line_number, fields] = lines[0];
   const std::string where = path + ":" + std::to_string(line_number);
@@ -132,9 +134,10 @@ CameraCalibration ReadColmapCameras(const std::string& path,
               where << ": expected CAMERA_ID MODEL WIDTH HEIGHT PARAMS[]");
   const std::string& model = fields[1];
   const int num_params = ColmapCameraModelNumParams(model);
-  COMIC_CHECK(num_params > 0 && ColmapCameraModelId(model) <= 4, kInvalidData,
-              where << ": camera model " << model
-                    << " is not supported (SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV)");
+  COMIC_CHECK(
+      num_params > 0 && ColmapCameraModelId(model) <= 4, kInvalidData,
+      where << ": camera model " << model
+            << " is not supported (SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV)");
   COMIC_CHECK(static_cast<int>(fields.size()) == 4 + num_params, kInvalidData,
               where << ": " << model << " takes " << num_params << " parameters, got "
                     << static_cast<int>(fields.size()) - 4);
@@ -192,9 +195,9 @@ CameraCalibration ReadCameraCalibrationFile(const std::string& path) {
   }
   CameraCalibration calibration;
   if (values.size() == 5 || values.size() == 6 || values.size() == 8) {
-    COMIC_CHECK(values[0] > 0 && values[1] > 0, kInvalidData,
-                path << ": focal lengths must be positive, got fx=" << values[0]
-                     << " fy=" << values[1]);
+    COMIC_CHECK(
+        values[0] > 0 && values[1] > 0, kInvalidData,
+        path << ": focal lengths must be positive, got fx=" << values[0] << " fy=" << values[1]);
     calibration.format = "numbers";
     calibration.model = "OPENCV";
     calibration.params = values;

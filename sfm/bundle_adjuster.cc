@@ -109,7 +109,7 @@ class ReprojectionCost {
     return true;
   }
 
-  static constexpr int kNumParams = kModel == CameraModelId::kSimplePinhole ? 3
+  static constexpr int kNumParams = kModel == CameraModelId::kSimplePinhole  ? 3
                                     : kModel == CameraModelId::kPinhole      ? 4
                                     : kModel == CameraModelId::kSimpleRadial ? 4
                                     : kModel == CameraModelId::kRadial       ? 5
@@ -391,10 +391,9 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
                                  point_params.at(point2D.point3D_id),
                                  camera_params.at(image.camera_id));
       } else if (camera.HasDistortion()) {
-        problem.AddResidualBlock(
-            FixedDistortedReprojectionCost::Create(point2D.xy, camera.model,
-                                                   camera_params.at(image.camera_id)),
-            loss, pose, point_params.at(point2D.point3D_id));
+        problem.AddResidualBlock(FixedDistortedReprojectionCost::Create(
+                                     point2D.xy, camera.model, camera_params.at(image.camera_id)),
+                                 loss, pose, point_params.at(point2D.point3D_id));
       } else {
         // Undistorted and fixed: the analytic cost takes fx, fy, cx, cy.
         const std::array<double, 4> pinhole = {camera.fx, camera.fy, camera.cx, camera.cy};
@@ -425,10 +424,10 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   for (camera_t camera_id : variable_cameras) {
     const std::vector<int>& constant = constant_camera_params.at(camera_id);
     if (constant.empty()) continue;
-    problem.SetManifold(camera_params.at(camera_id),
-                        new ceres::SubsetManifold(
-                            CameraModelNumParams(reconstruction->camera(camera_id).model),
-                            constant));
+    problem.SetManifold(
+        camera_params.at(camera_id),
+        new ceres::SubsetManifold(CameraModelNumParams(reconstruction->camera(camera_id).model),
+                                  constant));
   }
 
   // Schur complement: eliminate the points (group 0) first, then solve for the cameras.

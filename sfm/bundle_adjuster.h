@@ -72,7 +72,7 @@ struct BundleAdjustmentSummary {
   // CPU time of the whole process during the solve (all threads): unlike the wall time it does
   // not grow when other jobs share the machine.
   double cpu_time_s = 0.0;
-  std::string termination;  // Ceres's termination type and message
+  std::string termination;          // Ceres's termination type and message
   bool refined_intrinsics = false;  // some intrinsic parameter was variable
 };
 

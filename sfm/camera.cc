@@ -24,8 +24,7 @@ Camera Camera::FromParams(CameraModelId model, int width, int height,
                           const std::vector<double>& params) {
   COMIC_CHECK(static_cast<int>(params.size()) == CameraModelNumParams(model), kInvalidArgument,
               CameraModelName(model) << " takes " << CameraModelNumParams(model) << " parameters ("
-                                     << CameraModelParamsInfo(model) << "), got "
-                                     << params.size());
+                                     << CameraModelParamsInfo(model) << "), got " << params.size());
   Camera camera;
   camera.model = model;
   camera.width = width;
@@ -90,8 +89,7 @@ Eigen::Vector2d Camera::ImageFromCam(const Eigen::Vector2d& normalized) const {
   }
   const std::vector<double> params = Params();
   Eigen::Vector2d pixel;
-  ImageFromNormalized(model, params.data(), normalized.x(), normalized.y(), &pixel.x(),
-                      &pixel.y());
+  ImageFromNormalized(model, params.data(), normalized.x(), normalized.y(), &pixel.x(), &pixel.y());
   return pixel;
 }
 
@@ -133,9 +131,9 @@ std::string Camera::Describe() const {
 }
 
 void Camera::Check() const {
-  COMIC_CHECK(CameraModelFromId(static_cast<int>(model)).has_value(), kInvalidArgument,
-              "camera model id " << static_cast<int>(model) << " is not one of "
-                                 << CameraModelNames());
+  COMIC_CHECK(
+      CameraModelFromId(static_cast<int>(model)).has_value(), kInvalidArgument,
+      "camera model id " << static_cast<int>(model) << " is not one of " << CameraModelNames());
   COMIC_CHECK(width > 0 && height > 0, kInvalidArgument,
               "camera size must be positive, got " << width << "x" << height);
   COMIC_CHECK(fx > 0 && fy > 0 && std::isfinite(fx) && std::isfinite(fy), kInvalidArgument,

@@ -29,8 +29,7 @@ struct Camera {
   // The default when nothing better is known: f = 1.2 · max(w, h), principal point at the
   // image centre ((w − 1)/2, (h − 1)/2), no distortion; PINHOLE unless another model is asked
   // for (COLMAP's feature extractor starts from the same focal, SIMPLE_RADIAL with k = 0).
-  static Camera FromImageSize(int width, int height,
-                              CameraModelId model = CameraModelId::kPinhole);
+  static Camera FromImageSize(int width, int height, CameraModelId model = CameraModelId::kPinhole);
 
   // A camera from COLMAP-ordered parameters (sfm/camera_model.h), in OpenCV's pixel convention.
   // Throws comic::Error(kInvalidArgument) for a wrong parameter count or an invalid camera.

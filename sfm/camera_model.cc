@@ -1,8 +1,8 @@
 #include "sfm/camera_model.h"
 
 #include <Eigen/Dense>
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -46,7 +46,8 @@ std::optional<CameraModelId> CameraModelFromId(int id) {
 
 std::string CameraModelNames() {
   std::string names;
-  for (const ModelInfo& info : kModels) names += (names.empty() ? "" : ", ") + std::string(info.name);
+  for (const ModelInfo& info : kModels)
+    names += (names.empty() ? "" : ", ") + std::string(info.name);
   return names;
 }
 
@@ -72,8 +73,10 @@ Eigen::Vector2d NormalizedFromImage(CameraModelId model, const double* params,
   constexpr double kRelativeStep = 1e-6;
   Eigen::Vector2d u = distorted;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    const double step_x = std::max(std::numeric_limits<double>::epsilon(), std::abs(u.x() * kRelativeStep));
-    const double step_y = std::max(std::numeric_limits<double>::epsilon(), std::abs(u.y() * kRelativeStep));
+    const double step_x =
+        std::max(std::numeric_limits<double>::epsilon(), std::abs(u.x() * kRelativeStep));
+    const double step_y =
+        std::max(std::numeric_limits<double>::epsilon(), std::abs(u.y() * kRelativeStep));
     double du, dv;
     DistortionOffset(model, extra, u.x(), u.y(), &du, &dv);
     double du_x0, dv_x0, du_x1, dv_x1, du_y0, dv_y0, du_y1, dv_y1;

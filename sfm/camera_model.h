@@ -92,8 +92,7 @@ void DistortionOffset(CameraModelId model, const P* extra, const T& u, const T& 
 // Pixel of a normalised point: distortion, then focal length and principal point. `params` in
 // the model's order.
 template <typename T, typename P>
-void ImageFromNormalized(CameraModelId model, const P* params, const T& u, const T& v, T* x,
-                         T* y) {
+void ImageFromNormalized(CameraModelId model, const P* params, const T& u, const T& v, T* x, T* y) {
   const int pp = CameraModelPrincipalPointIndex(model);
   T du = T(0.0);
   T dv = T(0.0);

@@ -26,7 +26,8 @@ FocalObservability AssessFocalObservability(const Reconstruction& reconstruction
   }
   double min_cosine = 1.0;
   for (size_t i = 0; i < axes.size(); ++i) {
-    for (size_t j = i + 1; j < axes.size(); ++j) min_cosine = std::min(min_cosine, axes[i].dot(axes[j]));
+    for (size_t j = i + 1; j < axes.size(); ++j)
+      min_cosine = std::min(min_cosine, axes[i].dot(axes[j]));
   }
   FocalObservability result;
   result.max_viewing_angle_deg = std::acos(std::clamp(min_cosine, -1.0, 1.0)) * 180.0 / M_PI;

@@ -111,8 +111,8 @@ struct IncrementalReconstruction {
   FocalObservability focal_observability;
   // Some intrinsic parameter was refined in at least one global adjustment.
   bool intrinsics_refined = false;
-  double wall_time_s = 0.0;          // the whole reconstruction
-  double cpu_time_s = 0.0;           // and its CPU time
+  double wall_time_s = 0.0;  // the whole reconstruction
+  double cpu_time_s = 0.0;   // and its CPU time
 };
 
 // Reconstructs the frames of `tracks` seen by `camera`: one model, the largest of up to

@@ -44,8 +44,8 @@ TwoViewGeometry EstimateCalibratedTwoViewGeometry(const Camera& camera1, const C
   geometry.inlier_mask.assign(points1.size(), 0);
   if (static_cast<int>(points1.size()) < options.min_num_inliers) return geometry;
 
-  // Work in undistorted normalised coordinates so the two cameras may differ; thresholds scale by the mean
-  // focal length.
+  // Work in undistorted normalised coordinates so the two cameras may differ; thresholds scale by
+  // the mean focal length.
   std::vector<cv::Point2d> normalized1, normalized2;
   normalized1.reserve(points1.size());
   normalized2.reserve(points2.size());

@@ -7,9 +7,9 @@ namespace comic::apps {
 
 sfm::CameraModelId ParseCameraModelFlag(const std::string& name) {
   const auto model = sfm::CameraModelFromName(name);
-  COMIC_CHECK(model.has_value(), kInvalidArgument,
-              "--camera-model: expected one of " << sfm::CameraModelNames() << ", got '" << name
-                                                 << "'");
+  COMIC_CHECK(
+      model.has_value(), kInvalidArgument,
+      "--camera-model: expected one of " << sfm::CameraModelNames() << ", got '" << name << "'");
   return *model;
 }
 
@@ -20,9 +20,9 @@ sfm::Camera ConvertCameraModel(const sfm::Camera& camera, sfm::CameraModelId mod
   try {
     converted.Check();
   } catch (const Error&) {
-    throw Error(ErrorKind::kInvalidArgument,
-                "--camera-model " + sfm::CameraModelName(model) + " cannot hold the camera " +
-                    camera.Describe() + " without losing parameters");
+    throw Error(ErrorKind::kInvalidArgument, "--camera-model " + sfm::CameraModelName(model) +
+                                                 " cannot hold the camera " + camera.Describe() +
+                                                 " without losing parameters");
   }
   return converted;
 }
@@ -31,13 +31,12 @@ sfm::Camera LoadCameraIntrinsics(const std::string& path, const cv::Size& source
                                  const cv::Size& frame_size,
                                  const std::optional<sfm::CameraModelId>& model) {
   const io::CameraCalibration calibration = io::ReadCameraCalibrationFile(path);
-  COMIC_CHECK((calibration.width == 0 && calibration.height == 0) ||
-                  (calibration.width == source_size.width &&
-                   calibration.height == source_size.height),
-              kInvalidData,
-              path << ": calibration is for " << calibration.width << "x" << calibration.height
-                   << " images, the frames are " << source_size.width << "x"
-                   << source_size.height);
+  COMIC_CHECK(
+      (calibration.width == 0 && calibration.height == 0) ||
+          (calibration.width == source_size.width && calibration.height == source_size.height),
+      kInvalidData,
+      path << ": calibration is for " << calibration.width << "x" << calibration.height
+           << " images, the frames are " << source_size.width << "x" << source_size.height);
   const auto file_model = sfm::CameraModelFromName(calibration.model);
   COMIC_CHECK(file_model.has_value(), kInvalidData,
               path << ": unsupported camera model " << calibration.model);

@@ -236,9 +236,8 @@ ColmapExportSummary WriteTracksToColmapDatabase(const frontend::FeatureTracks& t
   ColmapExportSummary summary;
   summary.known_intrinsics = camera.has_value();
   io::ColmapDatabase::Transaction transaction(database);
-  const int64_t camera_id =
-      database->WriteCamera(
-          ToColmapDatabaseCamera(camera, tracks.image_size, options.default_camera_model));
+  const int64_t camera_id = database->WriteCamera(
+      ToColmapDatabaseCamera(camera, tracks.image_size, options.default_camera_model));
 
   // Frame i is image i + 1.
   for (size_t i = 0; i < tracks.NumFrames(); ++i) {

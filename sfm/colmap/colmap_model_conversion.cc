@@ -70,8 +70,8 @@ Camera CameraFromColmap(const io::ColmapCamera& colmap_camera, bool ignore_disto
                                << ")");
   std::vector<double> p = colmap_camera.params;
   COMIC_CHECK(static_cast<int>(p.size()) == CameraModelNumParams(*model), kInvalidData,
-              "COLMAP camera " << colmap_camera.camera_id << " (" << colmap_camera.model
-                               << ") has " << p.size() << " parameters, expected "
+              "COLMAP camera " << colmap_camera.camera_id << " (" << colmap_camera.model << ") has "
+                               << p.size() << " parameters, expected "
                                << CameraModelNumParams(*model));
   const int pp = CameraModelPrincipalPointIndex(*model);
   p[pp] -= kColmapPixelOffset;

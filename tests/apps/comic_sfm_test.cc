@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -112,8 +111,8 @@ TEST(ComicSfm, OpenCvCalibrationWritesAnOpenCvCamera) {
   const comic::io::ColmapTextModel model = comic::io::ReadColmapTextModel(dir.File("a"));
   ASSERT_EQ(model.cameras.size(), 1u);
   EXPECT_EQ(model.cameras[0].model, "OPENCV");
-  EXPECT_EQ(model.cameras[0].params,
-            (std::vector<double>{707.0912, 707.0912, 601.8873 + 0.5, 183.1104 + 0.5, 0.001, 0, 0, 0}));
+  EXPECT_EQ(model.cameras[0].params, (std::vector<double>{707.0912, 707.0912, 601.8873 + 0.5,
+                                                          183.1104 + 0.5, 0.001, 0, 0, 0}));
 }
 
 TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {

@@ -26,7 +26,8 @@ void WriteOpenCv(const std::string& path, const cv::Mat& distortion, bool with_s
     storage << "image_width" << 1226;
     storage << "image_height" << 370;
   }
-  storage << "camera_matrix" << (cv::Mat_<double>(3, 3) << 707.1, 0, 601.9, 0, 707.2, 183.1, 0, 0, 1);
+  storage << "camera_matrix"
+          << (cv::Mat_<double>(3, 3) << 707.1, 0, 601.9, 0, 707.2, 183.1, 0, 0, 1);
   if (!distortion.empty()) storage << "distortion_coefficients" << distortion;
 }
 
@@ -95,7 +96,8 @@ TEST(CameraCalibrationFile, ReadsOpenCvYamlAndXml) {
 TEST(CameraCalibrationFile, RefusesOpenCvFilesTheModelsCannotHold) {
   ScopedTempDir dir;
   WriteOpenCv(dir.File("k3.yml"), (cv::Mat_<double>(1, 5) << -0.3, 0.1, 0.001, -0.002, 0.05));
-  EXPECT_NE(ErrorOf(dir.File("k3.yml")).find("k3"), std::string::npos) << ErrorOf(dir.File("k3.yml"));
+  EXPECT_NE(ErrorOf(dir.File("k3.yml")).find("k3"), std::string::npos)
+      << ErrorOf(dir.File("k3.yml"));
   WriteOpenCv(dir.File("three.yml"), (cv::Mat_<double>(1, 3) << -0.3, 0.1, 0.001));
   EXPECT_NE(ErrorOf(dir.File("three.yml")).find("4, 5 or 8"), std::string::npos);
   Write(dir.File("nomatrix.yml"), "%YAML:1.0\n---\nimage_width: 640\n");

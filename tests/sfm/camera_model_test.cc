@@ -40,8 +40,8 @@ TEST(CameraModel, NamesIdsAndParameterCountsAreColmaps) {
 }
 
 TEST(CameraModel, ParamsRoundTripInColmapOrder) {
-  const Camera opencv =
-      Camera::FromParams(CameraModelId::kOpenCV, 640, 480, {500, 510, 320, 240, 0.1, -0.05, 0.001, -0.002});
+  const Camera opencv = Camera::FromParams(CameraModelId::kOpenCV, 640, 480,
+                                           {500, 510, 320, 240, 0.1, -0.05, 0.001, -0.002});
   EXPECT_EQ(opencv.fx, 500);
   EXPECT_EQ(opencv.fy, 510);
   EXPECT_EQ(opencv.cx, 320);
@@ -51,7 +51,8 @@ TEST(CameraModel, ParamsRoundTripInColmapOrder) {
   EXPECT_EQ(opencv.p1, 0.001);
   EXPECT_EQ(opencv.p2, -0.002);
   EXPECT_EQ(opencv.Params(), (std::vector<double>{500, 510, 320, 240, 0.1, -0.05, 0.001, -0.002}));
-  const Camera radial = Camera::FromParams(CameraModelId::kRadial, 640, 480, {500, 320, 240, 0.1, 0.2});
+  const Camera radial =
+      Camera::FromParams(CameraModelId::kRadial, 640, 480, {500, 320, 240, 0.1, 0.2});
   EXPECT_EQ(radial.fx, 500);
   EXPECT_EQ(radial.fy, 500);
   EXPECT_EQ(radial.k2, 0.2);
