@@ -65,11 +65,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddColmapDbFlags(parser, &colmap);
   parser.AddDeprecatedAlias("output", "colmap-db");
   comic::apps::AddIntrinsicsFlag(parser, &intrinsics_path);
-  parser.AddOption("camera-model", "NAME",
-                   "camera model written: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL or "
-                   "OPENCV (default SIMPLE_RADIAL without --intrinsics, the file's model with it, "
-                   "converted where that loses nothing)",
-                   &camera_model);
+  comic::apps::AddCameraModelFlag(parser, &camera_model);
   comic::apps::AddDetectorFlag(parser, &detector_name);
   comic::apps::AddTrackerFlags(parser, &tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");

@@ -635,11 +635,7 @@ int Run(int argc, char** argv) {
                  "without a calibration, keep the default camera fixed instead of refining its "
                  "focal length and distortion",
                  &flags.fixed_intrinsics);
-  parser.AddOption("camera-model", "NAME",
-                   "camera model: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL or OPENCV "
-                   "(COLMAP's names; default SIMPLE_RADIAL without a calibration, the file's "
-                   "model with --intrinsics, converted where that loses nothing)",
-                   &flags.camera_model);
+  comic::apps::AddCameraModelFlag(parser, &flags.camera_model);
   parser.AddFlag("ignore-gt-intrinsics",
                  "use --gt for evaluation only, not as the camera's intrinsics (self-calibration "
                  "measured against the truth)",

@@ -83,6 +83,14 @@ void AddIntrinsicsFlag(ArgParser& parser, std::string* path) {
                    path);
 }
 
+void AddCameraModelFlag(ArgParser& parser, std::string* name) {
+  parser.AddOption("camera-model", "NAME",
+                   "camera model: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL or OPENCV "
+                   "(COLMAP's names; default SIMPLE_RADIAL without --intrinsics, else the file's "
+                   "model, converted where that loses nothing)",
+                   name);
+}
+
 void AddObjectRegionFlags(ArgParser& parser, ObjectRegionFlags* flags) {
   parser.AddOption("masks", "DIR", "object region: a folder of per-frame masks (non-zero = object)",
                    &flags->masks);
