@@ -503,14 +503,15 @@ void CheckColmapFlags(const Flags& flags) {
 }
 
 // The frames' intrinsics are known (not the default guess): COLMAP holds them fixed.
-bool IntrinsicsKnown(const Flags& flags, const Inputs& inputs) {
-  return !flags.intrinsics.empty() || (inputs.ground_truth && inputs.ground_truth->camera);
+bool IntrinsicsKnown(const Flags& /*flags*/, const Inputs& inputs) {
+  return !inputs.self_calibrating;  // --intrinsics, or the ground truth's unless ignored
 }
 
 // The export options of --colmap-db and --compare-colmap, as comic_export_colmap sets them.
-sfm::ColmapExportOptions ExportOptions(const Flags& flags) {
+sfm::ColmapExportOptions ExportOptions(const Flags& flags, const Inputs& inputs) {
   sfm::ColmapExportOptions options = flags.colmap.export_options;
   options.num_threads = flags.threads;
+  options.default_camera_model = inputs.camera.model;  // the model of a guessed camera
   return options;
 }
 
@@ -521,7 +522,7 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
   const sfm::ColmapExportSummary summary = sfm::ExportTracksToColmapDatabase(
       run.tracks,
       IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
-      ExportOptions(flags), database, flags.colmap.overwrite);
+      ExportOptions(flags, inputs), database, flags.colmap.overwrite);
   sfm::ColmapMapperOptions mapper = sfm::RecommendedColmapMapperOptions(summary);
   mapper.num_threads = flags.colmap.colmap_threads;
   std::cout << "wrote " << database << " (" << summary.num_images << " images, "
@@ -537,7 +538,7 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
 void CompareWithColmap(const Flags& flags, const Inputs& inputs,
                        const sfm::SequenceReconstruction& run, const io::StagedFolder& out) {
   sfm::ColmapComparisonOptions options;
-  options.export_options = ExportOptions(flags);
+  options.export_options = ExportOptions(flags, inputs);
   options.colmap_threads = flags.colmap.colmap_threads;
   const std::vector<std::optional<sfm::Rigid3d>> truth =
       inputs.ground_truth ? inputs.ground_truth->cams_from_world
