@@ -49,6 +49,7 @@ std::string ImageNamePrefix(const std::string& frames, const std::string& image_
 int Run(int argc, char** argv) {
   std::string frames;
   std::string intrinsics_path;
+  std::string camera_model;
   std::string detector_name = "harris";
   std::string image_path;
   std::string sparse_path;
@@ -78,6 +79,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddColmapDbFlags(parser, &colmap);
   parser.AddDeprecatedAlias("output", "colmap-db");
   comic::apps::AddIntrinsicsFlag(parser, &intrinsics_path);
+  comic::apps::AddCameraModelFlag(parser, &camera_model);
   comic::apps::AddDetectorFlag(parser, &detector_name);
   comic::apps::AddTrackerFlags(parser, &tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");
@@ -99,7 +101,7 @@ int Run(int argc, char** argv) {
       kFramesBesideDatabase, &write_frames);
   comic::apps::AddQuietFlag(parser, &quiet);
   parser.AddEpilog(
-      "Without --intrinsics the camera is COLMAP's SIMPLE_RADIAL guess.\n"
+      "Without --intrinsics the camera is COLMAP's SIMPLE_RADIAL guess (or --camera-model's).\n"
       "Example (the bundled KITTI clip):\n"
       "  comic_export_colmap examples/data/kitti06_000-011/image_l --colmap-db kitti.db \\\n"
       "      --intrinsics examples/data/kitti06_000-011/calib.txt\n"
@@ -121,6 +123,9 @@ int Run(int argc, char** argv) {
   comic::sfm::ColmapExportOptions export_options = colmap.export_options;
   export_options.num_threads = threads;
   comic::apps::CheckColmapDbFlags(colmap);
+  std::optional<comic::sfm::CameraModelId> model;
+  if (!camera_model.empty()) model = comic::apps::ParseCameraModelFlag(camera_model);
+  if (model) export_options.default_camera_model = *model;
   comic::frontend::DetectorOptions detector_options;
   detector_options.name = detector_name;
   detector_options.comic.num_threads = threads;
@@ -164,7 +169,7 @@ int Run(int argc, char** argv) {
   std::optional<comic::sfm::Camera> camera;
   if (!intrinsics_path.empty()) {
     camera = comic::apps::LoadCameraIntrinsics(intrinsics_path, sequence.SourceFrameSize(),
-                                               sequence.FrameSize());
+                                               sequence.FrameSize(), model);
   }
 
   const auto detector = comic::frontend::MakeDetector(detector_options);
@@ -194,8 +199,9 @@ int Run(int argc, char** argv) {
             << "tracks:     " << tracks.tracks.size() << " (" << detector_name << ", "
             << observations << " observations)\n"
             << "camera:     "
-            << (camera ? "PINHOLE, known intrinsics (" + intrinsics_path + ")"
-                       : std::string("SIMPLE_RADIAL, guessed (no --intrinsics)"))
+            << (camera ? camera->Describe() + ", known intrinsics (" + intrinsics_path + ")"
+                       : comic::sfm::CameraModelName(export_options.default_camera_model) +
+                             ", guessed (no --intrinsics)")
             << "\n"
             << "pairs:      " << summary.num_matched_pairs << " within "
             << export_options.pair_window << " frames, " << summary.num_verified_pairs

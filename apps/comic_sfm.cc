@@ -82,6 +82,11 @@ struct Flags {
   io::ImageSequenceOptions sequence;
   comic::apps::TrackerFlags tracker;  // sfm::SequenceReconstructionOptions' tracker defaults
   bool refine_focal = false;
+  bool refine_principal_point = false;
+  bool refine_distortion = false;
+  bool fixed_intrinsics = false;
+  bool ignore_gt_intrinsics = false;
+  std::string camera_model;  // empty: SIMPLE_RADIAL for the default camera, the file's otherwise
   bool no_retriangulate = false;
   int local_ba_images = sfm::IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
@@ -107,6 +112,8 @@ struct Inputs {
   std::vector<int> source_indices;
   sfm::Camera camera;
   std::string intrinsics_source;
+  // No calibration was given: the default camera, self-calibrated unless --fixed-intrinsics.
+  bool self_calibrating = false;
   std::optional<sfm::FrameGroundTruth> ground_truth;
   io::GroundTruthFormat gt_format = io::GroundTruthFormat::kAuto;
   std::vector<cv::Mat> region_labels;  // per frame, empty without --regions / --masks
@@ -114,10 +121,17 @@ struct Inputs {
   bool plot_plane_from_estimate = false;  // auto without ground truth: PCA of our centres
 };
 
-sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
+// `self_calibrating`: no calibration was given, so the focal length and distortion are refined
+// (COLMAP's defaults, ba_refine_focal_length and ba_refine_extra_params) unless
+// --fixed-intrinsics; the pipeline refines them once the model constrains them
+// (sfm/incremental_pipeline.h) and keeps the prior focal where it is unobservable.
+sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags, bool self_calibrating = false) {
   sfm::SequenceReconstructionOptions options;
   options.tracker = comic::apps::ToTrackerOptions(flags.tracker);
-  options.mapper.global_ba.refine_focal_length = flags.refine_focal;
+  const bool automatic = self_calibrating && !flags.fixed_intrinsics;
+  options.mapper.global_ba.refine_focal_length = flags.refine_focal || automatic;
+  options.mapper.global_ba.refine_principal_point = flags.refine_principal_point;
+  options.mapper.global_ba.refine_extra_params = flags.refine_distortion || automatic;
   options.mapper.mapper.retriangulate_incomplete_tracks = !flags.no_retriangulate;
   options.mapper.local_ba_num_images = flags.local_ba_images;
   options.mapper.global_ba_growth_ratio = flags.global_ba_growth;
@@ -131,6 +145,41 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags) {
   return options;
 }
 
+nlohmann::json CameraToJson(const sfm::Camera& camera) {
+  return {{"model", sfm::CameraModelName(camera.model)},
+          {"model_id", static_cast<int>(camera.model)},
+          {"width", camera.width},
+          {"height", camera.height},
+          {"params", camera.Params()},
+          {"params_info", sfm::CameraModelParamsInfo(camera.model)},
+          {"pixel_convention", "OpenCV (top-left pixel centre at 0,0)"}};
+}
+
+// report.json "camera": the prior, the camera of the model (refined or not), and whether the
+// motion let the focal length be refined.
+nlohmann::json CameraReport(const sfm::SequenceReconstruction& run, const Inputs& inputs) {
+  const sfm::IncrementalReconstruction& mapping = run.mapping;
+  nlohmann::json json = {{"source", inputs.intrinsics_source},
+                         {"prior", CameraToJson(inputs.camera)},
+                         {"refined", mapping.intrinsics_refined}};
+  const sfm::Reconstruction& reconstruction = mapping.reconstruction;
+  const sfm::Camera& camera =
+      reconstruction.cameras().empty() ? inputs.camera : reconstruction.cameras().begin()->second;
+  json["final"] = CameraToJson(camera);
+  json["focal_length_px"] = camera.fx;
+  if (mapping.focal_assessed) {
+    json["focal_observable"] = mapping.focal_observability.observable;
+    json["max_viewing_angle_deg"] = mapping.focal_observability.max_viewing_angle_deg;
+    json["focal_observability_rule"] =
+        "observable when two registered images' optical axes are >= " +
+        std::to_string(sfm::FocalObservabilityOptions().min_viewing_angle_deg) +
+        " deg apart (sfm/focal_observability.h); otherwise the prior focal is kept";
+  } else {
+    json["focal_observable"] = nullptr;  // the focal was not to be refined
+  }
+  return json;
+}
+
 nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
   const sfm::Camera& c = inputs.camera;
   const frontend::TrackerOptions& tracker = flags.tracker.options;
@@ -142,6 +191,8 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"frame_size", {inputs.sequence->FrameSize().width, inputs.sequence->FrameSize().height}},
           {"intrinsics",
            {{"source", inputs.intrinsics_source},
+            {"model", sfm::CameraModelName(c.model)},
+            {"params", c.Params()},
             {"fx", c.fx},
             {"fy", c.fy},
             {"cx", c.cx},
@@ -160,6 +211,11 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"match_turned", tracker.match_turned_180},
           {"max_cost", tracker.matcher.max_cost},
           {"refine_focal", flags.refine_focal},
+          {"refine_principal_point", flags.refine_principal_point},
+          {"refine_distortion", flags.refine_distortion},
+          {"fixed_intrinsics", flags.fixed_intrinsics},
+          {"ignore_gt_intrinsics", flags.ignore_gt_intrinsics},
+          {"camera_model", flags.camera_model},
           {"retriangulate", !flags.no_retriangulate},
           {"local_ba_images", flags.local_ba_images},
           {"global_ba_growth", flags.global_ba_growth},
@@ -206,15 +262,24 @@ Inputs ResolveInputs(const Flags& flags) {
     sfm::CheckGroundTruthCoverage(*inputs.ground_truth, sequence.FrameNames(), flags.gt,
                                   flags.gt_partial);
   }
+  std::optional<sfm::CameraModelId> model;
+  if (!flags.camera_model.empty()) model = comic::apps::ParseCameraModelFlag(flags.camera_model);
   if (!flags.intrinsics.empty()) {
-    inputs.camera = comic::apps::LoadCameraIntrinsics(flags.intrinsics, source_size, frame_size);
+    inputs.camera =
+        comic::apps::LoadCameraIntrinsics(flags.intrinsics, source_size, frame_size, model);
     inputs.intrinsics_source = "file " + flags.intrinsics;
-  } else if (inputs.ground_truth && inputs.ground_truth->camera) {
+  } else if (inputs.ground_truth && inputs.ground_truth->camera && !flags.ignore_gt_intrinsics) {
     inputs.camera = *inputs.ground_truth->camera;
+    if (model) inputs.camera = comic::apps::ConvertCameraModel(inputs.camera, *model);
     inputs.intrinsics_source = "ground truth " + flags.gt;
   } else {
-    inputs.camera = sfm::Camera::FromImageSize(frame_size.width, frame_size.height);
-    inputs.intrinsics_source = "default: f = 1.2 max(w, h), principal point at the centre";
+    // COLMAP's default for unknown cameras: SIMPLE_RADIAL, f = 1.2 max(w, h), k = 0.
+    inputs.camera = sfm::Camera::FromImageSize(frame_size.width, frame_size.height,
+                                               model.value_or(sfm::CameraModelId::kSimpleRadial));
+    inputs.self_calibrating = true;
+    inputs.intrinsics_source =
+        std::string("default: f = 1.2 max(w, h), principal point at the centre") +
+        (flags.fixed_intrinsics ? ", held fixed" : ", refined once the model constrains it");
   }
   inputs.camera.width = frame_size.width;
   inputs.camera.height = frame_size.height;
@@ -322,7 +387,7 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   detector_options.comic.num_threads = flags.threads;
   detector_options.comic_paper.num_threads = flags.threads;
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_options);
-  const sfm::SequenceReconstructionOptions options = MakeOptions(flags);
+  const sfm::SequenceReconstructionOptions options = MakeOptions(flags, inputs.self_calibrating);
   const std::string tag = "[" + detector_name + "] ";
   // Detection and tracking are most of a run's time (issue 17: 39.5 s of 48 s silent on KITTI).
   comic::apps::ProgressLine tracking_progress(tag + "detection and tracking", flags.quiet);
@@ -356,6 +421,7 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   io::EnsureWritableDirectory(out_dir);
   nlohmann::json json = sfm::RunReportToJson(result.report);
   json["options"] = OptionsToJson(flags, inputs);
+  json["camera"] = CameraReport(result.run, inputs);
   const frontend::TrackBuildSummary& building = result.run.track_building;
   result.diagnosis = sfm::DiagnoseReconstruction(result.run.mapping, options.mapper,
                                                  inputs.sequence->FrameNames());
@@ -434,7 +500,7 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   return result;
 }
 
-void PrintSummary(const sfm::SfmRunReport& report) {
+void PrintSummary(const sfm::SfmRunReport& report, const sfm::SequenceReconstruction& run) {
   std::cout << "[" << report.detector << "] " << report.status << ": "
             << report.stats.num_registered << "/" << report.num_frames << " frames registered, "
             << report.stats.all.num_points << " points, mean track length "
@@ -447,6 +513,16 @@ void PrintSummary(const sfm::SfmRunReport& report) {
               << report.trajectory->mean_rotation_error_deg << " deg";
   }
   std::cout << ", " << report.wall_time_s << " s";
+  const sfm::IncrementalReconstruction& mapping = run.mapping;
+  if (mapping.reconstruction.NumRegisteredImages() > 0 &&
+      !mapping.reconstruction.cameras().empty()) {
+    std::cout << "; camera " << mapping.reconstruction.cameras().begin()->second.Describe()
+              << (mapping.intrinsics_refined ? " (refined)" : "");
+    if (mapping.focal_assessed && !mapping.focal_observability.observable) {
+      std::cout << ", focal unobservable (optical axes within "
+                << mapping.focal_observability.max_viewing_angle_deg << " deg): prior kept";
+    }
+  }
   // Frames the model could not take are reported, by index, in runs (e.g. "40-47").
   if (report.stats.num_registered > 0 && !report.unregistered_frames.empty()) {
     std::cout << "; unregistered frames:";
@@ -491,14 +567,15 @@ void CheckColmapFlags(const Flags& flags) {
 }
 
 // The frames' intrinsics are known (not the default guess): COLMAP holds them fixed.
-bool IntrinsicsKnown(const Flags& flags, const Inputs& inputs) {
-  return !flags.intrinsics.empty() || (inputs.ground_truth && inputs.ground_truth->camera);
+bool IntrinsicsKnown(const Flags& /*flags*/, const Inputs& inputs) {
+  return !inputs.self_calibrating;  // --intrinsics, or the ground truth's unless ignored
 }
 
 // The export options of --colmap-db and --compare-colmap, as comic_export_colmap sets them.
-sfm::ColmapExportOptions ExportOptions(const Flags& flags) {
+sfm::ColmapExportOptions ExportOptions(const Flags& flags, const Inputs& inputs) {
   sfm::ColmapExportOptions options = flags.colmap.export_options;
   options.num_threads = flags.threads;
+  options.default_camera_model = inputs.camera.model;  // the model of a guessed camera
   return options;
 }
 
@@ -510,7 +587,7 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
   const sfm::ColmapExportSummary summary = sfm::ExportTracksToColmapDatabase(
       run.tracks,
       IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
-      ExportOptions(flags), database, flags.colmap.overwrite);
+      ExportOptions(flags, inputs), database, flags.colmap.overwrite);
   sfm::ColmapMapperOptions mapper = sfm::RecommendedColmapMapperOptions(summary);
   mapper.num_threads = flags.colmap.colmap_threads;
   std::cout << "wrote " << database << " (" << summary.num_images << " images, "
@@ -525,7 +602,7 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
 void CompareWithColmap(const Flags& flags, const Inputs& inputs,
                        const sfm::SequenceReconstruction& run, const io::StagedFolder& out) {
   sfm::ColmapComparisonOptions options;
-  options.export_options = ExportOptions(flags);
+  options.export_options = ExportOptions(flags, inputs);
   options.colmap_threads = flags.colmap.colmap_threads;
   const std::vector<std::optional<sfm::Rigid3d>> truth =
       inputs.ground_truth ? inputs.ground_truth->cams_from_world
@@ -608,8 +685,26 @@ int Run(int argc, char** argv) {
                  "misses some of them (on by default: the new point must explain more views within "
                  "2 px)",
                  &flags.no_retriangulate);
-  parser.AddFlag("refine-focal", "refine the focal length in the global bundle adjustments",
+  parser.AddFlag("refine-focal",
+                 "refine the focal length in the global bundle adjustments (on by default without "
+                 "a calibration; kept where the motion leaves it unobservable)",
                  &flags.refine_focal);
+  parser.AddFlag("refine-principal-point",
+                 "refine the principal point in the global bundle adjustments",
+                 &flags.refine_principal_point);
+  parser.AddFlag("refine-distortion",
+                 "refine the camera model's distortion in the global bundle adjustments (on by "
+                 "default without a calibration)",
+                 &flags.refine_distortion);
+  parser.AddFlag("fixed-intrinsics",
+                 "without a calibration, keep the default camera fixed instead of refining its "
+                 "focal length and distortion",
+                 &flags.fixed_intrinsics);
+  comic::apps::AddCameraModelFlag(parser, &flags.camera_model);
+  parser.AddFlag("ignore-gt-intrinsics",
+                 "use --gt for evaluation only, not as the camera's intrinsics (self-calibration "
+                 "measured against the truth)",
+                 &flags.ignore_gt_intrinsics);
   parser.AddOption("local-ba-images", "N", "images in each local bundle adjustment",
                    &flags.local_ba_images);
   parser.AddOption("global-ba-growth", "R",
@@ -728,9 +823,7 @@ int Run(int argc, char** argv) {
   {
     std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames "
               << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
-              << ", fx=" << inputs.camera.fx << " fy=" << inputs.camera.fy
-              << " cx=" << inputs.camera.cx << " cy=" << inputs.camera.cy << " ("
-              << inputs.intrinsics_source << ")"
+              << ", camera " << inputs.camera.Describe() << " (" << inputs.intrinsics_source << ")"
               << (inputs.ground_truth
                       ? ", ground truth for " + std::to_string(inputs.ground_truth->num_matched) +
                             " frames"
@@ -740,7 +833,7 @@ int Run(int argc, char** argv) {
 
   if (!flags.compare) {
     const DetectorRun result = RunDetector(flags.detector, flags, inputs, out.path());
-    PrintSummary(result.report);
+    PrintSummary(result.report, result.run);
     const bool success = result.run.mapping.status == sfm::ReconstructionStatus::kSuccess;
     write_frames();
     if (success && !flags.colmap.database.empty()) {
@@ -770,7 +863,7 @@ int Run(int argc, char** argv) {
   std::vector<sfm::SfmRunReport> reports;
   for (const std::string& name : detectors) {
     const DetectorRun result = RunDetector(name, flags, inputs, io::JoinPaths(out.path(), name));
-    PrintSummary(result.report);
+    PrintSummary(result.report, result.run);
     reports.push_back(result.report);
   }
   const io::ReportTable table = sfm::MakeComparisonTable(reports);

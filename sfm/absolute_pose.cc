@@ -64,7 +64,10 @@ std::optional<AbsolutePose> EstimateAbsolutePose(const Camera& camera,
   std::vector<cv::Point2d> image_points;
   for (size_t i = 0; i < points2D.size(); ++i) {
     object_points.emplace_back(points3D[i].x(), points3D[i].y(), points3D[i].z());
-    image_points.emplace_back(points2D[i].x(), points2D[i].y());
+    // PnP sees the pixels an ideal pinhole camera with this K would: the distortion is removed
+    // first, and inliers are counted on the original pixels through the full model.
+    const Eigen::Vector2d undistorted = camera.UndistortPixel(points2D[i]);
+    image_points.emplace_back(undistorted.x(), undistorted.y());
   }
   cv::Mat k;
   cv::eigen2cv(camera.K(), k);

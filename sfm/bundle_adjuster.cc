@@ -78,11 +78,13 @@ bool EvaluateReprojection(const double* pose, const double* point, const double*
 
 namespace {
 
-// Reprojection residual of one observation, in pixels. Parameter blocks: the image's
-// cam_from_world pose (7: the rotation as an Eigen quaternion x, y, z, w, then the translation),
-// the point in world coordinates (3) and the camera intrinsics (fx, fy, cx, cy). One pose block
+// Reprojection residual of one observation, in pixels, through the camera model (the
+// distortion of sfm/camera_model.h). Parameter blocks: the image's cam_from_world pose (7: the
+// rotation as an Eigen quaternion x, y, z, w, then the translation), the point in world
+// coordinates (3) and the camera's parameters in COLMAP's order (kNumParams). One pose block
 // with 6 degrees of freedom lets Ceres use its Schur eliminator specialised for 2x3 point and 2x6
 // camera Jacobian blocks.
+template <CameraModelId kModel>
 class ReprojectionCost {
  public:
   explicit ReprojectionCost(const Eigen::Vector2d& observed) : observed_(observed) {}
@@ -99,20 +101,77 @@ class ReprojectionCost {
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(pose + 4);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> point(point_data);
     const Eigen::Matrix<T, 3, 1> point_in_cam = rotation * point + translation;
-    residuals[0] =
-        intrinsics[0] * (point_in_cam.x() / point_in_cam.z()) + intrinsics[2] - T(observed.x());
-    residuals[1] =
-        intrinsics[1] * (point_in_cam.y() / point_in_cam.z()) + intrinsics[3] - T(observed.y());
+    T x, y;
+    ImageFromNormalized(kModel, intrinsics, T(point_in_cam.x() / point_in_cam.z()),
+                        T(point_in_cam.y() / point_in_cam.z()), &x, &y);
+    residuals[0] = x - T(observed.x());
+    residuals[1] = y - T(observed.y());
     return true;
   }
 
+  static constexpr int kNumParams = kModel == CameraModelId::kSimplePinhole  ? 3
+                                    : kModel == CameraModelId::kPinhole      ? 4
+                                    : kModel == CameraModelId::kSimpleRadial ? 4
+                                    : kModel == CameraModelId::kRadial       ? 5
+                                                                             : 8;
+
   static ceres::CostFunction* Create(const Eigen::Vector2d& observed) {
-    return new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 7, 3, 4>(
+    return new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 7, 3, kNumParams>(
         new ReprojectionCost(observed));
   }
 
  private:
   Eigen::Vector2d observed_;
+};
+
+ceres::CostFunction* CreateReprojectionCost(CameraModelId model, const Eigen::Vector2d& observed) {
+  switch (model) {
+    case CameraModelId::kSimplePinhole:
+      return ReprojectionCost<CameraModelId::kSimplePinhole>::Create(observed);
+    case CameraModelId::kPinhole:
+      return ReprojectionCost<CameraModelId::kPinhole>::Create(observed);
+    case CameraModelId::kSimpleRadial:
+      return ReprojectionCost<CameraModelId::kSimpleRadial>::Create(observed);
+    case CameraModelId::kRadial:
+      return ReprojectionCost<CameraModelId::kRadial>::Create(observed);
+    case CameraModelId::kOpenCV:
+      return ReprojectionCost<CameraModelId::kOpenCV>::Create(observed);
+  }
+  return nullptr;
+}
+
+// The residual of a distorted camera with its intrinsics held fixed (automatic differentiation
+// with respect to pose and point only).
+class FixedDistortedReprojectionCost {
+ public:
+  FixedDistortedReprojectionCost(const Eigen::Vector2d& observed, CameraModelId model,
+                                 const double* params)
+      : observed_(observed), model_(model), params_(params, params + CameraModelNumParams(model)) {}
+
+  template <typename T>
+  bool operator()(const T* pose, const T* point_data, T* residuals) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> rotation(pose);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(pose + 4);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> point(point_data);
+    const Eigen::Matrix<T, 3, 1> point_in_cam = rotation * point + translation;
+    T x, y;
+    ImageFromNormalized(model_, params_.data(), T(point_in_cam.x() / point_in_cam.z()),
+                        T(point_in_cam.y() / point_in_cam.z()), &x, &y);
+    residuals[0] = x - T(observed_.x());
+    residuals[1] = y - T(observed_.y());
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const Eigen::Vector2d& observed, CameraModelId model,
+                                     const double* params) {
+    return new ceres::AutoDiffCostFunction<FixedDistortedReprojectionCost, 2, 7, 3>(
+        new FixedDistortedReprojectionCost(observed, model, params));
+  }
+
+ private:
+  Eigen::Vector2d observed_;
+  CameraModelId model_;
+  std::vector<double> params_;
 };
 
 // The same residual with the intrinsics held fixed, with analytic Jacobians: the common case and
@@ -271,7 +330,11 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   const std::vector<camera_t> camera_ids(camera_id_set.begin(), camera_id_set.end());
   const size_t pose_offset = 3 * point_ids.size();
   const size_t camera_offset = pose_offset + 7 * image_ids.size();
-  std::vector<double> params(camera_offset + 4 * camera_ids.size());
+  size_t num_camera_params = 0;
+  for (camera_t camera_id : camera_ids) {
+    num_camera_params += CameraModelNumParams(reconstruction->camera(camera_id).model);
+  }
+  std::vector<double> params(camera_offset + num_camera_params);
   std::map<point3D_t, double*> point_params;
   std::map<image_t, double*> pose_params;
   std::map<camera_t, double*> camera_params;
@@ -290,15 +353,30 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
     translation = pose.translation;
     pose_params[image_ids[i]] = block;
   }
-  for (size_t i = 0; i < camera_ids.size(); ++i) {
-    double* block = params.data() + camera_offset + 4 * i;
-    const Camera& camera = reconstruction->camera(camera_ids[i]);
-    block[0] = camera.fx;
-    block[1] = camera.fy;
-    block[2] = camera.cx;
-    block[3] = camera.cy;
-    camera_params[camera_ids[i]] = block;
+  // Per camera: the parameters in COLMAP's order, and which of them stay constant.
+  std::map<camera_t, std::vector<int>> constant_camera_params;
+  std::set<camera_t> variable_cameras;
+  size_t camera_block_offset = camera_offset;
+  for (camera_t camera_id : camera_ids) {
+    double* block = params.data() + camera_block_offset;
+    const Camera& camera = reconstruction->camera(camera_id);
+    const std::vector<double> camera_values = camera.Params();
+    std::copy(camera_values.begin(), camera_values.end(), block);
+    camera_block_offset += camera_values.size();
+    camera_params[camera_id] = block;
+    const int num_focal = CameraModelNumFocalParams(camera.model);
+    std::vector<int>& constant = constant_camera_params[camera_id];
+    for (int i = 0; i < static_cast<int>(camera_values.size()); ++i) {
+      const bool focal = i < num_focal;
+      const bool principal_point = i >= num_focal && i < num_focal + 2;
+      const bool refined = (focal && options_.refine_focal_length) ||
+                           (principal_point && options_.refine_principal_point) ||
+                           (!focal && !principal_point && options_.refine_extra_params);
+      if (!refined) constant.push_back(i);
+    }
+    if (constant.size() < camera_values.size()) variable_cameras.insert(camera_id);
   }
+  summary.refined_intrinsics = !variable_cameras.empty();
 
   ceres::Problem problem;
   ceres::LossFunction* loss = new ceres::HuberLoss(options_.huber_loss_scale_px);
@@ -307,14 +385,21 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
     double* pose = pose_params.at(image_id);
     for (const Point2D& point2D : image.points2D) {
       if (!point2D.HasPoint3D() || !point_params.count(point2D.point3D_id)) continue;
-      if (options_.refine_focal_length) {
-        problem.AddResidualBlock(ReprojectionCost::Create(point2D.xy), loss, pose,
+      const Camera& camera = reconstruction->camera(image.camera_id);
+      if (variable_cameras.count(image.camera_id)) {
+        problem.AddResidualBlock(CreateReprojectionCost(camera.model, point2D.xy), loss, pose,
                                  point_params.at(point2D.point3D_id),
                                  camera_params.at(image.camera_id));
+      } else if (camera.HasDistortion()) {
+        problem.AddResidualBlock(FixedDistortedReprojectionCost::Create(
+                                     point2D.xy, camera.model, camera_params.at(image.camera_id)),
+                                 loss, pose, point_params.at(point2D.point3D_id));
       } else {
+        // Undistorted and fixed: the analytic cost takes fx, fy, cx, cy.
+        const std::array<double, 4> pinhole = {camera.fx, camera.fy, camera.cx, camera.cy};
         problem.AddResidualBlock(
-            FixedIntrinsicsReprojectionCost::Create(point2D.xy, camera_params.at(image.camera_id)),
-            loss, pose, point_params.at(point2D.point3D_id));
+            FixedIntrinsicsReprojectionCost::Create(point2D.xy, pinhole.data()), loss, pose,
+            point_params.at(point2D.point3D_id));
       }
     }
     if (config_.constant_pose_ids.count(image_id) || neighbour_ids.count(image_id)) {
@@ -336,10 +421,13 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
     if (point_params.count(point3D_id))
       problem.SetParameterBlockConstant(point_params.at(point3D_id));
   }
-  if (options_.refine_focal_length) {
-    for (camera_t camera_id : camera_ids) {
-      problem.SetManifold(camera_params.at(camera_id), new ceres::SubsetManifold(4, {2, 3}));
-    }
+  for (camera_t camera_id : variable_cameras) {
+    const std::vector<int>& constant = constant_camera_params.at(camera_id);
+    if (constant.empty()) continue;
+    problem.SetManifold(
+        camera_params.at(camera_id),
+        new ceres::SubsetManifold(CameraModelNumParams(reconstruction->camera(camera_id).model),
+                                  constant));
   }
 
   // Schur complement: eliminate the points (group 0) first, then solve for the cameras.
@@ -347,10 +435,8 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   for (point3D_t point3D_id : point_ids)
     ordering->AddElementToGroup(point_params.at(point3D_id), 0);
   for (image_t image_id : image_ids) ordering->AddElementToGroup(pose_params.at(image_id), 1);
-  if (options_.refine_focal_length) {
-    for (camera_t camera_id : camera_ids) {
-      ordering->AddElementToGroup(camera_params.at(camera_id), 1);
-    }
+  for (camera_t camera_id : variable_cameras) {
+    ordering->AddElementToGroup(camera_params.at(camera_id), 1);
   }
 
   ceres::Solver::Options solver_options;
@@ -400,12 +486,8 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
       pose.rotation = Eigen::Quaterniond(block[3], block[0], block[1], block[2]).normalized();
       pose.translation = Eigen::Map<const Eigen::Vector3d>(block + 4);
     }
-    if (options_.refine_focal_length) {
-      for (camera_t camera_id : camera_ids) {
-        Camera& camera = reconstruction->camera(camera_id);
-        camera.fx = camera_params.at(camera_id)[0];
-        camera.fy = camera_params.at(camera_id)[1];
-      }
+    for (camera_t camera_id : variable_cameras) {
+      reconstruction->camera(camera_id).SetParams(camera_params.at(camera_id));
     }
   }
   summary.final_rmse_px = RmsReprojectionError(*reconstruction, image_ids, point_id_set);

@@ -1,7 +1,8 @@
 // Bundle adjustment of a Reconstruction on Ceres (the only place the project uses Ceres; its types
-// stay in bundle_adjuster.cc). One auto-differentiated reprojection cost per observation with a
-// Huber loss, Schur elimination with points eliminated first, intrinsics held fixed or with the
-// focal length refined, and the gauge fixed by constant poses chosen in the config.
+// stay in bundle_adjuster.cc). One reprojection cost per observation with a Huber loss, Schur
+// elimination with points eliminated first, intrinsics held fixed or with any of focal length,
+// principal point and distortion refined, and the gauge fixed by constant poses chosen in the
+// config.
 //
 //   BundleAdjustmentConfig config;
 //   for (image_t id : reconstruction.RegisteredImageIds()) config.image_ids.insert(id);
@@ -27,8 +28,13 @@ struct BundleAdjustmentOptions {
   double function_tolerance = 1e-6;
   double gradient_tolerance = 1e-10;
   double parameter_tolerance = 1e-8;
-  // Refine fx and fy (the principal point stays fixed); otherwise intrinsics are constant.
+  // Intrinsics to refine, each on or off (COLMAP's ba_refine_focal_length, _principal_point,
+  // _extra_params): the focal length (one for SIMPLE_* and RADIAL, fx and fy otherwise), the
+  // principal point and the distortion coefficients of the camera's model (sfm/camera_model.h).
+  // All off: intrinsics are constant (analytic Jacobians for undistorted cameras).
   bool refine_focal_length = false;
+  bool refine_principal_point = false;
+  bool refine_extra_params = false;
   // Threads the caller offers. Ceres itself always runs on one thread (bundle_adjuster.cc: its
   // threaded sums depend on the thread schedule), so the result is identical bit for bit for any
   // value; kept so that one --threads reaches every stage.
@@ -66,7 +72,8 @@ struct BundleAdjustmentSummary {
   // CPU time of the whole process during the solve (all threads): unlike the wall time it does
   // not grow when other jobs share the machine.
   double cpu_time_s = 0.0;
-  std::string termination;  // Ceres's termination type and message
+  std::string termination;          // Ceres's termination type and message
+  bool refined_intrinsics = false;  // some intrinsic parameter was variable
 };
 
 // The reprojection residual of one observation with fixed intrinsics (fx, fy, cx, cy), in

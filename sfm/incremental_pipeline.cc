@@ -69,6 +69,10 @@ void IncrementalPipelineOptions::Check() const {
   COMIC_CHECK(min_num_initial_points >= 1, kInvalidArgument,
               "pipeline min_num_initial_points must be >= 1");
   COMIC_CHECK(max_num_models >= 1, kInvalidArgument, "pipeline max_num_models must be >= 1");
+  COMIC_CHECK(refine_intrinsics_min_num_images >= 2, kInvalidArgument,
+              "pipeline refine_intrinsics_min_num_images must be >= 2, got "
+                  << refine_intrinsics_min_num_images);
+  focal_observability.Check();
 }
 
 namespace {
@@ -117,12 +121,29 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
   BundleAdjustmentOptions final_global_ba = options.global_ba;
   final_global_ba.function_tolerance = options.final_global_ba_function_tolerance;
   const auto global_ba = [&](bool final = false) {
-    const BundleAdjustmentSummary summary =
-        mapper.AdjustGlobalBundle(final ? final_global_ba : options.global_ba);
+    BundleAdjustmentOptions ba_options = final ? final_global_ba : options.global_ba;
+    const Reconstruction& model = mapper.reconstruction();
+    if (static_cast<int>(model.NumRegisteredImages()) < options.refine_intrinsics_min_num_images) {
+      ba_options.refine_focal_length = false;
+      ba_options.refine_principal_point = false;
+      ba_options.refine_extra_params = false;
+    } else if (ba_options.refine_focal_length) {
+      result.focal_assessed = true;
+      result.focal_observability = AssessFocalObservability(model, options.focal_observability);
+      // Unobservable: keep the prior focal, and the prior distortion too, which would otherwise
+      // absorb the focal's error (KITTI without calib.txt: k drifts to 0.07 for a rectified
+      // image with f held 2x too long).
+      if (!result.focal_observability.observable) {
+        ba_options.refine_focal_length = false;
+        ba_options.refine_extra_params = false;
+      }
+    }
+    const BundleAdjustmentSummary summary = mapper.AdjustGlobalBundle(ba_options);
     ++result.num_global_ba;
     result.global_ba_time_s += summary.wall_time_s;
     result.global_ba_cpu_time_s += summary.cpu_time_s;
     result.final_ba = summary;
+    result.intrinsics_refined = result.intrinsics_refined || summary.refined_intrinsics;
   };
 
   if (!pair) return finish(ReconstructionStatus::kNoInitialPair);

@@ -16,6 +16,7 @@
 #include "frontend/matching/track.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"
+#include "sfm/focal_observability.h"
 #include "sfm/incremental_mapper.h"
 #include "sfm/reconstruction.h"
 
@@ -37,8 +38,15 @@ struct IncrementalPipelineOptions {
   IncrementalMapper::Options mapper;
   // Bundle adjustment after each new frame, over a window of images.
   BundleAdjustmentOptions local_ba;
-  // Bundle adjustment of everything, as the model grows and at the end.
+  // Bundle adjustment of everything, as the model grows and at the end. Its refine_* flags say
+  // which intrinsics may be refined; they are refined in global adjustments only (local windows
+  // keep them, COLMAP's policy of refining a camera once many images constrain it), once
+  // refine_intrinsics_min_num_images images are registered, and the focal length (and the
+  // distortion, which would absorb its error) only while the motion makes it observable
+  // (focal_observability); otherwise the priors stay.
   BundleAdjustmentOptions global_ba;
+  int refine_intrinsics_min_num_images = 5;
+  FocalObservabilityOptions focal_observability;
   // The final global adjustments (the model's output) stop at this relative cost gain instead of
   // global_ba.function_tolerance: on the dino ring (weak perspective) 1e-4 throughout gave ATE
   // 0.0050 instead of 0.0038 (COLMAP 0.0045), while KITTI's intermediate adjustments need no more.
@@ -102,8 +110,14 @@ struct IncrementalReconstruction {
   double local_ba_cpu_time_s = 0.0;
   double global_ba_cpu_time_s = 0.0;
   BundleAdjustmentSummary final_ba;  // the last global bundle adjustment
-  double wall_time_s = 0.0;          // the whole reconstruction
-  double cpu_time_s = 0.0;           // and its CPU time
+  // When global_ba.refine_focal_length asked for the focal: whether the motion let it be
+  // refined, as assessed before the last global adjustment (focal_assessed false otherwise).
+  bool focal_assessed = false;
+  FocalObservability focal_observability;
+  // Some intrinsic parameter was refined in at least one global adjustment.
+  bool intrinsics_refined = false;
+  double wall_time_s = 0.0;  // the whole reconstruction
+  double cpu_time_s = 0.0;   // and its CPU time
 };
 
 // Reconstructs the frames of `tracks` seen by `camera`: one model, the largest of up to

@@ -17,8 +17,12 @@ std::optional<Eigen::Vector2d> ProjectPoint(const Camera& camera, const Rigid3d&
                                             const Eigen::Vector3d& point3D_in_world) {
   const Eigen::Vector3d point_in_cam = cam_from_world * point3D_in_world;
   if (point_in_cam.z() <= 1e-12) return std::nullopt;
-  return Eigen::Vector2d(camera.fx * point_in_cam.x() / point_in_cam.z() + camera.cx,
-                         camera.fy * point_in_cam.y() / point_in_cam.z() + camera.cy);
+  if (!camera.HasDistortion()) {  // the pinhole path, kept as it was (same rounding)
+    return Eigen::Vector2d(camera.fx * point_in_cam.x() / point_in_cam.z() + camera.cx,
+                           camera.fy * point_in_cam.y() / point_in_cam.z() + camera.cy);
+  }
+  return camera.ImageFromCam(
+      Eigen::Vector2d(point_in_cam.x() / point_in_cam.z(), point_in_cam.y() / point_in_cam.z()));
 }
 
 camera_t Reconstruction::AddCamera(const Camera& camera, camera_t camera_id) {

@@ -51,11 +51,18 @@ SyntheticScene MakeSyntheticScene(const SyntheticSceneOptions& options) {
   const auto in = [&](double lo, double hi) { return lo + (hi - lo) * uniform(rng); };
 
   SyntheticScene scene;
+  scene.camera.model = options.model;
   scene.camera.width = options.width;
   scene.camera.height = options.height;
   scene.camera.fx = scene.camera.fy = options.focal;
+  if (options.focal_y != 0.0) scene.camera.fy = options.focal_y;
   scene.camera.cx = (options.width - 1) / 2.0;
   scene.camera.cy = (options.height - 1) / 2.0;
+  scene.camera.k1 = options.k1;
+  scene.camera.k2 = options.k2;
+  scene.camera.p1 = options.p1;
+  scene.camera.p2 = options.p2;
+  scene.camera.Check();
 
   const int n = options.num_frames;
   const double step = 1.2;  // metres per frame for forward motion

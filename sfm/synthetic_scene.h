@@ -27,6 +27,12 @@ struct SyntheticSceneOptions {
   int width = 640;       // pixels
   int height = 480;      // pixels
   double focal = 600.0;  // pixels (fx = fy), principal point at the image centre
+  // The camera model the frames are rendered through (sfm/camera_model.h) and its distortion
+  // (coefficients the model lacks must stay 0); focal_y != 0 sets fy apart from fx (two-focal
+  // models only).
+  CameraModelId model = CameraModelId::kPinhole;
+  double focal_y = 0.0;
+  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0;
   // Gaussian pixel noise on every observation, standard deviation in pixels.
   double noise_px = 0.5;
   // Fraction of observations replaced by a uniformly random pixel (wrong matches in a track).

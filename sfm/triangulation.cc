@@ -54,7 +54,7 @@ void TriangulationOptions::Check() const {
 namespace {
 
 Eigen::Vector2d Normalize(const Camera& camera, const Eigen::Vector2d& pixel) {
-  return {(pixel.x() - camera.cx) / camera.fx, (pixel.y() - camera.cy) / camera.fy};
+  return camera.CamFromImage(pixel);
 }
 
 // The views that see `point` in front and within the reprojection threshold, and the sum of their

@@ -44,16 +44,16 @@ TwoViewGeometry EstimateCalibratedTwoViewGeometry(const Camera& camera1, const C
   geometry.inlier_mask.assign(points1.size(), 0);
   if (static_cast<int>(points1.size()) < options.min_num_inliers) return geometry;
 
-  // Work in normalised coordinates so the two cameras may differ; thresholds scale by the mean
-  // focal length.
+  // Work in undistorted normalised coordinates so the two cameras may differ; thresholds scale by
+  // the mean focal length.
   std::vector<cv::Point2d> normalized1, normalized2;
   normalized1.reserve(points1.size());
   normalized2.reserve(points2.size());
   for (size_t i = 0; i < points1.size(); ++i) {
-    normalized1.emplace_back((points1[i].x() - camera1.cx) / camera1.fx,
-                             (points1[i].y() - camera1.cy) / camera1.fy);
-    normalized2.emplace_back((points2[i].x() - camera2.cx) / camera2.fx,
-                             (points2[i].y() - camera2.cy) / camera2.fy);
+    const Eigen::Vector2d n1 = camera1.CamFromImage(points1[i]);
+    const Eigen::Vector2d n2 = camera2.CamFromImage(points2[i]);
+    normalized1.emplace_back(n1.x(), n1.y());
+    normalized2.emplace_back(n2.x(), n2.y());
   }
   const double mean_focal = (camera1.fx + camera1.fy + camera2.fx + camera2.fy) / 4.0;
   const double threshold = options.max_error_px / mean_focal;

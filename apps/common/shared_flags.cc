@@ -77,9 +77,18 @@ void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double
 
 void AddIntrinsicsFlag(ArgParser& parser, std::string* path) {
   parser.AddOption("intrinsics", "FILE",
-                   "intrinsics of the frames as stored: 'fx fy cx cy', a 3x3 K or a 3x4 P (KITTI "
-                   "calib.txt)",
+                   "intrinsics of the frames as stored: 'fx fy cx cy [k1 k2 p1 p2]', a 3x3 K or a "
+                   "3x4 P (KITTI calib.txt), an OpenCV calibration .yml/.xml (camera_matrix, "
+                   "distortion_coefficients) or a COLMAP cameras.txt (its first camera)",
                    path);
+}
+
+void AddCameraModelFlag(ArgParser& parser, std::string* name) {
+  parser.AddOption("camera-model", "NAME",
+                   "camera model: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL or OPENCV "
+                   "(COLMAP's names; default SIMPLE_RADIAL without --intrinsics, else the file's "
+                   "model, converted where that loses nothing)",
+                   name);
 }
 
 void AddObjectRegionFlags(ArgParser& parser, ObjectRegionFlags* flags) {

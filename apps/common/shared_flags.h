@@ -40,6 +40,9 @@ void AddMinSideOverlapFlag(ArgParser& parser, int* pixels);
 void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma);
 // --intrinsics FILE: the frames' intrinsics as stored (see apps/common/camera_intrinsics.h).
 void AddIntrinsicsFlag(ArgParser& parser, std::string* path);
+// --camera-model NAME: COLMAP's model name (sfm/camera_model.h) for the camera, checked by
+// apps/common/camera_intrinsics.h's ParseCameraModelFlag.
+void AddCameraModelFlag(ArgParser& parser, std::string* name);
 
 // The object region of a sequence (paper §5.1: boundary vs interior features): --masks DIR or
 // --regions FILE, and the --boundary-band width.

@@ -177,21 +177,33 @@ void ColmapExportOptions::Check() const {
 }
 
 io::ColmapDatabaseCamera ToColmapDatabaseCamera(const std::optional<Camera>& camera,
-                                                const cv::Size& image_size) {
+                                                const cv::Size& image_size,
+                                                CameraModelId default_model) {
   io::ColmapDatabaseCamera row;
   row.width = image_size.width;
   row.height = image_size.height;
   if (camera) {
-    row.model_id = io::kColmapPinhole;
-    row.params = {camera->fx, camera->fy, io::ToColmapPixel(camera->cx),
-                  io::ToColmapPixel(camera->cy)};
+    row.model_id = static_cast<int>(camera->model);
+    row.params = camera->Params();
+    const int pp = CameraModelPrincipalPointIndex(camera->model);
+    row.params[pp] = io::ToColmapPixel(row.params[pp]);
+    row.params[pp + 1] = io::ToColmapPixel(row.params[pp + 1]);
     row.prior_focal_length = true;
   } else {
     // What COLMAP's feature extractor writes when it knows nothing (default_focal_length_factor
-    // 1.2, principal point at the image centre).
-    row.model_id = io::kColmapSimpleRadial;
-    row.params = {1.2 * std::max(image_size.width, image_size.height), image_size.width / 2.0,
-                  image_size.height / 2.0, 0.0};
+    // 1.2, principal point at the image centre, COLMAP's pixel convention).
+    Camera fallback;
+    fallback.model = default_model;
+    fallback.width = image_size.width;
+    fallback.height = image_size.height;
+    fallback.fx = fallback.fy = 1.2 * std::max(image_size.width, image_size.height);
+    fallback.cx = image_size.width / 2.0 - 0.5;
+    fallback.cy = image_size.height / 2.0 - 0.5;
+    row.model_id = static_cast<int>(default_model);
+    row.params = fallback.Params();
+    const int pp = CameraModelPrincipalPointIndex(default_model);
+    row.params[pp] = io::ToColmapPixel(row.params[pp]);
+    row.params[pp + 1] = io::ToColmapPixel(row.params[pp + 1]);
     row.prior_focal_length = false;
   }
   return row;
@@ -224,8 +236,8 @@ ColmapExportSummary WriteTracksToColmapDatabase(const frontend::FeatureTracks& t
   ColmapExportSummary summary;
   summary.known_intrinsics = camera.has_value();
   io::ColmapDatabase::Transaction transaction(database);
-  const int64_t camera_id =
-      database->WriteCamera(ToColmapDatabaseCamera(camera, tracks.image_size));
+  const int64_t camera_id = database->WriteCamera(
+      ToColmapDatabaseCamera(camera, tracks.image_size, options.default_camera_model));
 
   // Frame i is image i + 1.
   for (size_t i = 0; i < tracks.NumFrames(); ++i) {

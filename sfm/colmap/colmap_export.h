@@ -39,6 +39,9 @@ struct ColmapExportOptions {
   std::string image_name_prefix;
   // Threads verifying pairs (0: one per core). The database does not depend on it.
   int num_threads = 0;
+  // The camera model written when no intrinsics are known (COLMAP's feature extractor default:
+  // SIMPLE_RADIAL, f = 1.2 max(w, h), principal point at the centre, no distortion).
+  CameraModelId default_camera_model = CameraModelId::kSimpleRadial;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -81,9 +84,10 @@ ColmapExportSummary ExportTracksToColmapDatabase(const frontend::FeatureTracks& 
                                                  const ColmapExportOptions& options,
                                                  const std::string& path, bool overwrite);
 
-// The camera row we write: PINHOLE (+0.5 on the principal point, prior focal length) for known
-// intrinsics, else COLMAP's SIMPLE_RADIAL default for an image of `image_size`.
-io::ColmapDatabaseCamera ToColmapDatabaseCamera(const std::optional<Camera>& camera,
-                                                const cv::Size& image_size);
+// The camera row we write: the known camera's model and parameters (+0.5 on the principal point,
+// prior focal length), else COLMAP's default for an image of `image_size` in `default_model`.
+io::ColmapDatabaseCamera ToColmapDatabaseCamera(
+    const std::optional<Camera>& camera, const cv::Size& image_size,
+    CameraModelId default_model = CameraModelId::kSimpleRadial);
 
 }  // namespace comic::sfm

@@ -11,11 +11,14 @@ io::ColmapTextModel ToColmapTextModel(const Reconstruction& reconstruction) {
   for (const auto& [camera_id, camera] : reconstruction.cameras()) {
     io::ColmapCamera colmap_camera;
     colmap_camera.camera_id = camera_id;
-    colmap_camera.model = "PINHOLE";
+    colmap_camera.model = CameraModelName(camera.model);
     colmap_camera.width = camera.width;
     colmap_camera.height = camera.height;
-    colmap_camera.params = {camera.fx, camera.fy, camera.cx + kColmapPixelOffset,
-                            camera.cy + kColmapPixelOffset};
+    colmap_camera.params = camera.Params();
+    // COLMAP's pixel convention for the principal point; focal and distortion are unchanged.
+    const int pp = CameraModelPrincipalPointIndex(camera.model);
+    colmap_camera.params[pp] += kColmapPixelOffset;
+    colmap_camera.params[pp + 1] += kColmapPixelOffset;
     model.cameras.push_back(colmap_camera);
   }
   for (const auto& [image_id, image] : reconstruction.images()) {
@@ -60,49 +63,28 @@ io::ColmapTextModel ToColmapTextModel(const Reconstruction& reconstruction) {
 namespace {
 
 Camera CameraFromColmap(const io::ColmapCamera& colmap_camera, bool ignore_distortion) {
-  const std::vector<double>& p = colmap_camera.params;
-  const auto expect = [&](size_t count) {
-    COMIC_CHECK(p.size() == count, kInvalidData,
-                "COLMAP camera " << colmap_camera.camera_id << " (" << colmap_camera.model
-                                 << ") has " << p.size() << " parameters, expected " << count);
-  };
-  const auto no_distortion = [&](size_t first) {
-    const bool zero = std::all_of(p.begin() + first, p.end(), [](double v) { return v == 0.0; });
-    COMIC_CHECK(zero || ignore_distortion, kInvalidData,
-                "COLMAP camera " << colmap_camera.camera_id << " (" << colmap_camera.model
-                                 << ") has lens distortion, which a pinhole camera cannot hold");
-  };
-  Camera camera;
-  camera.width = colmap_camera.width;
-  camera.height = colmap_camera.height;
-  const std::string& model = colmap_camera.model;
-  if (model == "PINHOLE" || model == "OPENCV") {
-    expect(model == "PINHOLE" ? 4 : 8);
-    if (model == "OPENCV") no_distortion(4);
-    camera.fx = p[0];
-    camera.fy = p[1];
-    camera.cx = p[2];
-    camera.cy = p[3];
-  } else if (model == "SIMPLE_PINHOLE" || model == "SIMPLE_RADIAL" || model == "RADIAL") {
-    expect(model == "SIMPLE_PINHOLE" ? 3 : model == "SIMPLE_RADIAL" ? 4 : 5);
-    no_distortion(3);
-    camera.fx = camera.fy = p[0];
-    camera.cx = p[1];
-    camera.cy = p[2];
-  } else {
-    throw Error(ErrorKind::kInvalidData, "COLMAP camera " +
-                                             std::to_string(colmap_camera.camera_id) +
-                                             ": unsupported camera model " + model);
-  }
-  camera.cx -= kColmapPixelOffset;
-  camera.cy -= kColmapPixelOffset;
+  const auto model = CameraModelFromName(colmap_camera.model);
+  COMIC_CHECK(model.has_value(), kInvalidData,
+              "COLMAP camera " << colmap_camera.camera_id << ": unsupported camera model "
+                               << colmap_camera.model << " (supported: " << CameraModelNames()
+                               << ")");
+  std::vector<double> p = colmap_camera.params;
+  COMIC_CHECK(static_cast<int>(p.size()) == CameraModelNumParams(*model), kInvalidData,
+              "COLMAP camera " << colmap_camera.camera_id << " (" << colmap_camera.model << ") has "
+                               << p.size() << " parameters, expected "
+                               << CameraModelNumParams(*model));
+  const int pp = CameraModelPrincipalPointIndex(*model);
+  p[pp] -= kColmapPixelOffset;
+  p[pp + 1] -= kColmapPixelOffset;
+  // ignore_distortion: the model's distortion is dropped (the pinhole part only, e.g. to compare
+  // poses with a reference whose images were undistorted).
+  if (ignore_distortion) std::fill(p.begin() + pp + 2, p.end(), 0.0);
   try {
-    camera.Check();
+    return Camera::FromParams(*model, colmap_camera.width, colmap_camera.height, p);
   } catch (const Error& error) {
     throw Error(ErrorKind::kInvalidData,
                 "COLMAP camera " + std::to_string(colmap_camera.camera_id) + ": " + error.what());
   }
-  return camera;
 }
 
 }  // namespace

@@ -21,10 +21,9 @@ inline constexpr double kColmapPixelOffset = 0.5;
 io::ColmapTextModel ToColmapTextModel(const Reconstruction& reconstruction);
 
 // A Reconstruction holding the model's cameras, images (all registered) and points, ids
-// unchanged. Reads PINHOLE and SIMPLE_PINHOLE cameras; SIMPLE_RADIAL, RADIAL and OPENCV ones too
-// when their distortion is zero, or with `ignore_distortion` (dropping it: poses stay exact,
-// reprojection errors become approximate). Throws comic::Error(kInvalidData) for other models or
-// an inconsistent model.
+// unchanged. Reads the five models of sfm/camera_model.h with their distortion, or with
+// `ignore_distortion` their pinhole part only (poses stay exact, reprojection errors become
+// approximate). Throws comic::Error(kInvalidData) for other models or an inconsistent model.
 Reconstruction FromColmapTextModel(const io::ColmapTextModel& model,
                                    bool ignore_distortion = false);
 

@@ -81,6 +81,22 @@ const std::vector<Case> kCases = {
   {"comic_sfm", "{e} --gt {x}/poses.txt --gt-format bogus --output {d}/out", 2, {"bogus"}},
   {"comic_sfm", "{e} --intrinsics {d}/garbage.txt --output {d}/out", 1, {"garbage.txt"}},
   {"comic_sfm", "{e} --intrinsics {d}/missing.txt --output {d}/out", 1, {"missing.txt"}},
+  {"comic_sfm", "{e} --intrinsics {d}/calib_k3.yml --output {d}/out", 1,
+   {"calib_k3.yml", "k3", "not supported"}},
+  {"comic_sfm", "{e} --intrinsics {d}/calib_nomatrix.yml --output {d}/out", 1,
+   {"calib_nomatrix.yml", "camera_matrix"}},
+  {"comic_sfm", "{e} --intrinsics {d}/calib_broken.yml --output {d}/out", 1,
+   {"calib_broken.yml", "FileStorage"}},
+  {"comic_sfm", "{e} --intrinsics {d}/fisheye_cameras.txt --output {d}/out", 1,
+   {"fisheye_cameras.txt", "OPENCV_FISHEYE", "not supported"}},
+  {"comic_sfm", "{e} --intrinsics {d}/short_cameras.txt --output {d}/out", 1,
+   {"short_cameras.txt", "takes 4 parameters"}},
+  {"comic_sfm", "{e} --intrinsics {d}/small_cameras.txt --output {d}/out", 1,
+   {"small_cameras.txt", "calibration is for 640x480", "1226x370"}},
+  {"comic_sfm", "{e} --intrinsics {d}/seven.txt --output {d}/out", 1, {"seven.txt", "got 7"}},
+  {"comic_sfm", "{e} --camera-model FISHEYE --output {d}/out", 2, {"--camera-model", "FISHEYE"}},
+  {"comic_sfm", "{e} --intrinsics {d}/two_focals.txt --camera-model SIMPLE_RADIAL --output {d}/out",
+   2, {"--camera-model", "SIMPLE_RADIAL", "cannot hold"}},
   {"comic_sfm", "{e} --regions {d}/garbage.txt --output {d}/out", 1, {"garbage.txt"}},
   {"comic_sfm", "{e} --regions {d}/boxes_short.txt --output {d}/out", 1, {"boxes_short.txt"}},
   {"comic_sfm", "{e} --masks {d}/emptydir --output {d}/out", 2, {"emptydir", "holds no images"}},
@@ -144,6 +160,10 @@ const std::vector<Case> kCases = {
   {"comic_export_colmap", "{d}/missing --colmap-db {d}/a.db", 1, {"missing", "no such file"}},
   {"comic_export_colmap", "{d}/good.png --colmap-db {d}/a.db", 2, {"good.png", "not a folder"}},
   {"comic_export_colmap", "{e} --colmap-db {d}/a.db --threads 100000", 2, {"--threads", "hardware"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/a.db --camera-model bogus", 2,
+   {"--camera-model", "bogus"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/a.db --intrinsics {d}/calib_k3.yml", 1,
+   {"calib_k3.yml", "k3"}},
   {"comic_export_colmap", "{e} --colmap-db {d}/a.db --intrinsics {d}/garbage.txt", 1,
    {"garbage.txt"}},
   {"comic_export_colmap", "{e} --colmap-db {d}/notes.txt/a.db", 1, {"notes.txt", "is not a folder"}},
@@ -230,6 +250,19 @@ void MakeFixture(const std::string& dir) {
   // Binary garbage with line breaks and escape sequences: must never reach the terminal raw.
   WriteBytes(dir + "/garbage.txt", "\x1b[31m\x01\x02 1 2 3\n" + RandomBytes(500, 3));
   WriteBytes(dir + "/notes.txt", "not a folder\n");
+  // Calibration files the camera models cannot hold or that are malformed (issue 17).
+  WriteBytes(dir + "/calib_k3.yml",
+             "%YAML:1.0\n---\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+             "   data: [ 707., 0., 601., 0., 707., 183., 0., 0., 1. ]\n"
+             "distortion_coefficients: !!opencv-matrix\n   rows: 1\n   cols: 5\n   dt: d\n"
+             "   data: [ -0.3, 0.1, 0.001, -0.002, 0.05 ]\n");
+  WriteBytes(dir + "/calib_nomatrix.yml", "%YAML:1.0\n---\nimage_width: 1226\n");
+  WriteBytes(dir + "/calib_broken.yml", "%YAML:1.0\n---\ncamera_matrix: [1, 2\n  : :\n");
+  WriteBytes(dir + "/fisheye_cameras.txt", "1 OPENCV_FISHEYE 1226 370 700 700 613 185 0 0 0 0\n");
+  WriteBytes(dir + "/short_cameras.txt", "1 PINHOLE 1226 370 700 700 613\n");
+  WriteBytes(dir + "/small_cameras.txt", "1 PINHOLE 640 480 500 500 320 240\n");
+  WriteBytes(dir + "/seven.txt", "700 700 613 185 0.1 0.2 0.3\n");
+  WriteBytes(dir + "/two_focals.txt", "700 710 613 185\n");
   WriteBytes(dir + "/existing.db", "an existing database\n");
   const std::string png = ReadBytes(good);
   WriteBytes(dir + "/truncated.png", png.substr(0, png.size() / 2));

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -68,6 +69,54 @@ TEST(ComicSfm, HelpDocumentsEveryOption) {
                              "--quiet"}) {
     EXPECT_NE(result.output.find(option), std::string::npos) << option;
   }
+}
+
+// Without a calibration (the truth used for evaluation only): COLMAP's SIMPLE_RADIAL default,
+// every frame registered, and the forward drive reported focal-unobservable with the prior kept,
+// in report.json, the summary line and the COLMAP model.
+TEST(ComicSfm, WithoutIntrinsicsReportsTheFocalUnobservableOnForwardMotion) {
+  ScopedTempDir dir;
+  const auto result =
+      RunCommand(AppPath("comic_sfm") + " " + Example() + "/image_l --gt " + Example() +
+                 "/poses.txt --ignore-gt-intrinsics --quiet --output " + dir.File("a"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("12/12 frames registered"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("camera SIMPLE_RADIAL f=1471.2"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("focal unobservable"), std::string::npos) << result.output;
+  const nlohmann::json report =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("a/report.json")));
+  const nlohmann::json& camera = report.at("camera");
+  EXPECT_EQ(camera.at("focal_observable"), false);
+  EXPECT_LT(camera.at("max_viewing_angle_deg").get<double>(), 5.0);
+  EXPECT_EQ(camera.at("final").at("model"), "SIMPLE_RADIAL");
+  EXPECT_DOUBLE_EQ(camera.at("focal_length_px").get<double>(), 1.2 * 1226);
+  const comic::io::ColmapTextModel model = comic::io::ReadColmapTextModel(dir.File("a"));
+  ASSERT_EQ(model.cameras.size(), 1u);
+  EXPECT_EQ(model.cameras[0].model, "SIMPLE_RADIAL");
+  EXPECT_EQ(model.cameras[0].params.size(), 4u);
+}
+
+// A calibration with distortion (OpenCV YAML) reaches the COLMAP model as OPENCV.
+TEST(ComicSfm, OpenCvCalibrationWritesAnOpenCvCamera) {
+  ScopedTempDir dir;
+  {
+    std::ofstream yaml(dir.File("calib.yml"));
+    yaml << "%YAML:1.0\n---\nimage_width: 1226\nimage_height: 370\n"
+            "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+            "   data: [ 707.0912, 0., 601.8873, 0., 707.0912, 183.1104, 0., 0., 1. ]\n"
+            "distortion_coefficients: !!opencv-matrix\n   rows: 1\n   cols: 5\n   dt: d\n"
+            "   data: [ 0.001, 0., 0., 0., 0. ]\n";
+  }
+  const auto result = RunCommand(AppPath("comic_sfm") + " " + Example() + "/image_l --intrinsics " +
+                                 dir.File("calib.yml") + " --quiet --output " + dir.File("a"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("12/12 frames registered"), std::string::npos) << result.output;
+  const comic::io::ColmapTextModel model = comic::io::ReadColmapTextModel(dir.File("a"));
+  ASSERT_EQ(model.cameras.size(), 1u);
+  EXPECT_EQ(model.cameras[0].model, "OPENCV");
+  EXPECT_EQ(model.cameras[0].params, (std::vector<double>{707.0912, 707.0912, 601.8873 + 0.5,
+                                                          183.1104 + 0.5, 0.001, 0, 0, 0}));
 }
 
 TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {

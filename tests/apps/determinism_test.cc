@@ -152,6 +152,22 @@ TEST(Determinism, ComicSfmWithCoMICAtOneAndTwoThreads) {
   ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 6);
 }
 
+// Refined distortion and principal point (the automatically differentiated costs of an OPENCV
+// camera): the same outputs at 1 and 2 threads.
+TEST(Determinism, ComicSfmRefiningAnOpenCvCameraAtOneAndTwoThreads) {
+  if (!HasTwoThreads()) GTEST_SKIP() << "one hardware thread";
+  ScopedTempDir dir;
+  for (const char* threads : {"1", "2"}) {
+    RunInto(dir,
+            AppPath("comic_sfm") + " " + ExampleDir() + "/image_l --intrinsics " + ExampleDir() +
+                "/calib.txt --camera-model OPENCV --refine-distortion --refine-principal-point "
+                "--quiet --threads " +
+                threads + " --output {out}",
+            std::string("t") + threads);
+  }
+  ExpectSameOutputs(dir.File("t1"), dir.File("t2"), 6);
+}
+
 // A video with --write-frames: the model and the frames written (issue 17).
 TEST(Determinism, ComicSfmOnAVideoWithWriteFramesAtOneAndTwoThreads) {
   if (!HasTwoThreads()) GTEST_SKIP() << "one hardware thread";

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "io/error.h"
 #include "io/file_utils.h"
 #include "tests/test_support.h"
@@ -50,6 +52,30 @@ TEST(LoadCameraIntrinsics, MissingOrMalformedFilesThrow) {
   EXPECT_THROW(LoadCameraIntrinsics(dir.File("missing.txt"), {10, 10}, {10, 10}), comic::Error);
   comic::io::WriteFileAtomically(dir.File("bad.txt"), "not numbers\n");
   EXPECT_THROW(LoadCameraIntrinsics(dir.File("bad.txt"), {10, 10}, {10, 10}), comic::Error);
+}
+
+// --camera-model converts a camera only where nothing is lost.
+TEST(LoadCameraIntrinsics, CameraModelConvertsWithoutLoss) {
+  comic::test::ScopedTempDir dir;
+  comic::io::WriteFileAtomically(dir.File("equal.txt"), "700 700 612 184\n");
+  comic::io::WriteFileAtomically(dir.File("two.txt"), "700 710 612 184 -0.1\n");
+  const comic::sfm::Camera radial = LoadCameraIntrinsics(
+      dir.File("equal.txt"), {1226, 370}, {1226, 370}, comic::sfm::CameraModelId::kSimpleRadial);
+  EXPECT_EQ(radial.model, comic::sfm::CameraModelId::kSimpleRadial);
+  EXPECT_EQ(radial.Params(), (std::vector<double>{700, 612, 184, 0}));
+  const comic::sfm::Camera opencv =
+      LoadCameraIntrinsics(dir.File("two.txt"), {1226, 370}, {1226, 370});
+  EXPECT_EQ(opencv.model, comic::sfm::CameraModelId::kOpenCV);
+  EXPECT_EQ(opencv.k1, -0.1);
+  // fx != fy, and a k1 that PINHOLE cannot hold.
+  EXPECT_THROW(LoadCameraIntrinsics(dir.File("two.txt"), {1226, 370}, {1226, 370},
+                                    comic::sfm::CameraModelId::kRadial),
+               comic::Error);
+  EXPECT_THROW(LoadCameraIntrinsics(dir.File("two.txt"), {1226, 370}, {1226, 370},
+                                    comic::sfm::CameraModelId::kPinhole),
+               comic::Error);
+  EXPECT_EQ(comic::apps::ParseCameraModelFlag("RADIAL"), comic::sfm::CameraModelId::kRadial);
+  EXPECT_THROW(comic::apps::ParseCameraModelFlag("radial"), comic::Error);
 }
 
 }  // namespace

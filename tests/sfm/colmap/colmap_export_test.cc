@@ -381,5 +381,23 @@ TEST(ColmapExport, RejectsBadOptionsAndNonEmptyDatabases) {
   EXPECT_THROW(WriteTracksToColmapDatabase(scene.tracks, scene.camera, {}, &database), Error);
 }
 
+// The database's camera row carries the model's id and parameters (+0.5 on the principal point);
+// without intrinsics COLMAP's default guess in the chosen model.
+TEST(ColmapExport, DatabaseCameraRowHasTheModelsIdAndParameters) {
+  const Camera opencv = Camera::FromParams(CameraModelId::kOpenCV, 640, 480,
+                                           {500, 510, 319.5, 239.5, -0.1, 0.02, 0.001, -0.002});
+  io::ColmapDatabaseCamera row = ToColmapDatabaseCamera(opencv, cv::Size(640, 480));
+  EXPECT_EQ(row.model_id, 4);
+  EXPECT_EQ(row.params, (std::vector<double>{500, 510, 320, 240, -0.1, 0.02, 0.001, -0.002}));
+  EXPECT_TRUE(row.prior_focal_length);
+  row = ToColmapDatabaseCamera(std::nullopt, cv::Size(640, 480));
+  EXPECT_EQ(row.model_id, 2);
+  EXPECT_EQ(row.params, (std::vector<double>{768, 320, 240, 0}));
+  EXPECT_FALSE(row.prior_focal_length);
+  row = ToColmapDatabaseCamera(std::nullopt, cv::Size(640, 480), CameraModelId::kRadial);
+  EXPECT_EQ(row.model_id, 3);
+  EXPECT_EQ(row.params, (std::vector<double>{768, 320, 240, 0, 0}));
+}
+
 }  // namespace
 }  // namespace comic::sfm

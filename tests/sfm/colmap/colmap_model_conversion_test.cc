@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "io/colmap_binary_model.h"
 #include "io/colmap_text_model.h"
 #include "io/error.h"
 #include "sfm/synthetic_scene.h"
@@ -123,17 +124,51 @@ TEST(ColmapModelConversion, WrittenModelReadsBackIdentically) {
   EXPECT_NEAR(read.camera(1).cx, original.camera(1).cx, 1e-12);
 }
 
-TEST(ColmapModelConversion, DistortedCamerasNeedConsent) {
+// Issue 17: distorted cameras are read with their distortion (they used to be refused unless
+// ignore_distortion dropped it); ignore_distortion still keeps only the pinhole part, and models
+// outside the five are refused.
+TEST(ColmapModelConversion, DistortedCamerasKeepTheirDistortion) {
   io::ColmapTextModel model;
   model.cameras.push_back({1, "SIMPLE_RADIAL", 640, 480, {500.0, 320.5, 240.5, 0.01}});
-  EXPECT_THROW(FromColmapTextModel(model), Error);
+  const Reconstruction distorted = FromColmapTextModel(model);
+  EXPECT_EQ(distorted.camera(1).model, CameraModelId::kSimpleRadial);
+  EXPECT_DOUBLE_EQ(distorted.camera(1).k1, 0.01);
+  EXPECT_DOUBLE_EQ(distorted.camera(1).cx, 320.0);
   const Reconstruction reconstruction = FromColmapTextModel(model, /*ignore_distortion=*/true);
   EXPECT_DOUBLE_EQ(reconstruction.camera(1).fx, 500.0);
   EXPECT_DOUBLE_EQ(reconstruction.camera(1).cx, 320.0);
-  model.cameras[0].params[3] = 0.0;
-  EXPECT_NO_THROW(FromColmapTextModel(model));
+  EXPECT_DOUBLE_EQ(reconstruction.camera(1).k1, 0.0);
   model.cameras[0].model = "FISHEYE";
   EXPECT_THROW(FromColmapTextModel(model, true), Error);
+  model.cameras[0].model = "RADIAL";  // 5 parameters, 4 given
+  EXPECT_THROW(FromColmapTextModel(model), Error);
+}
+
+// Every model is written with its COLMAP name and parameters (principal point + 0.5) and read
+// back identically.
+TEST(ColmapModelConversion, WritesEachCameraModelWithItsParameters) {
+  const std::vector<std::pair<CameraModelId, std::vector<double>>> kCameras = {
+      {CameraModelId::kSimplePinhole, {500, 319.5, 239.5}},
+      {CameraModelId::kPinhole, {500, 510, 319.5, 239.5}},
+      {CameraModelId::kSimpleRadial, {500, 319.5, 239.5, -0.1}},
+      {CameraModelId::kRadial, {500, 319.5, 239.5, -0.1, 0.02}},
+      {CameraModelId::kOpenCV, {500, 510, 319.5, 239.5, -0.1, 0.02, 0.001, -0.002}}};
+  for (const auto& [model_id, params] : kCameras) {
+    Reconstruction reconstruction;
+    reconstruction.AddCamera(Camera::FromParams(model_id, 640, 480, params));
+    const io::ColmapTextModel model = ToColmapTextModel(reconstruction);
+    ASSERT_EQ(model.cameras.size(), 1u);
+    EXPECT_EQ(model.cameras[0].model, CameraModelName(model_id));
+    std::vector<double> expected = params;
+    const int pp = CameraModelPrincipalPointIndex(model_id);
+    expected[pp] += 0.5;
+    expected[pp + 1] += 0.5;
+    EXPECT_EQ(model.cameras[0].params, expected);
+    EXPECT_EQ(io::ColmapCameraModelId(model.cameras[0].model), static_cast<int>(model_id));
+    const Reconstruction read = FromColmapTextModel(model);
+    EXPECT_EQ(read.camera(1).Params(), params);
+    EXPECT_EQ(read.camera(1).model, model_id);
+  }
 }
 
 }  // namespace
