@@ -223,6 +223,7 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
     corner.vertex = refined.vertex;
     corner.cornerness = refined.cornerness;
     corner.polarity = refined.polarity;
+    corner.segment.reserve(2 * k + 1);
     for (int j = index - k; j <= index + k; ++j) {
       if (!curve.closed && (j < 0 || j >= n)) continue;
       if (j == index) corner.segment_centre = static_cast<int>(corner.segment.size());

@@ -11,7 +11,12 @@ namespace comic::frontend {
 IsoCurveTracer::IsoCurveTracer(const cv::Mat& image, const cv::Rect& domain, double threshold)
     : image_(image),
       domain_(domain & cv::Rect(0, 0, image.cols, image.rows)),
-      threshold_(threshold) {
+      threshold_(threshold),
+      data_(image.data),
+      step_(static_cast<ptrdiff_t>(image.step[0])),
+      inside_bound_(std::isnan(threshold)
+                        ? -1
+                        : static_cast<int>(std::clamp(std::ceil(threshold), -1.0, 257.0))) {
   COMIC_CHECK(image.type() == CV_8UC1, kInvalidArgument, "IsoCurveTracer: expected CV_8UC1");
 }
 
@@ -29,7 +34,9 @@ cv::Point2f IsoCurveTracer::Crossing(const CurveEdge& edge) const {
           static_cast<float>(edge.inside.y + t * (edge.outside.y - edge.inside.y))};
 }
 
-bool IsoCurveTracer::Step(const CurveEdge& edge, bool forward, CurveEdge* next) const {
+// Inlined into Trace's loops: it runs once per point of every traced curve.
+[[gnu::always_inline]] inline bool IsoCurveTracer::Step(const CurveEdge& edge, bool forward,
+                                                      CurveEdge* next) const {
   // Direction of travel with the inside on the left: the inside->outside vector turned by -90°
   // (image coordinates, y down).
   const cv::Point d = edge.outside - edge.inside;
