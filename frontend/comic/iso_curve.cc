@@ -192,8 +192,12 @@ std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points
     size_t segment = 0;
     double previous_s = -1.0;
     for (int k = 0; k < n; ++k) {
-      double s = std::fmod(origin + k * step, length);
-      if (s < 0) s += length;
+      // fmod(s, length) is s itself for s in [0, length): skip it there (most samples).
+      double s = origin + k * step;
+      if (!(s >= 0 && s < length)) {
+        s = std::fmod(s, length);
+        if (s < 0) s += length;
+      }
       if (s < previous_s) segment = 0;
       previous_s = s;
       while (segment < segments && cumulative[segment + 1] <= s) ++segment;
