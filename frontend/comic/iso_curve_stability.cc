@@ -349,7 +349,23 @@ inline float WeightedStabilityEvaluator::Sample(int r, int k) {
   return value == kNotSampled ? ReadSample(r, k) : value;
 }
 
-float WeightedStabilityEvaluator::ReadSample(int r, int k) {
+double WeightedStabilityEvaluator::Weight(int offset, double sigma) {
+  // The Gaussian of one offset, memoised per σ (the same expression, so the same value).
+  if (!(sigma == weight_sigma_)) {
+    weight_sigma_ = sigma;
+    weight_table_.clear();
+  }
+  const size_t index = static_cast<size_t>(offset < 0 ? -2 * offset - 1 : 2 * offset);
+  if (index >= weight_table_.size()) weight_table_.resize(index + 1, -1.0);
+  double& weight = weight_table_[index];
+  if (weight < 0) {
+    const double d = offset;
+    weight = std::exp(-d * d / (2.0 * sigma * sigma));
+  }
+  return weight;
+}
+
+inline float WeightedStabilityEvaluator::ReadSample(int r, int k) {
   // Interpolation of the 8-bit image: cubic near the curve, bilinear beyond (ProfileSampler).
   const ProfileSampler interpolate(*gray_);
   const double u = (k - m_) * options_.sample_step;
@@ -405,8 +421,7 @@ bool WeightedStabilityEvaluator::PrepareImpl(const cv::Mat& gray,
     const double norm = std::sqrt(tangent.x * tangent.x + tangent.y * tangent.y);
     points_[r] = reference[i];
     normals_[r] = norm > 0 ? cv::Point2d(-tangent.y / norm, tangent.x / norm) : cv::Point2d(0, 0);
-    const double d = i - centre_index;
-    weights_[r] = std::exp(-d * d / (2.0 * options.sigma * options.sigma));
+    weights_[r] = Weight(i - centre_index, options.sigma);
     weight_sum_ += weights_[r];
   }
 

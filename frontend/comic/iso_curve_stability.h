@@ -189,6 +189,8 @@ class WeightedStabilityEvaluator {
   // Sample k of normal r's profile (read on first use).
   float Sample(int r, int k);
   float ReadSample(int r, int k);
+  // exp(-offset² / 2σ²), the along-curve weight of a normal `offset` samples from the centre.
+  double Weight(int offset, double sigma);
 
   const cv::Mat* gray_ = nullptr;
   WeightedStabilityOptions options_;
@@ -217,6 +219,8 @@ class WeightedStabilityEvaluator {
   std::vector<std::pair<double, double>> mids_;
   std::vector<double> single_crossings_;  // SingleLevelStability: 3 x num_normals_
   std::vector<uint8_t> single_clipped_;
+  double weight_sigma_ = -1.0;         // σ of weight_table_
+  std::vector<double> weight_table_;  // by offset 0, -1, 1, -2, 2, ...; < 0: not computed
 };
 
 // Computes the profile around reference[centre_index]. `reference` is a segment of iso-curve
