@@ -36,7 +36,7 @@ cv::Point2f IsoCurveTracer::Crossing(const CurveEdge& edge) const {
 
 // Inlined into Trace's loops: it runs once per point of every traced curve.
 [[gnu::always_inline]] inline bool IsoCurveTracer::Step(const CurveEdge& edge, bool forward,
-                                                      CurveEdge* next) const {
+                                                        CurveEdge* next) const {
   // Direction of travel with the inside on the left: the inside->outside vector turned by -90°
   // (image coordinates, y down).
   const cv::Point d = edge.outside - edge.inside;

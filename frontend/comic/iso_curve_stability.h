@@ -171,9 +171,8 @@ class WeightedStabilityEvaluator {
     double band_area = 0.0;
   };
   const LevelValues& Evaluate(int l);
-  bool PrepareImpl(const cv::Mat& gray, const std::vector<cv::Point2f>& reference,
-                   int centre_index, const WeightedStabilityOptions& options,
-                   bool with_middle_level);
+  bool PrepareImpl(const cv::Mat& gray, const std::vector<cv::Point2f>& reference, int centre_index,
+                   const WeightedStabilityOptions& options, bool with_middle_level);
   // Signed crossing of threshold index j (threshold first_threshold_ + j) on normal r, and
   // whether the profile ended first (clipped).
   double Crossing(int r, int j, bool* clipped) {
@@ -219,7 +218,7 @@ class WeightedStabilityEvaluator {
   std::vector<std::pair<double, double>> mids_;
   std::vector<double> single_crossings_;  // SingleLevelStability: 3 x num_normals_
   std::vector<uint8_t> single_clipped_;
-  double weight_sigma_ = -1.0;         // σ of weight_table_
+  double weight_sigma_ = -1.0;        // σ of weight_table_
   std::vector<double> weight_table_;  // by offset 0, -1, 1, -2, 2, ...; < 0: not computed
 };
 
