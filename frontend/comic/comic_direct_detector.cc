@@ -223,6 +223,7 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
     corner.vertex = refined.vertex;
     corner.cornerness = refined.cornerness;
     corner.polarity = refined.polarity;
+    corner.segment.reserve(2 * k + 1);
     for (int j = index - k; j <= index + k; ++j) {
       if (!curve.closed && (j < 0 || j >= n)) continue;
       if (j == index) corner.segment_centre = static_cast<int>(corner.segment.size());
@@ -387,9 +388,16 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     WeightedStabilityEvaluator& evaluator = workspaces[worker].evaluator;
     c.stability = 0.0;
     if (c.segment_centre < 1 || c.segment_centre + 1 >= static_cast<int>(c.segment.size())) return;
-    if (!evaluator.Prepare(image, c.segment, c.segment_centre, stability_options)) return;
+    // One level per maximum: neither the middle level nor the neighbouring levels' crossings
+    // that Algorithm 1's level choice reads are needed (same ρ_w, bit for bit).
+    if (!evaluator.PrepareWithoutMiddleLevel(image, c.segment, c.segment_centre,
+                                             stability_options)) {
+      return;
+    }
     const int l = c.level - evaluator.first_level();
-    if (l >= 0 && l < evaluator.NumLevels()) c.stability = std::max(0.0, evaluator.Stability(l));
+    if (l >= 0 && l < evaluator.NumLevels()) {
+      c.stability = std::max(0.0, evaluator.SingleLevelStability(l));
+    }
   });
 
   // ---- Runs: one corner seen at consecutive levels; one feature per run. ----

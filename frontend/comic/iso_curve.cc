@@ -11,7 +11,12 @@ namespace comic::frontend {
 IsoCurveTracer::IsoCurveTracer(const cv::Mat& image, const cv::Rect& domain, double threshold)
     : image_(image),
       domain_(domain & cv::Rect(0, 0, image.cols, image.rows)),
-      threshold_(threshold) {
+      threshold_(threshold),
+      data_(image.data),
+      step_(static_cast<ptrdiff_t>(image.step[0])),
+      inside_bound_(std::isnan(threshold)
+                        ? -1
+                        : static_cast<int>(std::clamp(std::ceil(threshold), -1.0, 257.0))) {
   COMIC_CHECK(image.type() == CV_8UC1, kInvalidArgument, "IsoCurveTracer: expected CV_8UC1");
 }
 
@@ -29,7 +34,9 @@ cv::Point2f IsoCurveTracer::Crossing(const CurveEdge& edge) const {
           static_cast<float>(edge.inside.y + t * (edge.outside.y - edge.inside.y))};
 }
 
-bool IsoCurveTracer::Step(const CurveEdge& edge, bool forward, CurveEdge* next) const {
+// Inlined into Trace's loops: it runs once per point of every traced curve.
+[[gnu::always_inline]] inline bool IsoCurveTracer::Step(const CurveEdge& edge, bool forward,
+                                                        CurveEdge* next) const {
   // Direction of travel with the inside on the left: the inside->outside vector turned by -90°
   // (image coordinates, y down).
   const cv::Point d = edge.outside - edge.inside;
@@ -129,21 +136,6 @@ double Distance(const cv::Point2f& a, const cv::Point2f& b) {
   return std::sqrt(dx * dx + dy * dy);
 }
 
-cv::Point2f Interpolate(const std::vector<cv::Point2f>& points,
-                        const std::vector<double>& cumulative, bool closed, double s) {
-  const size_t n = points.size();
-  // Segment i runs from vertex i to vertex i + 1 (vertex 0 for the closing segment).
-  const size_t segments = closed ? n : n - 1;
-  auto it = std::upper_bound(cumulative.begin(), cumulative.begin() + segments + 1, s);
-  size_t i = it == cumulative.begin() ? 0 : static_cast<size_t>(it - cumulative.begin()) - 1;
-  i = std::min(i, segments - 1);
-  const double length = cumulative[i + 1] - cumulative[i];
-  const double t = length > 0 ? std::clamp((s - cumulative[i]) / length, 0.0, 1.0) : 0.0;
-  const cv::Point2f& a = points[i];
-  const cv::Point2f& b = points[(i + 1) % n];
-  return {static_cast<float>(a.x + t * (b.x - a.x)), static_cast<float>(a.y + t * (b.y - a.y))};
-}
-
 }  // namespace
 
 void PolylineArcLengths(const std::vector<cv::Point2f>& points, bool closed,
@@ -192,10 +184,31 @@ std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points
     const int n = std::max(3, static_cast<int>(std::lround(length / spacing)));
     const double step = length / n;
     samples.reserve(n);
+    // The segment of each sample as Interpolate finds it (the last vertex at or before s), by a
+    // walk instead of a binary search while s increases (it wraps at most once, for an origin
+    // other than 0): the same segment, hence the same point.
+    const size_t num_points = points.size();
+    const size_t segments = num_points;
+    size_t segment = 0;
+    double previous_s = -1.0;
     for (int k = 0; k < n; ++k) {
-      double s = std::fmod(origin + k * step, length);
-      if (s < 0) s += length;
-      samples.push_back(Interpolate(points, cumulative, true, s));
+      // fmod(s, length) is s itself for s in [0, length): skip it there (most samples).
+      double s = origin + k * step;
+      if (!(s >= 0 && s < length)) {
+        s = std::fmod(s, length);
+        if (s < 0) s += length;
+      }
+      if (s < previous_s) segment = 0;
+      previous_s = s;
+      while (segment < segments && cumulative[segment + 1] <= s) ++segment;
+      const size_t i = std::min(segment, segments - 1);
+      const double segment_length = cumulative[i + 1] - cumulative[i];
+      const double t =
+          segment_length > 0 ? std::clamp((s - cumulative[i]) / segment_length, 0.0, 1.0) : 0.0;
+      const cv::Point2f& a = points[i];
+      const cv::Point2f& b = points[(i + 1) % num_points];
+      samples.emplace_back(static_cast<float>(a.x + t * (b.x - a.x)),
+                           static_cast<float>(a.y + t * (b.y - a.y)));
     }
     return samples;
   }

@@ -13,6 +13,8 @@
 // down).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -48,9 +50,14 @@ class IsoCurveTracer {
 
   double threshold() const { return threshold_; }
   const cv::Rect& domain() const { return domain_; }
-  bool InDomain(const cv::Point& p) const { return domain_.contains(p); }
-  int Value(const cv::Point& p) const { return image_.ptr<uint8_t>(p.y)[p.x]; }
-  bool IsInside(const cv::Point& p) const { return Value(p) < threshold_; }
+  bool InDomain(const cv::Point& p) const {
+    // Unsigned compares: one test per axis (as cv::Rect::contains).
+    return static_cast<unsigned>(p.x - domain_.x) < static_cast<unsigned>(domain_.width) &&
+           static_cast<unsigned>(p.y - domain_.y) < static_cast<unsigned>(domain_.height);
+  }
+  int Value(const cv::Point& p) const { return data_[p.y * step_ + p.x]; }
+  // v < threshold for an integer v is v < ceil(threshold): an integer compare per pixel.
+  bool IsInside(const cv::Point& p) const { return Value(p) < inside_bound_; }
   // True if the pair is a valid crossing of this tracer: both in the domain, 4-neighbours,
   // inside/outside as named.
   bool IsCrossing(const CurveEdge& edge) const;
@@ -72,6 +79,9 @@ class IsoCurveTracer {
   const cv::Mat& image_;
   cv::Rect domain_;
   double threshold_;
+  const uint8_t* data_;
+  ptrdiff_t step_;
+  int inside_bound_;  // ceil(threshold_), clamped to [-1, 257]
 };
 
 // Arc length of a polyline (closing segment included when `closed`).

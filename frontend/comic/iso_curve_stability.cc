@@ -349,7 +349,23 @@ inline float WeightedStabilityEvaluator::Sample(int r, int k) {
   return value == kNotSampled ? ReadSample(r, k) : value;
 }
 
-float WeightedStabilityEvaluator::ReadSample(int r, int k) {
+double WeightedStabilityEvaluator::Weight(int offset, double sigma) {
+  // The Gaussian of one offset, memoised per σ (the same expression, so the same value).
+  if (!(sigma == weight_sigma_)) {
+    weight_sigma_ = sigma;
+    weight_table_.clear();
+  }
+  const size_t index = static_cast<size_t>(offset < 0 ? -2 * offset - 1 : 2 * offset);
+  if (index >= weight_table_.size()) weight_table_.resize(index + 1, -1.0);
+  double& weight = weight_table_[index];
+  if (weight < 0) {
+    const double d = offset;
+    weight = std::exp(-d * d / (2.0 * sigma * sigma));
+  }
+  return weight;
+}
+
+inline float WeightedStabilityEvaluator::ReadSample(int r, int k) {
   // Interpolation of the 8-bit image: cubic near the curve, bilinear beyond (ProfileSampler).
   const ProfileSampler interpolate(*gray_);
   const double u = (k - m_) * options_.sample_step;
@@ -364,6 +380,20 @@ bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
                                          const std::vector<cv::Point2f>& reference,
                                          int centre_index,
                                          const WeightedStabilityOptions& options) {
+  return PrepareImpl(gray, reference, centre_index, options, true);
+}
+
+bool WeightedStabilityEvaluator::PrepareWithoutMiddleLevel(
+    const cv::Mat& gray, const std::vector<cv::Point2f>& reference, int centre_index,
+    const WeightedStabilityOptions& options) {
+  return PrepareImpl(gray, reference, centre_index, options, false);
+}
+
+bool WeightedStabilityEvaluator::PrepareImpl(const cv::Mat& gray,
+                                             const std::vector<cv::Point2f>& reference,
+                                             int centre_index,
+                                             const WeightedStabilityOptions& options,
+                                             bool with_middle_level) {
   gray_ = &gray;
   options_ = options;
   num_evaluated_ = 0;
@@ -391,8 +421,7 @@ bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
     const double norm = std::sqrt(tangent.x * tangent.x + tangent.y * tangent.y);
     points_[r] = reference[i];
     normals_[r] = norm > 0 ? cv::Point2d(-tangent.y / norm, tangent.x / norm) : cv::Point2d(0, 0);
-    const double d = i - centre_index;
-    weights_[r] = std::exp(-d * d / (2.0 * options.sigma * options.sigma));
+    weights_[r] = Weight(i - centre_index, options.sigma);
     weight_sum_ += weights_[r];
   }
 
@@ -411,7 +440,7 @@ bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
       std::min(m_, static_cast<int>(std::floor(options.search_radius / step + 1e-9)));
   const int read_reach = std::max(side_reach, search_reach);
   mids_.clear();
-  for (int r = 0; r < num_normals_; ++r) {
+  for (int r = 0; r < num_normals_ && with_middle_level; ++r) {
     float dark = std::numeric_limits<float>::infinity();
     float bright = -dark;
     for (int k = m_ - read_reach; k <= m_ + read_reach; ++k) {
@@ -421,17 +450,20 @@ bool WeightedStabilityEvaluator::Prepare(const cv::Mat& gray,
     }
     mids_.emplace_back(0.5 * (dark + bright), weights_[r]);
   }
-  std::sort(mids_.begin(), mids_.end());
-  double cumulative = 0;
-  double median = mids_.back().first;
-  for (const auto& [mid, weight] : mids_) {
-    cumulative += weight;
-    if (cumulative >= 0.5 * weight_sum_) {
-      median = mid;
-      break;
+  middle_level_ = 0.0;
+  if (with_middle_level) {
+    std::sort(mids_.begin(), mids_.end());
+    double cumulative = 0;
+    double median = mids_.back().first;
+    for (const auto& [mid, weight] : mids_) {
+      cumulative += weight;
+      if (cumulative >= 0.5 * weight_sum_) {
+        median = mid;
+        break;
+      }
     }
+    middle_level_ = median - 0.5;
   }
-  middle_level_ = median - 0.5;
 
   // Levels whose curve crosses the central normal within the search radius: J with
   // low < J + 0.5 <= high.
@@ -553,6 +585,60 @@ const WeightedStabilityEvaluator::LevelValues& WeightedStabilityEvaluator::Evalu
   values.length = length;
   values.stability = length / band;
   return values;
+}
+
+double WeightedStabilityEvaluator::SingleLevelStability(int l) {
+  LevelValues& values = levels_[l];
+  if (values.stability >= 0) return values.stability;
+  if (options_.delta != delta_steps_) return Evaluate(l).stability;  // fractional δ: windows
+  ++num_evaluated_;
+  // The three thresholds' crossings on every normal, each found on its own (a threshold's
+  // crossing depends on the threshold alone, ProfileCrossings), so the values are those Evaluate
+  // reads from its windows. Row 0: the level's curve; 1: Down (j - δ); 2: Up (j + δ).
+  const int j = l + delta_steps_;
+  const int samples = 2 * m_ + 1;
+  const size_t n = static_cast<size_t>(num_normals_);
+  single_crossings_.resize(3 * n);
+  single_clipped_.resize(3 * n);
+  const int thresholds[3] = {j, j - delta_steps_, j + delta_steps_};
+  for (int t = 0; t < 3; ++t) {
+    for (int r = 0; r < num_normals_; ++r) {
+      ProfileCrossings(
+          &samples_[static_cast<size_t>(r) * samples], samples, m_, options_.sample_step,
+          first_threshold_ + thresholds[t], 1, [&](int k) { return ReadSample(r, k); },
+          &single_crossings_[t * n + r], &single_clipped_[t * n + r]);
+    }
+  }
+  // As Evaluate, operation for operation.
+  std::fill(elements_.begin(), elements_.end(), 0.0);
+  cv::Point2d previous;
+  bool previous_valid = false;
+  for (int r = 0; r < num_normals_; ++r) {
+    const double u = single_crossings_[r];
+    const bool valid = single_clipped_[r] == 0;
+    const cv::Point2d q = points_[r] + u * normals_[r];
+    if (valid && previous_valid) {
+      const double dx = q.x - previous.x;
+      const double dy = q.y - previous.y;
+      const double chord = std::sqrt(dx * dx + dy * dy);
+      elements_[r - 1] += 0.5 * chord;
+      elements_[r] += 0.5 * chord;
+    }
+    previous = q;
+    previous_valid = valid;
+  }
+  double length = 0;
+  double band = 0;
+  for (int r = 0; r < num_normals_; ++r) {
+    length += weights_[r] * elements_[r];
+    if (elements_[r] == 0.0) continue;
+    band += weights_[r] * elements_[r] * (single_crossings_[2 * n + r] - single_crossings_[n + r]);
+  }
+  band = std::max(band, 1e-6 * weight_sum_);
+  values.band_area = band;
+  values.length = length;
+  values.stability = length / band;
+  return values.stability;
 }
 
 void WeightedStabilityEvaluator::Fill(StabilityProfile* profile) {

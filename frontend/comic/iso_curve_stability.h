@@ -140,6 +140,10 @@ class WeightedStabilityEvaluator {
   // evaluation.
   bool Prepare(const cv::Mat& gray, const std::vector<cv::Point2f>& reference, int centre_index,
                const WeightedStabilityOptions& options);
+  // The same without the middle level (middle_level() is then 0): for a caller that needs ρ_w
+  // of given levels only (the direct search), the ~170 profile samples it reads are not needed.
+  bool PrepareWithoutMiddleLevel(const cv::Mat& gray, const std::vector<cv::Point2f>& reference,
+                                 int centre_index, const WeightedStabilityOptions& options);
 
   int first_level() const { return first_level_; }
   int NumLevels() const { return num_levels_; }
@@ -148,6 +152,10 @@ class WeightedStabilityEvaluator {
   cv::Point2d normal() const { return normals_[centre_row_]; }
   // ρ_w of level first_level() + l, l in [0, NumLevels()).
   double Stability(int l) { return Evaluate(l).stability; }
+  // The same value, bit for bit, for a caller that asks for this one level only: the crossings
+  // of its three thresholds (I + 0.5 and I + 0.5 ± δ) alone are computed, not the windows of
+  // neighbouring thresholds that Stability() prepares for the level choice.
+  double SingleLevelStability(int l);
   // Where the curve of level first_level() + l crosses the central normal, px (as
   // StabilityProfile::centre_offset).
   double CentreOffset(int l);
@@ -163,6 +171,8 @@ class WeightedStabilityEvaluator {
     double band_area = 0.0;
   };
   const LevelValues& Evaluate(int l);
+  bool PrepareImpl(const cv::Mat& gray, const std::vector<cv::Point2f>& reference, int centre_index,
+                   const WeightedStabilityOptions& options, bool with_middle_level);
   // Signed crossing of threshold index j (threshold first_threshold_ + j) on normal r, and
   // whether the profile ended first (clipped).
   double Crossing(int r, int j, bool* clipped) {
@@ -178,6 +188,8 @@ class WeightedStabilityEvaluator {
   // Sample k of normal r's profile (read on first use).
   float Sample(int r, int k);
   float ReadSample(int r, int k);
+  // exp(-offset² / 2σ²), the along-curve weight of a normal `offset` samples from the centre.
+  double Weight(int offset, double sigma);
 
   const cv::Mat* gray_ = nullptr;
   WeightedStabilityOptions options_;
@@ -204,6 +216,10 @@ class WeightedStabilityEvaluator {
   std::vector<LevelValues> levels_;
   std::vector<double> elements_;
   std::vector<std::pair<double, double>> mids_;
+  std::vector<double> single_crossings_;  // SingleLevelStability: 3 x num_normals_
+  std::vector<uint8_t> single_clipped_;
+  double weight_sigma_ = -1.0;        // σ of weight_table_
+  std::vector<double> weight_table_;  // by offset 0, -1, 1, -2, 2, ...; < 0: not computed
 };
 
 // Computes the profile around reference[centre_index]. `reference` is a segment of iso-curve

@@ -15,6 +15,7 @@ std::vector<PatchSide> ComputeSideMask(const cv::Mat& gray, double threshold,
   CurveEdge seed;
   if (!tracer.FindNearestCrossing(curve_point, 2, &seed)) return mask;
   IsoCurve curve;
+  curve.edges.reserve(4 * kSize);  // a patch's curve is rarely longer: no regrowth
   tracer.Trace(seed, 8 * kSize * kSize, &curve);
 
   // Links cut by the curve: per patch pixel, the link to its right and the one below it.
@@ -47,6 +48,8 @@ std::vector<PatchSide> ComputeSideMask(const cv::Mat& gray, double threshold,
   }
   // Breadth-first fill of both sides within the image part of the patch, not across cut links.
   const cv::Rect image_rect(0, 0, gray.cols, gray.rows);
+  // Most patches lie in the image: then no pixel needs the image test.
+  const bool patch_in_image = (patch & image_rect) == patch;
   while (head < tail) {
     const int index = queue[head++];
     const int u = index % kSize;
@@ -55,7 +58,7 @@ std::vector<PatchSide> ComputeSideMask(const cv::Mat& gray, double threshold,
       if (cut || nu < 0 || nv < 0 || nu >= kSize || nv >= kSize) return;
       const int next = nv * kSize + nu;
       if (mask[next] != PatchSide::kNone) return;
-      if (!image_rect.contains(cv::Point(patch.x + nu, patch.y + nv))) return;
+      if (!patch_in_image && !image_rect.contains(cv::Point(patch.x + nu, patch.y + nv))) return;
       mask[next] = mask[index];
       queue[tail++] = next;
     };

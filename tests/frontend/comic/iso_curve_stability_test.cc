@@ -301,5 +301,51 @@ TEST(IsoCurveStability, LazyEvaluationChoosesExactlyWhatTheFullProfileChooses) {
   EXPECT_LT(evaluated, levels);
 }
 
+TEST(IsoCurveStability, SingleLevelStabilityIsTheProfilesValueBitForBit) {
+  // The direct search's path (PrepareWithoutMiddleLevel, then one SingleLevelStability per
+  // evaluator) computes only one level's three thresholds: it must give the full profile's ρ_w of
+  // every level exactly, on jagged textured profiles, for δ = 5 and 3 and a fractional δ (which
+  // falls back to the windowed evaluation).
+  const cv::Mat image =
+      test::RenderPolygons(test::TexturedBackground({120, 120}, 11, 20, 200, 5),
+                           {test::MakeSquare({30.4, 35.2}, 50, 230),
+                            test::MakeTriangle({20, 100}, {100, 90}, {70, 20}, 10)},
+                           1.0);
+  WeightedStabilityEvaluator evaluator;
+  int compared = 0;
+  for (double delta : {5.0, 3.0, 2.5}) {
+    WeightedStabilityOptions options;
+    options.delta = delta;
+    for (int y = 20; y < 100; y += 7) {
+      for (double threshold : {60.5, 110.5, 160.5}) {
+        const IsoCurveTracer tracer(image, cv::Rect(0, 0, image.cols, image.rows), threshold);
+        CurveEdge seed;
+        if (!tracer.FindNearestCrossing(cv::Point2f(60.0f, static_cast<float>(y)), 20, &seed)) {
+          continue;
+        }
+        IsoCurve curve;
+        tracer.Trace(seed, 1000, &curve);
+        int centre = 0;
+        const auto reference = ResamplePolyline(
+            curve.points, false, 1.0, ArcLengthAt(curve.points, curve.seed_index), 13, 13, &centre);
+        StabilityProfile profile;
+        const bool full =
+            ComputeWeightedStabilityProfile(image, reference, centre, options, &profile);
+        ASSERT_EQ(full, evaluator.PrepareWithoutMiddleLevel(image, reference, centre, options));
+        if (!full) continue;
+        ASSERT_EQ(evaluator.first_level(), profile.first_level);
+        ASSERT_EQ(evaluator.NumLevels(), profile.NumLevels());
+        for (int l = 0; l < profile.NumLevels(); ++l) {
+          // A fresh evaluator per level, as the direct search uses it: nothing memoised.
+          ASSERT_TRUE(evaluator.PrepareWithoutMiddleLevel(image, reference, centre, options));
+          EXPECT_EQ(evaluator.SingleLevelStability(l), profile.stability[l]);
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 200);
+}
+
 }  // namespace
 }  // namespace comic::frontend
