@@ -10,10 +10,13 @@
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
+#include "apps/common/matching_flags.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
+#include "frontend/matching/combined_tracking.h"
+#include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
 #include "io/error.h"
 #include "io/file_utils.h"
@@ -48,6 +51,7 @@ int Run(int argc, char** argv) {
   int threads = 0;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
+  std::string matching = "auto";            // comic_sfm's --matching
   comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
   comic::apps::ColmapDbFlags colmap;
 
@@ -65,6 +69,7 @@ int Run(int argc, char** argv) {
   parser.AddDeprecatedAlias("output", "colmap-db");
   comic::apps::AddIntrinsicsFlag(parser, &intrinsics_path);
   comic::apps::AddDetectorFlag(parser, &detector_name);
+  comic::apps::AddMatchingFlag(parser, &matching);
   comic::apps::AddTrackerFlags(parser, &tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");
   comic::apps::AddFrameRangeFlags(parser, &sequence_options);
@@ -105,8 +110,8 @@ int Run(int argc, char** argv) {
   detector_options.comic.num_threads = threads;
   detector_options.comic_paper.num_threads = threads;
   detector_options.Check();
-  const comic::frontend::TrackerOptions tracker_options =
-      comic::apps::ToTrackerOptions(tracker_flags);
+  comic::frontend::ParsePairing(matching);
+  comic::apps::ToTrackerOptions(tracker_flags);  // validated before any work
   comic::io::CheckWritableFile(output, colmap.overwrite);
   COMIC_CHECK(comic::io::PathExists(frames), kNotFound, frames << ": no such file or folder");
   COMIC_CHECK(comic::io::IsDirectory(frames), kInvalidArgument,
@@ -127,9 +132,12 @@ int Run(int argc, char** argv) {
                                                sequence.FrameSize());
   }
 
+  const comic::frontend::PairingChoice pairing = comic::apps::ChooseRunPairing(matching, sequence);
+  const comic::frontend::TrackerOptions tracker_options = comic::apps::TrackerOptionsForRun(
+      parser, tracker_flags, pairing, static_cast<int>(sequence.NumFrames()));
   const auto detector = comic::frontend::MakeDetector(detector_options);
   const comic::frontend::TrackingResult tracking =
-      comic::frontend::TrackSequence(sequence, *detector, tracker_options);
+      comic::frontend::TrackSequenceWithDetector(sequence, *detector, tracker_options);
   const comic::frontend::FeatureTracks& tracks = tracking.tracks;
   const comic::sfm::ColmapExportSummary summary = comic::sfm::ExportTracksToColmapDatabase(
       tracks, camera, export_options, output, colmap.overwrite);
@@ -142,6 +150,9 @@ int Run(int argc, char** argv) {
   std::cout << "frames:     " << sequence.NumFrames() << " (" << frames << ")\n"
             << "tracks:     " << tracks.tracks.size() << " (" << detector_name << ", "
             << observations << " observations)\n"
+            << "matching:   " << comic::frontend::PairingName(pairing.chosen) << " ("
+            << (pairing.requested.mode == comic::frontend::PairingMode::kAuto ? "auto: " : "")
+            << pairing.reason << ")\n"
             << "camera:     "
             << (camera ? "PINHOLE, known intrinsics (" + intrinsics_path + ")"
                        : std::string("SIMPLE_RADIAL, guessed (no --intrinsics)"))
