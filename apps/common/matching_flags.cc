@@ -35,6 +35,7 @@ frontend::TrackerOptions TrackerOptionsForRun(const ArgParser& parser, const Tra
   if (parser.WasSet("prediction")) options.prediction = given.prediction;
   if (parser.WasSet("coarse-radius")) options.coarse_radius = given.coarse_radius;
   if (parser.WasSet("search-radius")) options.matcher.radius = given.matcher.radius;
+  if (parser.WasSet("max-cost")) options.matcher.max_cost = given.matcher.max_cost;
   options.Check();
   return options;
 }

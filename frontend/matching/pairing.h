@@ -101,8 +101,9 @@ PairingChoice ChoosePairing(const std::vector<cv::Mat>& thumbnails, const Pairin
 //   kExhaustive  every pair (match_window num_frames − 1), every pair verified, each also
 //                matched with the later frame turned by 180° (views stored upside down), and
 //                the coarse-to-fine prediction with a 200 px coarse radius and a 40 px search
-//                radius: neighbours of an image set are hundreds of pixels apart (docs/sfm.md,
-//                the temple ring and Herz-Jesu).
+//                radius (neighbours of an image set are hundreds of pixels apart), and the SSD
+//                threshold 800 (wide baselines change the patches; docs/sfm.md, the temple ring
+//                and Herz-Jesu).
 TrackerOptions TrackerOptionsForPairing(const Pairing& pairing, int num_frames,
                                         TrackerOptions base);
 

@@ -127,6 +127,7 @@ TEST(Pairing, TrackerOptionsForEachPairing) {
   EXPECT_EQ(all.verify_min_gap, 1);
   EXPECT_TRUE(all.match_turned_180);
   EXPECT_EQ(all.prediction, MotionPrediction::kCoarseToFine);
+  EXPECT_EQ(all.matcher.max_cost, 800.0);
   EXPECT_NO_THROW(all.Check());
   EXPECT_THROW(TrackerOptionsForPairing(Pairing{}, 16, base), Error);
 }
