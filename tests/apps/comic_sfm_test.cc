@@ -258,7 +258,7 @@ TEST(ComicSfm, TempleSparseRingClosesWithTheImageSetOptions) {
 
 // Issue 16: with no tracker flags, --matching auto calls the temple ring an image set and its
 // exhaustive set-up closes the ring at the stored 640x480 (docs/sfm.md: hessian 16/16, ATE
-// 0.059 % of the path).
+// 0.030 % of the path).
 TEST(ComicSfm, TempleSparseRingClosesWithNoTrackerFlags) {
   COMIC_REQUIRE_SHARED_DATA();
   const std::string temple = comic::test::SharedDataDir() + "/middlebury_mview_templeSparseRing";
