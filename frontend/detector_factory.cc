@@ -25,9 +25,10 @@ void CheckName(const std::string& name) {
   const std::vector<std::string> parts = SplitCombinedDetectorName(name);
   for (const std::string& part : parts) {
     COMIC_CHECK(IsSingleDetectorName(part), kInvalidArgument,
-                "unknown detector '"
-                    << part << "'" << (parts.size() > 1 ? " in '" + name + "'" : std::string())
-                    << " (valid: " << ValidNames() << ", or several joined by '+')");
+                "unknown detector '" << part << "'"
+                                     << (parts.size() > 1 ? " in '" + name + "'" : std::string())
+                                     << " (valid: " << ValidNames()
+                                     << "); several may be joined by '+', e.g. comic+hessian");
   }
   for (size_t i = 0; i < parts.size(); ++i) {
     for (size_t j = i + 1; j < parts.size(); ++j) {
