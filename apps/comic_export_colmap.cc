@@ -132,7 +132,8 @@ int Run(int argc, char** argv) {
                                                sequence.FrameSize());
   }
 
-  const comic::frontend::PairingChoice pairing = comic::apps::ChooseRunPairing(matching, sequence);
+  const comic::frontend::PairingChoice pairing =
+      comic::apps::ChooseRunPairing(matching, parser, sequence);
   const comic::frontend::TrackerOptions tracker_options = comic::apps::TrackerOptionsForRun(
       parser, tracker_flags, pairing, static_cast<int>(sequence.NumFrames()));
   const auto detector = comic::frontend::MakeDetector(detector_options);

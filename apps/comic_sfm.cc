@@ -636,7 +636,7 @@ int Run(int argc, char** argv) {
   // staging folder beside it and move into place when the run has succeeded (issue 19).
   io::CheckCreatableFolder(flags.out);
   Inputs inputs = ResolveInputs(flags);
-  inputs.pairing = comic::apps::ChooseRunPairing(flags.matching, *inputs.sequence);
+  inputs.pairing = comic::apps::ChooseRunPairing(flags.matching, parser, *inputs.sequence);
   inputs.tracker = comic::apps::TrackerOptionsForRun(
       parser, flags.tracker, inputs.pairing, static_cast<int>(inputs.sequence->NumFrames()));
   if (!inputs.sequence->warning().empty()) {

@@ -13,11 +13,18 @@ void AddMatchingFlag(ArgParser& parser, std::string* matching) {
                    matching);
 }
 
-frontend::PairingChoice ChooseRunPairing(const std::string& matching,
+frontend::PairingChoice ChooseRunPairing(const std::string& matching, const ArgParser& parser,
                                          const io::ImageSequence& sequence) {
   const frontend::Pairing requested = frontend::ParsePairing(matching);
   if (requested.mode != frontend::PairingMode::kAuto) {
     return frontend::ChoosePairing({}, requested);
+  }
+  if (parser.WasSet("match-window")) {
+    frontend::PairingChoice choice;
+    choice.requested = requested;
+    choice.chosen = {frontend::PairingMode::kSequential, 0};
+    choice.reason = "--match-window given: the tracker flags as given decide the pairs";
+    return choice;
   }
   return frontend::ChoosePairing(frontend::ThumbnailsOf(sequence), requested);
 }

@@ -18,8 +18,10 @@ namespace comic::apps {
 void AddMatchingFlag(ArgParser& parser, std::string* matching);
 
 // The pairing of this run: `matching` parsed (throws comic::Error(kInvalidArgument) for a bad
-// value) and, for auto, chosen from the frames of `sequence`.
-frontend::PairingChoice ChooseRunPairing(const std::string& matching,
+// value) and, for auto, chosen from the frames of `sequence` — unless --match-window was given:
+// then the pairing was set by hand (the commands of before --matching), and auto leaves the
+// tracker flags exactly as given (chosen: sequential, i.e. no set-up).
+frontend::PairingChoice ChooseRunPairing(const std::string& matching, const ArgParser& parser,
                                          const io::ImageSequence& sequence);
 
 // The tracker options of this run: the tracker flags' defaults set up for the chosen pairing,
