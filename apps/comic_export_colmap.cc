@@ -11,11 +11,14 @@
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
+#include "apps/common/matching_flags.h"
 #include "apps/common/progress_line.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
+#include "frontend/matching/combined_tracking.h"
+#include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
 #include "io/error.h"
 #include "io/file_utils.h"
@@ -58,6 +61,7 @@ int Run(int argc, char** argv) {
   std::string write_frames;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
+  std::string matching = "auto";            // comic_sfm's --matching
   comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
   comic::apps::ColmapDbFlags colmap;
 
@@ -81,6 +85,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddIntrinsicsFlag(parser, &intrinsics_path);
   comic::apps::AddCameraModelFlag(parser, &camera_model);
   comic::apps::AddDetectorFlag(parser, &detector_name);
+  comic::apps::AddMatchingFlag(parser, &matching);
   comic::apps::AddTrackerFlags(parser, &tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");
   comic::apps::AddFrameRangeFlags(parser, &sequence_options);
@@ -131,8 +136,8 @@ int Run(int argc, char** argv) {
   detector_options.comic.num_threads = threads;
   detector_options.comic_paper.num_threads = threads;
   detector_options.Check();
-  const comic::frontend::TrackerOptions tracker_options =
-      comic::apps::ToTrackerOptions(tracker_flags);
+  comic::frontend::ParsePairing(matching);
+  comic::apps::ToTrackerOptions(tracker_flags);  // validated before any work
   comic::io::CheckWritableFile(output, colmap.overwrite);
   COMIC_CHECK(comic::io::PathExists(frames), kNotFound, frames << ": no such file or folder");
   const bool video = !comic::io::IsDirectory(frames);
@@ -172,13 +177,17 @@ int Run(int argc, char** argv) {
                                                sequence.FrameSize(), model);
   }
 
+  const comic::frontend::PairingChoice pairing =
+      comic::apps::ChooseRunPairing(matching, parser, sequence);
+  const comic::frontend::TrackerOptions tracker_options = comic::apps::TrackerOptionsForRun(
+      parser, tracker_flags, pairing, static_cast<int>(sequence.NumFrames()));
   const auto detector = comic::frontend::MakeDetector(detector_options);
   // Staged: the frames appear with the database or not at all.
   std::unique_ptr<comic::io::StagedFolder> frames_out;
   if (video) frames_out = std::make_unique<comic::io::StagedFolder>(frames_folder);
   comic::apps::ProgressLine tracking_progress(
       "comic_export_colmap: [" + detector_name + "] detection and tracking", quiet);
-  const comic::frontend::TrackingResult tracking = comic::frontend::TrackSequence(
+  const comic::frontend::TrackingResult tracking = comic::frontend::TrackSequenceWithDetector(
       sequence, *detector, tracker_options, tracking_progress.Callback());
   const comic::frontend::FeatureTracks& tracks = tracking.tracks;
   if (frames_out) {
@@ -198,6 +207,9 @@ int Run(int argc, char** argv) {
             << (video ? ", written as PNG to " + frames_folder : std::string()) << ")\n"
             << "tracks:     " << tracks.tracks.size() << " (" << detector_name << ", "
             << observations << " observations)\n"
+            << "matching:   " << comic::frontend::PairingName(pairing.chosen) << " ("
+            << (pairing.requested.mode == comic::frontend::PairingMode::kAuto ? "auto: " : "")
+            << pairing.reason << ")\n"
             << "camera:     "
             << (camera ? camera->Describe() + ", known intrinsics (" + intrinsics_path + ")"
                        : comic::sfm::CameraModelName(export_options.default_camera_model) +

@@ -21,12 +21,14 @@
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
+#include "apps/common/matching_flags.h"
 #include "apps/common/progress_line.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
 #include "frontend/evaluation/region_labels.h"
+#include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
 #include "io/colmap_binary_model.h"
 #include "io/colmap_text_model.h"
@@ -80,6 +82,7 @@ struct Flags {
   std::string model_format = "both";  // txt, bin or both
   std::string ply_format = "binary";
   io::ImageSequenceOptions sequence;
+  std::string matching = "auto";      // frontend::ParsePairing
   comic::apps::TrackerFlags tracker;  // sfm::SequenceReconstructionOptions' tracker defaults
   bool refine_focal = false;
   bool refine_principal_point = false;
@@ -119,15 +122,20 @@ struct Inputs {
   std::vector<cv::Mat> region_labels;  // per frame, empty without --regions / --masks
   sfm::PlotPlane plot_plane;
   bool plot_plane_from_estimate = false;  // auto without ground truth: PCA of our centres
+  // --matching resolved on the frames, and the tracker options it gives with the tracker flags.
+  frontend::PairingChoice pairing;
+  frontend::TrackerOptions tracker;
 };
 
 // `self_calibrating`: no calibration was given, so the focal length and distortion are refined
 // (COLMAP's defaults, ba_refine_focal_length and ba_refine_extra_params) unless
 // --fixed-intrinsics; the pipeline refines them once the model constrains them
 // (sfm/incremental_pipeline.h) and keeps the prior focal where it is unobservable.
-sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags, bool self_calibrating = false) {
+sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags,
+                                               const frontend::TrackerOptions& tracker,
+                                               bool self_calibrating = false) {
   sfm::SequenceReconstructionOptions options;
-  options.tracker = comic::apps::ToTrackerOptions(flags.tracker);
+  options.tracker = tracker;
   const bool automatic = self_calibrating && !flags.fixed_intrinsics;
   options.mapper.global_ba.refine_focal_length = flags.refine_focal || automatic;
   options.mapper.global_ba.refine_principal_point = flags.refine_principal_point;
@@ -182,7 +190,19 @@ nlohmann::json CameraReport(const sfm::SequenceReconstruction& run, const Inputs
 
 nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
   const sfm::Camera& c = inputs.camera;
-  const frontend::TrackerOptions& tracker = flags.tracker.options;
+  const frontend::TrackerOptions& tracker = inputs.tracker;
+  const frontend::PairingChoice& pairing = inputs.pairing;
+  nlohmann::json matching = {{"requested", frontend::PairingName(pairing.requested)},
+                             {"chosen", frontend::PairingName(pairing.chosen)},
+                             {"reason", pairing.reason}};
+  if (pairing.measured) {
+    matching["looks_like_video"] = pairing.looks_like_video;
+    matching["consecutive_similarity_median"] = pairing.consecutive_similarity_median;
+    matching["consecutive_similarity_p10"] = pairing.consecutive_similarity_p10;
+    matching["other_similarity_median"] = pairing.other_similarity_median;
+    matching["gain"] = pairing.gain;
+    matching["neighbour_fraction"] = pairing.neighbour_fraction;
+  }
   return {{"frames", flags.frames},
           {"first", flags.sequence.first_frame},
           {"last", flags.sequence.last_frame},
@@ -203,7 +223,8 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"max_features", tracker.max_features},
           {"search_radius_px", tracker.matcher.radius},
           {"unpredicted_radius_px", tracker.unpredicted_radius},
-          {"prediction", flags.tracker.prediction},
+          {"matching", matching},
+          {"prediction", frontend::MotionPredictionName(tracker.prediction)},
           {"coarse_radius_px", tracker.coarse_radius},
           {"match_window", tracker.match_window},
           {"track_conflicts", flags.tracker.track_conflicts},
@@ -387,7 +408,8 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   detector_options.comic.num_threads = flags.threads;
   detector_options.comic_paper.num_threads = flags.threads;
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_options);
-  const sfm::SequenceReconstructionOptions options = MakeOptions(flags, inputs.self_calibrating);
+  const sfm::SequenceReconstructionOptions options =
+      MakeOptions(flags, inputs.tracker, inputs.self_calibrating);
   const std::string tag = "[" + detector_name + "] ";
   // Detection and tracking are most of a run's time (issue 17: 39.5 s of 48 s silent on KITTI).
   comic::apps::ProgressLine tracking_progress(tag + "detection and tracking", flags.quiet);
@@ -679,6 +701,7 @@ int Run(int argc, char** argv) {
                    &flags.ply_format);
   comic::apps::AddResizeHeightFlag(parser, &flags.sequence.resize_height);
   comic::apps::AddFrameRangeFlags(parser, &flags.sequence);
+  comic::apps::AddMatchingFlag(parser, &flags.matching);
   comic::apps::AddTrackerFlags(parser, &flags.tracker);
   parser.AddFlag("no-retriangulate",
                  "do not triangulate a track again from all its registered views when its point "
@@ -758,17 +781,19 @@ int Run(int argc, char** argv) {
                                         : frontend::ParseDetectorList(flags.detectors);
   } else {
     COMIC_CHECK(flags.detectors.empty(), kInvalidArgument, "--detectors needs --compare");
-    COMIC_CHECK(frontend::IsDetectorName(flags.detector), kInvalidArgument,
-                "--detector: unknown detector '" << flags.detector
-                                                 << "' (expected comic, harris, hessian, mser or "
-                                                    "fast)");
+    try {
+      frontend::CheckDetectorName(flags.detector);
+    } catch (const Error& e) {
+      throw Error(ErrorKind::kInvalidArgument, std::string("--detector: ") + e.what());
+    }
     detectors = {flags.detector};
   }
   comic::apps::CheckThreadCount("--threads", flags.threads);
   io::CheckMaxPixels(flags.max_pixels);
   flags.sequence.max_pixels = flags.max_pixels;
   flags.sequence.Check();
-  MakeOptions(flags);  // validates the numeric options before any work
+  frontend::ParsePairing(flags.matching);                            // before any work
+  MakeOptions(flags, comic::apps::ToTrackerOptions(flags.tracker));  // the numeric options too
   COMIC_CHECK(
       flags.model_format == "txt" || flags.model_format == "bin" || flags.model_format == "both",
       kInvalidArgument,
@@ -780,7 +805,10 @@ int Run(int argc, char** argv) {
   // Validate, then write, all or nothing: --out is checked but not created; the outputs go to a
   // staging folder beside it and move into place when the run has succeeded (issue 19).
   io::CheckCreatableFolder(flags.out);
-  const Inputs inputs = ResolveInputs(flags);
+  Inputs inputs = ResolveInputs(flags);
+  inputs.pairing = comic::apps::ChooseRunPairing(flags.matching, parser, *inputs.sequence);
+  inputs.tracker = comic::apps::TrackerOptionsForRun(
+      parser, flags.tracker, inputs.pairing, static_cast<int>(inputs.sequence->NumFrames()));
   if (!inputs.sequence->warning().empty()) {
     std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
   }
@@ -829,6 +857,9 @@ int Run(int argc, char** argv) {
                             " frames"
                       : std::string())
               << std::endl;
+    std::cout << "comic_sfm: matching " << frontend::PairingName(inputs.pairing.chosen) << " ("
+              << (inputs.pairing.requested.mode == frontend::PairingMode::kAuto ? "auto: " : "")
+              << inputs.pairing.reason << ")" << std::endl;
   }
 
   if (!flags.compare) {

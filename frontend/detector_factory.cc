@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "frontend/combined_detector.h"
 #include "io/error.h"
 
 namespace comic::frontend {
@@ -14,9 +15,27 @@ std::string ValidNames() {
   return names;
 }
 
+bool IsSingleDetectorName(const std::string& name) {
+  const auto& names = DetectorNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// A name of DetectorNames(), or two or more distinct ones joined by '+'.
 void CheckName(const std::string& name) {
-  COMIC_CHECK(IsDetectorName(name), kInvalidArgument,
-              "unknown detector '" << name << "' (valid: " << ValidNames() << ")");
+  const std::vector<std::string> parts = SplitCombinedDetectorName(name);
+  for (const std::string& part : parts) {
+    COMIC_CHECK(IsSingleDetectorName(part), kInvalidArgument,
+                "unknown detector '" << part << "'"
+                                     << (parts.size() > 1 ? " in '" + name + "'" : std::string())
+                                     << " (valid: " << ValidNames()
+                                     << "); several may be joined by '+', e.g. comic+hessian");
+  }
+  for (size_t i = 0; i < parts.size(); ++i) {
+    for (size_t j = i + 1; j < parts.size(); ++j) {
+      COMIC_CHECK(parts[i] != parts[j], kInvalidArgument,
+                  "detector '" << parts[i] << "' appears twice in '" << name << "'");
+    }
+  }
 }
 
 }  // namespace
@@ -27,13 +46,27 @@ const std::vector<std::string>& DetectorNames() {
   return kNames;
 }
 
+void CheckDetectorName(const std::string& name) { CheckName(name); }
+
 bool IsDetectorName(const std::string& name) {
-  const auto& names = DetectorNames();
-  return std::find(names.begin(), names.end(), name) != names.end();
+  try {
+    CheckName(name);
+  } catch (const Error&) {
+    return false;
+  }
+  return true;
 }
 
 void DetectorOptions::Check() const {
   CheckName(name);
+  if (name.find('+') != std::string::npos) {
+    for (const std::string& part : SplitCombinedDetectorName(name)) {
+      DetectorOptions component = *this;
+      component.name = part;
+      component.Check();
+    }
+    return;
+  }
   if (name == "comic") comic.Check();
   if (name == "comic-paper") comic_paper.Check();
   if (name == "harris") harris.Check();
@@ -44,6 +77,15 @@ void DetectorOptions::Check() const {
 
 std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options) {
   options.Check();
+  if (options.name.find('+') != std::string::npos) {
+    std::vector<std::unique_ptr<Detector>> components;
+    for (const std::string& part : SplitCombinedDetectorName(options.name)) {
+      DetectorOptions component = options;
+      component.name = part;
+      components.push_back(MakeDetector(component));
+    }
+    return std::make_unique<CombinedDetector>(std::move(components));
+  }
   if (options.name == "comic") return std::make_unique<ComicDirectDetector>(options.comic);
   if (options.name == "comic-paper") return std::make_unique<ComicDetector>(options.comic_paper);
   if (options.name == "harris") return std::make_unique<HarrisDetector>(options.harris);

@@ -28,7 +28,8 @@
 namespace comic::frontend {
 
 struct DetectorOptions {
-  // Which detector: one of DetectorNames().
+  // Which detector: one of DetectorNames(), or several of them joined by '+' ("comic+hessian":
+  // a CombinedDetector of those detectors, each with its options below).
   std::string name = "comic";
   // The options of each detector; only the one named is used. `comic`: the direct search of the
   // §2 definition (ComicDirectDetector); `comic_paper`: Algorithm 1 (ComicDetector, "comic-paper").
@@ -48,8 +49,11 @@ struct DetectorOptions {
 // CoMIC's two searches first.
 const std::vector<std::string>& DetectorNames();
 
-// True if `name` is one of DetectorNames().
+// True if `name` is one of DetectorNames() or two or more distinct ones joined by '+'.
 bool IsDetectorName(const std::string& name);
+
+// Throws comic::Error(kInvalidArgument) saying what is wrong with `name` unless IsDetectorName.
+void CheckDetectorName(const std::string& name);
 
 // Builds the named detector with its options. Throws comic::Error(kInvalidArgument) as Check().
 std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options);
@@ -57,7 +61,8 @@ std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options);
 // Builds the named detector with default options.
 std::unique_ptr<Detector> MakeDetector(const std::string& name);
 
-// Splits a comma-separated list ("comic,harris") into names, checking each one; throws
+// Splits a comma-separated list ("comic,harris,comic+hessian") into names, checking each one
+// (IsDetectorName); throws
 // comic::Error(kInvalidArgument) for an unknown or repeated name or an empty list.
 std::vector<std::string> ParseDetectorList(const std::string& list);
 

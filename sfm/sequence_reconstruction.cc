@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "frontend/matching/combined_tracking.h"
 #include "io/error.h"
 
 namespace comic::sfm {
@@ -45,7 +46,7 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
   SequenceReconstruction run;
   run.detector_name = detector.Name();
   frontend::TrackingResult tracking =
-      frontend::TrackSequence(sequence, detector, options.tracker, tracking_progress);
+      frontend::TrackSequenceWithDetector(sequence, detector, options.tracker, tracking_progress);
   run.tracks = std::move(tracking.tracks);
   run.track_building = tracking.track_building;
   run.tracking_time_s = Seconds(start);

@@ -1,6 +1,7 @@
 // Structure from motion on a frame sequence, end to end: detect and track features
 // (frontend::TrackSequence with any Detector), reconstruct incrementally, colour the points. The
-// SfM itself only sees the tracks, so every detector is treated alike.
+// SfM itself only sees the tracks, so every detector is treated alike; a combined detector
+// ("comic+hessian") is tracked one component at a time (frontend/matching/combined_tracking.h).
 //
 //   SequenceReconstructionOptions options;          // tracker set up for video SfM
 //   auto detector = frontend::MakeDetector("harris");

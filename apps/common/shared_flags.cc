@@ -37,7 +37,11 @@ void AddDetectorFlag(ArgParser& parser, std::string* name) {
   for (const std::string& detector : frontend::DetectorNames()) {
     names += (names.empty() ? "" : ", ") + detector;
   }
-  parser.AddOption("detector", "NAME", "feature detector: " + names, name);
+  parser.AddOption("detector", "NAME",
+                   "feature detector: " + names +
+                       ", or several joined by '+' (e.g. comic+hessian: each detector's features "
+                       "tracked on their own, the tracks used together)",
+                   name);
 }
 
 void AddDetectorListFlag(ArgParser& parser, std::string* list) {

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+#include "frontend/matching/pairing.h"
 #include "io/error.h"
 #include "sfm/reconstruction.h"
 
@@ -38,6 +43,51 @@ TEST(SyntheticScene, TracksMatchTheirPointsUpToNoiseAndOutliers) {
   // Per-axis noise of 0.5 px: mean squared 2-D error 0.5.
   EXPECT_NEAR(squared_error / (observations - outliers), 0.5, 0.05);
   EXPECT_GT(scene.PathLength(), 5.0);
+}
+
+// The frames a camera would see: each observation of a track drawn as a blob whose grey value is
+// its 3-D point's, on a mid-grey background, softened.
+std::vector<cv::Mat> RenderFrames(const SyntheticScene& scene) {
+  const frontend::FeatureTracks& tracks = scene.tracks;
+  std::vector<cv::Mat> frames(tracks.NumFrames());
+  for (cv::Mat& frame : frames) frame = cv::Mat(tracks.image_size, CV_8U, cv::Scalar(128));
+  for (size_t t = 0; t < tracks.tracks.size(); ++t) {
+    const int grey = 20 + (scene.track_point_index[t] * 97) % 216;
+    for (const frontend::TrackObservation& obs : tracks.tracks[t].observations) {
+      const frontend::Feature& f = tracks.FeatureOf(obs);
+      cv::circle(frames[obs.frame], cv::Point(cvRound(f.x), cvRound(f.y)), 6, cv::Scalar(grey),
+                 cv::FILLED);
+    }
+  }
+  for (cv::Mat& frame : frames) cv::GaussianBlur(frame, frame, cv::Size(), 3.0);
+  return frames;
+}
+
+// Issue 16: --matching auto on a synthetic video (the hand-held scene's frames in order) and on
+// the same frames shuffled (an image set).
+TEST(SyntheticScene, AutoPairingPicksSequentialForTheVideoAndExhaustiveShuffled) {
+  SyntheticSceneOptions options;
+  options.num_frames = 24;
+  options.num_points = 800;
+  options.outlier_ratio = 0.0;
+  options.track_break_probability = 0.0;
+  const std::vector<cv::Mat> frames = RenderFrames(MakeSyntheticScene(options));
+  auto thumbnails = [](const std::vector<cv::Mat>& images) {
+    std::vector<cv::Mat> out;
+    for (const cv::Mat& image : images) out.push_back(frontend::MakeThumbnail(image, 32));
+    return out;
+  };
+  const frontend::PairingChoice video =
+      frontend::ChoosePairing(thumbnails(frames), frontend::ParsePairing("auto"));
+  EXPECT_EQ(video.chosen.mode, frontend::PairingMode::kSequential) << video.reason;
+
+  std::vector<cv::Mat> shuffled = frames;
+  std::mt19937 rng(7);
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  const frontend::PairingChoice set =
+      frontend::ChoosePairing(thumbnails(shuffled), frontend::ParsePairing("auto"));
+  EXPECT_EQ(set.chosen.mode, frontend::PairingMode::kExhaustive) << set.reason;
+  EXPECT_LT(set.gain, video.gain - 0.3) << video.reason << " / " << set.reason;
 }
 
 TEST(SyntheticScene, SeededAndValidated) {
