@@ -390,7 +390,7 @@ cv::Mat RenderPlot(const Inputs& inputs, const sfm::Reconstruction& reconstructi
 }
 
 bool IntrinsicsKnown(const Flags& flags, const Inputs& inputs);
-sfm::ColmapExportOptions ExportOptions(const Flags& flags);
+sfm::ColmapExportOptions ExportOptions(const Flags& flags, const Inputs& inputs);
 
 struct DetectorRun {
   sfm::SequenceReconstruction run;
@@ -495,7 +495,7 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
     sfm::ExportTracksToColmapDatabase(
         result.run.tracks,
         IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
-        ExportOptions(flags), io::JoinPaths(out_dir, "tracks.db"), /*overwrite=*/true);
+        ExportOptions(flags, inputs), io::JoinPaths(out_dir, "tracks.db"), /*overwrite=*/true);
     json["outputs"] = {"tracks.db"};
     result.wrote_tracks = true;
     if (result.diagnosis.rotation_only) {
