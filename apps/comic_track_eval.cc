@@ -365,7 +365,7 @@ int Run(int argc, char** argv) {
   if (ground_truth) {
     const ReportTable equal_count = fe::EqualCountPrecisionTable(evaluation);
     if (equal_count.NumRows() > 0) {
-      WriteTable(out_dir, "precision_equal_count", equal_count);
+      WriteTable(out.path(), "precision_equal_count", equal_count);
       report << "## Epipolar precision at the full patch's number of accepted matches per pair "
                 "(tolerance "
              << epipolar_tolerance << " px)\n\n"

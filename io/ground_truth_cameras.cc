@@ -128,7 +128,8 @@ GroundTruthCameras ReadMiddleburyParFile(const std::string& path) {
   const double count = Number(path, lines[0].number, lines[0].fields[0]);
   COMIC_CHECK(count >= 1 && count == std::floor(count), kInvalidData,
               path << ":" << lines[0].number << ": bad camera count " << lines[0].fields[0]);
-  COMIC_CHECK(static_cast<size_t>(count) == lines.size() - 1, kInvalidData,
+  // Compared as doubles: a count beyond size_t (fuzzing found 7e22) must not be cast first.
+  COMIC_CHECK(count == static_cast<double>(lines.size() - 1), kInvalidData,
               path << ": says " << count << " cameras but lists " << lines.size() - 1);
   GroundTruthCameras result;
   result.format = GroundTruthFormat::kMiddlebury;
@@ -188,7 +189,7 @@ GroundTruthCamera ReadStrechaCameraFile(const std::string& path) {
   CheckRotation(path, lines[4].number, world_from_cam);
   const std::vector<double> center = row(7, 3);
   const std::vector<double> size = row(8, 2);
-  COMIC_CHECK(size[0] >= 1 && size[1] >= 1, kInvalidData,
+  COMIC_CHECK(size[0] >= 1 && size[1] >= 1 && size[0] <= 1e6 && size[1] <= 1e6, kInvalidData,
               path << ":" << lines[8].number << ": bad image size");
   camera.cam_from_world_rotation = world_from_cam.transpose();
   camera.cam_from_world_translation =

@@ -14,6 +14,7 @@
 #include "frontend/comic/iso_curve.h"
 #include "frontend/comic/iso_curve_stability.h"
 #include "frontend/comic/side_mask.h"
+#include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
 #include "io/error.h"
 
@@ -290,7 +291,8 @@ std::vector<T> SuppressNeighbours(std::vector<T> items, double radius, Position 
   std::vector<T> kept;
   const double cell = std::max(radius, 1.0);
   std::unordered_map<int64_t, std::vector<cv::Point2f>> grid;
-  auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); };
+  // GridCellKey: the same bits without shifting a negative value (fuzzing found cx = -1).
+  auto key = [](int64_t cx, int64_t cy) { return static_cast<int64_t>(GridCellKey(cx, cy)); };
   for (T& item : items) {
     const cv::Point2f p = position(item);
     const int64_t cx = static_cast<int64_t>(std::floor(p.x / cell));

@@ -160,6 +160,23 @@ TEST(ComicTrackEval, BoxesGiveTheSameRegionAsMasksOfTheBox) {
   EXPECT_EQ(ReadText(dir.File("m") + "/scores_n5.csv"), ReadText(dir.File("b") + "/scores_n5.csv"));
 }
 
+// The equal-count precision table (two matchers) lands in --output with the others: it was
+// written past the staging folder once, which failed the run at its very end.
+TEST(ComicTrackEval, WritesTheEqualCountPrecisionTableIntoTheOutputFolder) {
+  ScopedTempDir dir;
+  const std::string example = comic::test::ExampleDir();
+  const auto result =
+      RunCommand(AppPath("comic_track_eval") + " " + example + "/image_l --poses " + example +
+                 "/poses.txt --calib " + example +
+                 "/calib.txt --resize-height 185 --last 6 --detectors harris --baseline-matchers "
+                 "full,calibrated --count 150 --overlay-frames 0 --quiet --output " +
+                 dir.File("k"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json table =
+      nlohmann::json::parse(ReadText(dir.File("k") + "/precision_equal_count.json"));
+  EXPECT_FALSE(table.empty());
+}
+
 TEST(ComicTrackEval, ReportsEpipolarPrecisionOnTheBundledKittiClip) {
   ScopedTempDir dir;
   const std::string example = comic::test::ExampleDir();

@@ -158,6 +158,10 @@ TEST(GroundTruthCameras, MalformedFilesThrowNamingTheFile) {
   };
   expect_error("count_par.txt", "2\nimg.png 1 0 0 0 1 0 0 0 1 1 0 0 0 1 0 0 0 1 0 0 0\n",
                "says 2 cameras");
+  // Found by fuzz_ground_truth: a count beyond size_t was cast before it was compared (UB).
+  expect_error("huge_count_par.txt",
+               "7.070912000000e+022\nimg.png 1 0 0 0 1 0 0 0 1 1 0 0 0 1 0 0 0 1 0 0 0\n",
+               "cameras but lists 1");
   expect_error("short_par.txt", "1\nimg.png 1 0 0 0 1 0 0 0 1 1 0 0 0 1 0 0 0 1 0 0\n",
                "21 numbers");
   expect_error("rotation_par.txt", "1\nimg.png 1 0 0 0 1 0 0 0 1 2 0 0 0 1 0 0 0 1 0 0 0\n",
