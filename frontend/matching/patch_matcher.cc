@@ -6,8 +6,8 @@
 #include <limits>
 #include <unordered_map>
 
-#include "frontend/matching/level_line_sides.h"
 #include "frontend/grid_cell_key.h"
+#include "frontend/matching/level_line_sides.h"
 #include "io/error.h"
 
 namespace comic::frontend {
