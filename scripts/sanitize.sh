@@ -9,7 +9,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${COMIC_SANITIZE_BUILD_DIR:-build-sanitize}
 start=$(date +%s)
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOMIC_SANITIZE=ON >/dev/null
+# Not the Python module (an ASan runtime cannot be loaded into an unsanitized interpreter without
+# LD_PRELOAD, and the interpreter's own allocations then read as leaks) nor the installed-package
+# consumer (a plain build of its own): both run in the normal build's ctest; the C++ they call is
+# what the sanitized unit tests cover.
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOMIC_SANITIZE=ON \
+  -DCOMIC_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$build_dir" -j "$(nproc)"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1:strict_string_checks=1
@@ -18,7 +23,7 @@ export LSAN_OPTIONS=suppressions=$PWD/scripts/sanitizers/lsan.supp:print_suppres
 
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" -E '^(apps|layout)/' | tee "$log"
+ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" -E '^(apps|layout|package|python)/' | tee "$log"
 tests_run=$(sed -n 's/.*tests failed out of \([0-9]*\).*/\1/p' "$log" | tail -1)
 
 example_out=$(mktemp -d)
