@@ -1,10 +1,13 @@
 // Fuzz target: the ground-truth and intrinsics parsers on the same bytes: KITTI poses.txt and
 // calib.txt, a Middlebury *_par.txt, a Strecha *.camera file (alone and as a folder), the
-// intrinsics file reader (fx fy cx cy / K / P, also COLMAP- and OpenCV-style numbers) and the
-// format detection. comic::Error is the expected answer to bad bytes.
+// intrinsics file reader (fx fy cx cy / K / P, also COLMAP- and OpenCV-style numbers), the
+// calibration-file reader of --intrinsics (the same bytes as an OpenCV FileStorage .yml and .xml,
+// as a COLMAP cameras.txt and as plain numbers) and the format detection. comic::Error is the
+// expected answer to bad bytes.
 #include <filesystem>
 
 #include "fuzz/fuzz_input.h"
+#include "io/camera_calibration_file.h"
 #include "io/error.h"
 #include "io/ground_truth_cameras.h"
 #include "io/kitti_odometry.h"
@@ -38,5 +41,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Expect([&] { DetectGroundTruthFormat(path); });
   Expect([&] { ReadGroundTruthCameras(path); });
   Expect([&] { ReadKittiGroundTruth(path, path); });
+  for (const char* name : {"calib.yml", "calib.xml", "cameras.txt", "calib.txt"}) {
+    const std::string calibration = comic::fuzz::WriteInput(name, data, size);
+    Expect([&] { ReadCameraCalibrationFile(calibration); });
+  }
   return 0;
 }

@@ -2,7 +2,7 @@
 # The sanitizer run of CI (issue 19): builds comic-sfm with -fsanitize=address,undefined into a
 # separate folder (build-sanitize/, or $COMIC_SANITIZE_BUILD_DIR) and runs, through it, the unit
 # tests (every ctest test except the end-to-end apps/ ones, which run the same code through the
-# apps) and the bundled example. Any AddressSanitizer or LeakSanitizer report, and any undefined
+# apps and are not even built here, see tests/CMakeLists.txt) and the bundled example. Any AddressSanitizer or LeakSanitizer report, and any undefined
 # behaviour (-fno-sanitize-recover=undefined), fails the run. Third-party leaks are suppressed by
 # name in scripts/sanitizers/lsan.supp.
 set -euo pipefail
