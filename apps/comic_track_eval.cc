@@ -185,7 +185,8 @@ int Run(int argc, char** argv) {
   comic::apps::AddMaxCostFlag(parser, &max_cost);
   comic::apps::AddMinSideOverlapFlag(parser, &min_side_overlap);
   comic::apps::AddCalibratedCostFlags(parser, &options.matcher.min_side_fraction,
-                                      &options.matcher.side_noise_sigma);
+                                      &options.matcher.side_noise_sigma,
+                                      &options.matcher.side_noise_from_pair);
   parser.AddOption("poses", "FILE", "KITTI poses.txt (camera-to-world per frame) for precision",
                    &poses_file);
   parser.AddOption("calib", "FILE", "KITTI calib.txt (P0 gives the intrinsics) for precision",
