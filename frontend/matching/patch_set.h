@@ -34,12 +34,14 @@ enum class PatchSides {
 };
 
 // A feature's patch. `valid` = the patch fits in its image; `has_sides` = side labels exist.
+// `values` is set only if valid and `sides` only if has_sides (kDetector): neither is
+// zero-initialised, since a frame's set is thousands of patches and only those are ever read.
 struct FeaturePatch {
   bool valid = false;
   bool has_sides = false;
   PatchSide object_side = PatchSide::kNone;  // kLevelLines only
-  std::array<uint8_t, kPatchPixels> values{};
-  std::array<PatchSide, kPatchPixels> sides{};  // kDetector: labels; kNone where unlabelled
+  std::array<uint8_t, kPatchPixels> values;
+  std::array<PatchSide, kPatchPixels> sides;  // kDetector: the detector's labels
 };
 
 class PatchSet {
