@@ -125,17 +125,37 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
             << table.ToMarkdown();
 }
 
-// Matcher speed (issue 15): ms per frame pair for MatchFeatures with the radius gate (r = 20 px,
-// T = 400) between `gray` and `gray2`, on each detector's `count` strongest features per frame,
-// for every cost in one run (so the ratios compare like with like on a shared machine).
+// Matcher speed (issue 15): ms per frame pair for the patch matcher with the radius gate
+// (r = 20 px, T = 400) between `gray` and `gray2`, on each detector's `count` strongest features
+// per frame, for every cost. Per cost: preparing one frame's patches (PreparePatches: grey values
+// and, for the calibrated cost, every feature's level-line sides), matching two prepared frames,
+// their sum "per pair in a sequence" (the tracker prepares each frame once and matches it to the
+// frame before and after it) and a "cold pair" (MatchFeatures from the two images, both frames
+// prepared inside the call). The costs are timed round-robin, run by run, so that a change of load
+// on a shared machine hits every cost alike; the ratios compare the costs of one run.
 void PrintMatcherTimes(const cv::Mat& gray, const cv::Mat& gray2, int count, int runs) {
   namespace fe = comic::frontend;
-  comic::io::ReportTable table({"detector", "features (1 / 2)", "cost", "median ms / pair",
-                                "min ms / pair", "matches", "median / full"});
-  for (const char* column : {"median ms / pair", "min ms / pair", "median / full"}) {
-    table.SetPrecision(column, column == std::string("median / full") ? 2 : 1);
+  comic::io::ReportTable table({"detector", "features (1 / 2)", "cost", "prepare ms / frame",
+                                "match ms / pair", "per pair in a sequence ms", "sequence / full",
+                                "cold pair ms", "cold / full", "matches"});
+  for (const char* column :
+       {"prepare ms / frame", "match ms / pair", "per pair in a sequence ms", "cold pair ms"}) {
+    table.SetPrecision(column, 1);
   }
-  for (const std::string name : {"comic", "harris"}) {
+  table.SetPrecision("sequence / full", 2);
+  table.SetPrecision("cold / full", 2);
+  const std::vector<fe::MatchCost> costs = {fe::MatchCost::kFullPatch,
+                                            fe::MatchCost::kSplitMinOfFourPairings,
+                                            fe::MatchCost::kCalibratedSides};
+  auto ms_since = [](std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  };
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  for (const std::string name : {"comic", "harris", "hessian"}) {
     fe::DetectorOptions options;
     options.name = name;
     const auto detector = fe::MakeDetector(options);
@@ -146,21 +166,44 @@ void PrintMatcherTimes(const cv::Mat& gray, const cv::Mat& gray2, int count, int
       return features;
     };
     const fe::FeatureSet f1 = strongest(gray), f2 = strongest(gray2);
-    double full_ms = 0;
-    for (fe::MatchCost cost : {fe::MatchCost::kFullPatch, fe::MatchCost::kSplitMinOfFourPairings,
-                               fe::MatchCost::kCalibratedSides}) {
-      fe::PatchMatcherOptions matcher;
-      matcher.cost = cost;
-      const Timing t =
-          Time(runs, [&] { return fe::MatchFeatures(gray, f1, gray2, f2, matcher).size(); });
-      if (cost == fe::MatchCost::kFullPatch) full_ms = t.median_ms;
+    std::vector<std::vector<double>> prepare_ms(costs.size()), match_ms(costs.size()),
+        cold_ms(costs.size());
+    std::vector<size_t> matches(costs.size(), 0);
+    for (int run = -1; run < runs; ++run) {  // run -1 warms up
+      for (size_t c = 0; c < costs.size(); ++c) {
+        fe::PatchMatcherOptions matcher;
+        matcher.cost = costs[c];
+        auto start = std::chrono::steady_clock::now();
+        const fe::PatchSet p1 = fe::PreparePatches(gray, f1, matcher);
+        const double prepare = ms_since(start);
+        const fe::PatchSet p2 = fe::PreparePatches(gray2, f2, matcher);
+        start = std::chrono::steady_clock::now();
+        const size_t prepared = fe::MatchFeatures(f1, p1, f2, p2, matcher).size();
+        const double match = ms_since(start);
+        start = std::chrono::steady_clock::now();
+        matches[c] = fe::MatchFeatures(gray, f1, gray2, f2, matcher).size();
+        const double cold = ms_since(start);
+        COMIC_CHECK(prepared == matches[c], kInvalidData,
+                    "prepared and cold matching disagree (" << prepared << " against " << matches[c]
+                                                            << " matches)");
+        if (run < 0) continue;
+        prepare_ms[c].push_back(prepare);
+        match_ms[c].push_back(match);
+        cold_ms[c].push_back(cold);
+      }
+    }
+    const double full_sequence = median(prepare_ms[0]) + median(match_ms[0]);
+    const double full_cold = median(cold_ms[0]);
+    for (size_t c = 0; c < costs.size(); ++c) {
+      const double sequence = median(prepare_ms[c]) + median(match_ms[c]);
       table.AddRow({name, std::to_string(f1.size()) + " / " + std::to_string(f2.size()),
-                    fe::MatchCostName(cost), t.median_ms, t.min_ms,
-                    static_cast<int64_t>(t.features), t.median_ms / full_ms});
+                    fe::MatchCostName(costs[c]), median(prepare_ms[c]), median(match_ms[c]),
+                    sequence, sequence / full_sequence, median(cold_ms[c]),
+                    median(cold_ms[c]) / full_cold, static_cast<int64_t>(matches[c])});
     }
   }
   std::cout << "\nPatch matcher, one frame pair, radius gate r = 20 px, T = 400, up to " << count
-            << " features per frame:\n\n"
+            << " features per frame (medians of " << runs << " round-robin runs):\n\n"
             << table.ToMarkdown();
 }
 
@@ -174,6 +217,7 @@ int Run(int argc, char** argv) {
   std::string counts_list;
   std::string match_pair;
   int match_features = 2000;
+  bool match_only = false;
   comic::apps::ArgParser parser(
       "comic_bench", "[IMAGE] [options]",
       "Times CoMIC (the default direct search, 1 thread and N threads), OpenCV MSER (delta 5),\n"
@@ -211,6 +255,8 @@ int Run(int argc, char** argv) {
                    &match_pair);
   parser.AddOption("match-features", "N", "features per frame for --match-pair (strongest N)",
                    &match_features);
+  parser.AddFlag("match-only", "with --match-pair: time only the patch matcher, not the detectors",
+                 &match_only);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   COMIC_CHECK(match_features >= 1, kInvalidArgument, "--match-features must be >= 1");
   COMIC_CHECK(match_pair.empty() || comic::io::PathExists(match_pair), kNotFound,
@@ -237,6 +283,8 @@ int Run(int argc, char** argv) {
     }
     COMIC_CHECK(counts.empty() || perturbations, kInvalidArgument, "--keep needs --perturbations");
   }
+  COMIC_CHECK(!match_only || !match_pair.empty(), kInvalidArgument,
+              "--match-only needs --match-pair");
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 
   const cv::Mat gray = comic::io::LoadImage(input, resize_height).gray;
@@ -246,6 +294,11 @@ int Run(int argc, char** argv) {
     COMIC_CHECK(gray2.size() == gray.size(), kInvalidArgument,
                 match_pair << " is " << gray2.cols << "x" << gray2.rows << ", " << input << " is "
                            << gray.cols << "x" << gray.rows << " (--match-pair needs equal sizes)");
+  }
+  if (match_only) {
+    std::cout << "image: " << input << " (" << gray.cols << "x" << gray.rows << ")\n";
+    PrintMatcherTimes(gray, gray2, match_features, runs);
+    return 0;
   }
   const int many = comic::frontend::ResolveNumThreads(threads, 1 << 20);
   std::cout << "image: " << input << " (" << gray.cols << "x" << gray.rows << "), " << runs

@@ -125,8 +125,8 @@ int Run(int argc, char** argv) {
   parser.AddOption("disparity-margin", "PX", "added to the max GT disparity for the gate",
                    &options.disparity_margin);
   comic::apps::AddMinSideOverlapFlag(parser, &options.min_side_overlap);
-  comic::apps::AddCalibratedCostFlags(parser, &options.min_side_fraction,
-                                      &options.side_noise_sigma);
+  comic::apps::AddCalibratedCostFlags(parser, &options.min_side_fraction, &options.side_noise_sigma,
+                                      &options.side_noise_from_pair);
   parser.AddOption("repeatability", "LIST", "repeatability tolerances in px", &repeatability);
   parser.AddOption("precision-reference", "METHOD",
                    "matched precision target = this method's overall precision at T",

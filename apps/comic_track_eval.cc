@@ -162,11 +162,12 @@ int Run(int argc, char** argv) {
   comic::apps::AddDetectorListFlag(parser, &detector_list);
   parser.AddOption("comic-matchers", "LIST",
                    "matchers for CoMIC's features, one row each: split (Algorithm 2), "
-                   "like-sides, full, calibrated",
+                   "like-sides, full, calibrated, track-sides",
                    &comic_matchers);
   parser.AddOption("baseline-matchers", "LIST",
                    "matchers for the other detectors' features, one row each: full, calibrated "
-                   "(side-aware, issue 15), split, like-sides",
+                   "(side-aware, issue 15), track-sides (calibrated with a memory along the "
+                   "track), split, like-sides",
                    &baseline_matchers);
   parser.AddOption("n", "N",
                    "frames a feature must be matched through (M_score(n)); n = 1 is "
@@ -185,7 +186,8 @@ int Run(int argc, char** argv) {
   comic::apps::AddMaxCostFlag(parser, &max_cost);
   comic::apps::AddMinSideOverlapFlag(parser, &min_side_overlap);
   comic::apps::AddCalibratedCostFlags(parser, &options.matcher.min_side_fraction,
-                                      &options.matcher.side_noise_sigma);
+                                      &options.matcher.side_noise_sigma,
+                                      &options.matcher.side_noise_from_pair);
   parser.AddOption("poses", "FILE", "KITTI poses.txt (camera-to-world per frame) for precision",
                    &poses_file);
   parser.AddOption("calib", "FILE", "KITTI calib.txt (P0 gives the intrinsics) for precision",

@@ -70,13 +70,18 @@ void AddMinSideOverlapFlag(ArgParser& parser, int* pixels) {
                    pixels);
 }
 
-void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma) {
+void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma,
+                            bool* noise_from_pair) {
   parser.AddOption("min-side-fraction", "F",
                    "calibrated cost: smallest share of the patch a side pairing must cover",
                    min_side_fraction);
   parser.AddOption("side-noise-sigma", "S",
                    "calibrated cost: noise sigma (grey levels) that calibrates side costs",
                    noise_sigma);
+  parser.AddFlag("side-noise-from-pair",
+                 "calibrated cost: sigma from each pair instead (2 sigma^2 = median full-patch "
+                 "cost of its mutual-best matches)",
+                 noise_from_pair);
 }
 
 void AddIntrinsicsFlag(ArgParser& parser, std::string* path) {

@@ -35,9 +35,11 @@ void AddSearchRadiusFlag(ArgParser& parser, double* radius);
 void AddMaxCostFlag(ArgParser& parser, double* cost);
 // --min-side-overlap PX: split matching (paper Algorithm 2), fewest shared pixels of a side pair.
 void AddMinSideOverlapFlag(ArgParser& parser, int* pixels);
-// --min-side-fraction F and --side-noise-sigma S: the calibrated side-aware cost's smallest side
-// share of the patch and its noise σ (frontend/matching/patch_matcher.h, issue 15).
-void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma);
+// --min-side-fraction F, --side-noise-sigma S and --side-noise-from-pair: the calibrated
+// side-aware cost's smallest side share of the patch, its noise σ, and σ taken from each pair's
+// full-patch matches instead (frontend/matching/patch_matcher.h, issue 15).
+void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma,
+                            bool* noise_from_pair);
 // --intrinsics FILE: the frames' intrinsics as stored (see apps/common/camera_intrinsics.h).
 void AddIntrinsicsFlag(ArgParser& parser, std::string* path);
 // --camera-model NAME: COLMAP's model name (sfm/camera_model.h) for the camera, checked by

@@ -325,6 +325,7 @@ StereoMatching MatchStereoDetection(const io::MiddleburyPair& pair, const Stereo
   matcher.min_side_overlap = options.min_side_overlap;
   matcher.min_side_fraction = options.min_side_fraction;
   matcher.side_noise_sigma = options.side_noise_sigma;
+  matcher.side_noise_from_pair = options.side_noise_from_pair;
   matcher.max_cost = kInfinity;
   StereoMatching matching;
   matching.method = {detection.detector, cost};

@@ -120,6 +120,7 @@ struct StereoEvaluationOptions {
   // The calibrated side cost's smallest side share and noise σ (patch_matcher.h).
   double min_side_fraction = PatchMatcherOptions{}.min_side_fraction;
   double side_noise_sigma = PatchMatcherOptions{}.side_noise_sigma;
+  bool side_noise_from_pair = false;
   // The SSD threshold T: mean squared difference of 0–255 grey values (400 = RMS 20 levels).
   double max_cost = 400.0;
   // Further thresholds reported for sensitivity (T = ∞ is always reported too).

@@ -139,7 +139,8 @@ io::ReportTable ProtocolTable(const StereoEvaluationOptions& options) {
           " shared pixels; calibrated = min of the full patch and the object sides' (or like "
           "sides') costs in full-patch units, sides >= " +
           Number(options.min_side_fraction) + " of the patch, noise sigma " +
-          Number(options.side_noise_sigma));
+          (options.side_noise_from_pair ? std::string("from each pair's full-patch matches")
+                                        : Number(options.side_noise_sigma)));
   add("one-to-one", "mutual best over all gated candidates, then the threshold T");
   add("SSD threshold T", Number(options.max_cost) + " (mean squared difference)");
   add("T sensitivity", NumberList(options.sensitivity_costs) + ", inf");

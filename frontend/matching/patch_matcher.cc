@@ -1,73 +1,20 @@
 #include "frontend/matching/patch_matcher.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
 
 #include "frontend/grid_cell_key.h"
-#include "frontend/matching/level_line_sides.h"
 #include "io/error.h"
 
 namespace comic::frontend {
 
 namespace {
 
-constexpr int kPatchPixels = kPatchSize * kPatchSize;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-// A feature's patch: grey values and side labels (kNone everywhere without a side mask). For
-// kCalibratedSides also `words`: the grey values as int32, then one all-ones/zero word per pixel
-// for ic+ and one for ic− (3 x kPatchPixels), so that the cost loop has no branch and vectorises;
-// empty for the other costs, which do not pay for it.
-struct Patch {
-  bool valid = false;
-  bool has_sides = false;
-  std::array<uint8_t, kPatchPixels> values{};
-  std::array<PatchSide, kPatchPixels> sides{};
-  PatchSide object_side = PatchSide::kNone;
-  std::vector<int32_t> words;
-  const int32_t* WideValues() const { return words.data(); }
-  const int32_t* SideWords(int side_index) const {
-    return words.data() + (1 + side_index) * kPatchPixels;
-  }
-};
-
-int SideIndex(PatchSide side) { return side == PatchSide::kPlus ? 0 : 1; }
-
-Patch ExtractPatch(const cv::Mat& gray, const Feature& feature, MatchCost cost) {
-  Patch patch;
-  if (!PatchFits(feature, gray.size())) return patch;
-  patch.valid = true;
-  const int cx = static_cast<int>(std::lround(feature.x));
-  const int cy = static_cast<int>(std::lround(feature.y));
-  for (int v = 0; v < kPatchSize; ++v) {
-    const uint8_t* row = gray.ptr<uint8_t>(cy - kPatchRadius + v) + (cx - kPatchRadius);
-    std::copy(row, row + kPatchSize, patch.values.begin() + v * kPatchSize);
-  }
-  if (cost == MatchCost::kCalibratedSides) {
-    // Every detector's points get sides here, and only for this cost (issue 15).
-    const LevelLineSides sides = ComputeLevelLineSides(gray, feature);
-    patch.words.assign(3 * kPatchPixels, 0);
-    std::copy(patch.values.begin(), patch.values.end(), patch.words.begin());
-    if (!sides.mask.empty()) {
-      patch.has_sides = true;
-      patch.object_side = sides.object_side;
-      std::copy(sides.mask.begin(), sides.mask.end(), patch.sides.begin());
-      for (int k = 0; k < kPatchPixels; ++k) {
-        patch.words[kPatchPixels + k] = sides.mask[k] == PatchSide::kPlus ? -1 : 0;
-        patch.words[2 * kPatchPixels + k] = sides.mask[k] == PatchSide::kMinus ? -1 : 0;
-      }
-    }
-  } else if (feature.HasSideMask()) {
-    patch.has_sides = true;
-    std::copy(feature.side_mask.begin(), feature.side_mask.end(), patch.sides.begin());
-  }
-  return patch;
-}
-
-float FullCost(const Patch& a, const Patch& b) {
+float FullCost(const FeaturePatch& a, const FeaturePatch& b) {
   int64_t sum = 0;
   for (int k = 0; k < kPatchPixels; ++k) {
     const int d = static_cast<int>(a.values[k]) - static_cast<int>(b.values[k]);
@@ -78,7 +25,8 @@ float FullCost(const Patch& a, const Patch& b) {
 
 // Mean squared difference over pixels on side s1 in `a` and side s2 in `b` for every pairing
 // (Algorithm 2, steps 8-10), minimum over the allowed pairings with enough overlap.
-float SplitCost(const Patch& a, const Patch& b, bool like_sides_only, int min_overlap) {
+float SplitCost(const FeaturePatch& a, const FeaturePatch& b, bool like_sides_only,
+                int min_overlap) {
   // Index 0: kPlus, 1: kMinus.
   int64_t sum[2][2] = {{0, 0}, {0, 0}};
   int count[2][2] = {{0, 0}, {0, 0}};
@@ -103,26 +51,28 @@ float SplitCost(const Patch& a, const Patch& b, bool like_sides_only, int min_ov
   return best;
 }
 
-// The full-patch sum of squared differences and, over the union of side `side_a` of `a` and side
-// `side_b` of `b`, the sum and the pixel count, in one branch-free pass (529 · 255² < 2³¹).
+// The full-patch sum of squared differences and, over the union of side `side_a` of patch i and
+// side `side_b` of patch j, the sum and the pixel count, in one branch-free pass over int16 words
+// (differences within ±255, so d·d is one 16x16->32 bit multiply-add; 529 · 255² < 2³¹).
 struct SideSums {
   int32_t full = 0;
   int32_t side = 0;
   int32_t count = 0;
 };
 
-SideSums SumOverSideUnion(const Patch& a, int side_a, const Patch& b, int side_b) {
-  const int32_t* va = a.WideValues();
-  const int32_t* vb = b.WideValues();
-  const int32_t* ma = a.SideWords(side_a);
-  const int32_t* mb = b.SideWords(side_b);
+SideSums SumOverSideUnion(const PatchSet& set_a, size_t i, PatchSide side_a, const PatchSet& set_b,
+                          size_t j, PatchSide side_b) {
+  const int16_t* va = set_a.Values(i);
+  const int16_t* vb = set_b.Values(j);
+  const int16_t* ma = set_a.SideWords(i, side_a);
+  const int16_t* mb = set_b.SideWords(j, side_b);
   int32_t full = 0, side = 0, count = 0;
   for (int k = 0; k < kPatchPixels; ++k) {
-    const int32_t d = va[k] - vb[k];
-    const int32_t d2 = d * d;
-    const int32_t m = ma[k] | mb[k];  // all ones where pixel k is on the side in either patch
-    full += d2;
-    side += d2 & m;
+    const int16_t d = static_cast<int16_t>(va[k] - vb[k]);
+    const int16_t m = static_cast<int16_t>(ma[k] | mb[k]);  // all ones where k is on either side
+    const int16_t dm = static_cast<int16_t>(d & m);
+    full += static_cast<int32_t>(d) * d;
+    side += static_cast<int32_t>(dm) * d;
     count -= m;
   }
   return {full, side, count};
@@ -131,18 +81,21 @@ SideSums SumOverSideUnion(const Patch& a, int side_a, const Patch& b, int side_b
 // kCalibratedSides: the full-patch cost and the calibrated cost of the object sides' union (or,
 // with like_sides_without_object, of both like pairings for a pair without object sides), the
 // lowest of them.
-float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& options) {
-  int pairings[2][2];
+float CalibratedCost(const PatchSet& set_a, size_t i, const PatchSet& set_b, size_t j,
+                     const PatchMatcherOptions& options) {
+  const FeaturePatch& a = set_a[i];
+  const FeaturePatch& b = set_b[j];
+  PatchSide pairings[2][2];
   int num_pairings = 0;
   if (a.has_sides && b.has_sides) {
     if (a.object_side != PatchSide::kNone && b.object_side != PatchSide::kNone) {
-      pairings[num_pairings][0] = SideIndex(a.object_side);
-      pairings[num_pairings++][1] = SideIndex(b.object_side);
+      pairings[num_pairings][0] = a.object_side;
+      pairings[num_pairings++][1] = b.object_side;
     } else if (options.like_sides_without_object) {
-      pairings[num_pairings][0] = 0;
-      pairings[num_pairings++][1] = 0;
-      pairings[num_pairings][0] = 1;
-      pairings[num_pairings++][1] = 1;
+      pairings[num_pairings][0] = PatchSide::kPlus;
+      pairings[num_pairings++][1] = PatchSide::kPlus;
+      pairings[num_pairings][0] = PatchSide::kMinus;
+      pairings[num_pairings++][1] = PatchSide::kMinus;
     }
   }
   if (num_pairings == 0) return FullCost(a, b);
@@ -151,7 +104,7 @@ float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& 
                static_cast<int>(std::ceil(options.min_side_fraction * kPatchPixels)));
   double best = kInfinity;
   for (int p = 0; p < num_pairings; ++p) {
-    const SideSums sums = SumOverSideUnion(a, pairings[p][0], b, pairings[p][1]);
+    const SideSums sums = SumOverSideUnion(set_a, i, pairings[p][0], set_b, j, pairings[p][1]);
     best = std::min(best, static_cast<double>(sums.full) / kPatchPixels);
     if (sums.count < min_pixels) continue;
     best = std::min(best, CalibratedSideCost(static_cast<double>(sums.side) / sums.count,
@@ -160,9 +113,12 @@ float CalibratedCost(const Patch& a, const Patch& b, const PatchMatcherOptions& 
   return static_cast<float>(best);
 }
 
-float Cost(const Patch& a, const Patch& b, const PatchMatcherOptions& options) {
+float Cost(const PatchSet& set_a, size_t i, const PatchSet& set_b, size_t j,
+           const PatchMatcherOptions& options) {
+  const FeaturePatch& a = set_a[i];
+  const FeaturePatch& b = set_b[j];
   if (!a.valid || !b.valid) return kInfinity;
-  if (options.cost == MatchCost::kCalibratedSides) return CalibratedCost(a, b, options);
+  if (IsCalibratedCost(options.cost)) return CalibratedCost(set_a, i, set_b, j, options);
   if (options.cost == MatchCost::kFullPatch || !a.has_sides || !b.has_sides) {
     return FullCost(a, b);
   }
@@ -216,17 +172,36 @@ const char* MatchCostName(MatchCost cost) {
       return "like-sides";
     case MatchCost::kCalibratedSides:
       return "calibrated";
+    case MatchCost::kTrackSides:
+      return "track-sides";
   }
   return "?";
 }
 
 MatchCost ParseMatchCost(const std::string& name) {
-  for (MatchCost cost : {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings,
-                         MatchCost::kSplitLikeSides, MatchCost::kCalibratedSides}) {
+  for (MatchCost cost :
+       {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings, MatchCost::kSplitLikeSides,
+        MatchCost::kCalibratedSides, MatchCost::kTrackSides}) {
     if (name == MatchCostName(cost)) return cost;
   }
   throw Error(ErrorKind::kInvalidArgument,
-              "unknown match cost '" + name + "' (valid: full, split, like-sides, calibrated)");
+              "unknown match cost '" + name +
+                  "' (valid: full, split, like-sides, calibrated, track-sides)");
+}
+
+bool IsCalibratedCost(MatchCost cost) {
+  return cost == MatchCost::kCalibratedSides || cost == MatchCost::kTrackSides;
+}
+
+double PairNoiseSigma(const std::vector<PatchMatch>& full_patch_mutual, double fallback) {
+  if (full_patch_mutual.empty()) return fallback;
+  std::vector<float> costs;
+  costs.reserve(full_patch_mutual.size());
+  for (const PatchMatch& m : full_patch_mutual) costs.push_back(m.cost);
+  const size_t middle = costs.size() / 2;
+  std::nth_element(costs.begin(), costs.begin() + middle, costs.end());
+  const double median = costs[middle];
+  return median > 0 ? std::sqrt(0.5 * median) : fallback;
 }
 
 double CalibratedSideCost(double mean_squared_difference, int pixels, double noise_sigma) {
@@ -261,6 +236,25 @@ void PatchMatcherOptions::Check() const {
                   << side_noise_sigma);
 }
 
+PatchSides SidesFor(MatchCost cost) {
+  switch (cost) {
+    case MatchCost::kFullPatch:
+      return PatchSides::kNone;
+    case MatchCost::kSplitMinOfFourPairings:
+    case MatchCost::kSplitLikeSides:
+      return PatchSides::kDetector;
+    case MatchCost::kCalibratedSides:
+    case MatchCost::kTrackSides:
+      return PatchSides::kLevelLines;
+  }
+  return PatchSides::kNone;
+}
+
+PatchSet PreparePatches(const cv::Mat& gray, const FeatureSet& features,
+                        const PatchMatcherOptions& options) {
+  return PatchSet(gray, features, SidesFor(options.cost));
+}
+
 std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const FeatureSet& features1,
                                               const cv::Mat& gray2, const FeatureSet& features2,
                                               const PatchMatcherOptions& options,
@@ -268,15 +262,46 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
   options.Check();
   CheckImage(gray1, "image 1");
   CheckImage(gray2, "image 2");
+  return ComputeCandidateCosts(features1, PreparePatches(gray1, features1, options), features2,
+                               PreparePatches(gray2, features2, options), options, search);
+}
+
+std::vector<PatchMatch> ComputeCandidateCosts(const FeatureSet& features1, const PatchSet& patches1,
+                                              const FeatureSet& features2, const PatchSet& patches2,
+                                              const PatchMatcherOptions& options,
+                                              const SearchRegions& search) {
+  options.Check();
+  const PatchSides needed = SidesFor(options.cost);
+  for (const PatchSet* patches : {&patches1, &patches2}) {
+    COMIC_CHECK(needed == PatchSides::kNone || patches->sides() == needed, kInvalidArgument,
+                "patch matcher: the " << MatchCostName(options.cost)
+                                      << " cost needs patches prepared with its sides "
+                                         "(PreparePatches with the same options)");
+  }
+  COMIC_CHECK(patches1.size() == features1.size() && patches2.size() == features2.size(),
+              kInvalidArgument,
+              "patch matcher: " << patches1.size() << " and " << patches2.size() << " patches for "
+                                << features1.size() << " and " << features2.size() << " features");
   COMIC_CHECK(search.centres.empty() || search.centres.size() == features1.size(), kInvalidArgument,
               "patch matcher: " << search.centres.size() << " search centres for "
                                 << features1.size() << " features");
   COMIC_CHECK(search.radii.empty() || search.radii.size() == features1.size(), kInvalidArgument,
               "patch matcher: " << search.radii.size() << " search radii for " << features1.size()
                                 << " features");
-  std::vector<Patch> patches2(features2.size());
-  for (size_t j = 0; j < features2.size(); ++j)
-    patches2[j] = ExtractPatch(gray2, features2[j], options.cost);
+  if (IsCalibratedCost(options.cost) && options.side_noise_from_pair) {
+    // Two passes: the full patch's mutual-best matches give the pair's σ, then the calibrated
+    // cost with it.
+    PatchMatcherOptions full = options;
+    full.cost = MatchCost::kFullPatch;
+    full.side_noise_from_pair = false;
+    PatchMatcherOptions calibrated = options;
+    calibrated.side_noise_from_pair = false;
+    calibrated.side_noise_sigma =
+        PairNoiseSigma(SelectMutualBest(ComputeCandidateCosts(features1, patches1, features2,
+                                                              patches2, full, search)),
+                       options.side_noise_sigma);
+    return ComputeCandidateCosts(features1, patches1, features2, patches2, calibrated, search);
+  }
   const double cell = options.gate == CandidateGate::kRadius
                           ? std::max(8.0, options.radius)
                           : std::max(8.0, options.max_disparity - options.min_disparity);
@@ -284,8 +309,7 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
 
   std::vector<PatchMatch> candidates;
   for (int i = 0; i < static_cast<int>(features1.size()); ++i) {
-    const Patch patch1 = ExtractPatch(gray1, features1[i], options.cost);
-    if (!patch1.valid) continue;
+    if (!patches1[i].valid) continue;
     const cv::Point2f centre = search.centres.empty() ? features1[i].Position() : search.centres[i];
     const double radius = search.radii.empty() ? options.radius : search.radii[i];
     std::vector<int> nearby;
@@ -309,7 +333,7 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
           continue;
         }
       }
-      const float cost = Cost(patch1, patches2[j], options);
+      const float cost = Cost(patches1, i, patches2, j, options);
       if (std::isinf(cost)) continue;
       candidates.push_back({i, j, cost});
     }
@@ -358,13 +382,35 @@ std::vector<PatchMatch> MatchFeatures(const cv::Mat& gray1, const FeatureSet& fe
       options.max_cost);
 }
 
+std::vector<PatchMatch> MatchFeatures(const FeatureSet& features1, const PatchSet& patches1,
+                                      const FeatureSet& features2, const PatchSet& patches2,
+                                      const PatchMatcherOptions& options,
+                                      const SearchRegions& search) {
+  return ApplyCostThreshold(SelectMutualBest(ComputeCandidateCosts(features1, patches1, features2,
+                                                                   patches2, options, search)),
+                            options.max_cost);
+}
+
 float PatchCost(const cv::Mat& gray1, const Feature& feature1, const cv::Mat& gray2,
                 const Feature& feature2, const PatchMatcherOptions& options) {
   options.Check();
   CheckImage(gray1, "image 1");
   CheckImage(gray2, "image 2");
-  return Cost(ExtractPatch(gray1, feature1, options.cost),
-              ExtractPatch(gray2, feature2, options.cost), options);
+  return Cost(PreparePatches(gray1, {feature1}, options), 0,
+              PreparePatches(gray2, {feature2}, options), 0, options);
+}
+
+float PatchCost(const PatchSet& patches1, size_t i, const PatchSet& patches2, size_t j,
+                const PatchMatcherOptions& options) {
+  options.Check();
+  const PatchSides needed = SidesFor(options.cost);
+  COMIC_CHECK(
+      (needed == PatchSides::kNone || (patches1.sides() == needed && patches2.sides() == needed)) &&
+          i < patches1.size() && j < patches2.size(),
+      kInvalidArgument,
+      "patch cost: patches " << i << " of " << patches1.size() << " and " << j << " of "
+                             << patches2.size() << " prepared for another cost");
+  return Cost(patches1, i, patches2, j, options);
 }
 
 }  // namespace comic::frontend

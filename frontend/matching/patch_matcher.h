@@ -11,6 +11,12 @@
 //   auto mutual = SelectMutualBest(candidates);          // every one-to-one match, any cost
 //   auto accepted = ApplyCostThreshold(mutual, 400.0);   // the same as MatchFeatures at T = 400
 //
+// A frame matched to several others (the tracker) prepares its patches once (patch_set.h) and
+// passes them instead of the image:
+//
+//   PatchSet patches1 = PreparePatches(gray1, features1, options);   // once per frame
+//   auto candidates = ComputeCandidateCosts(features1, patches1, features2, patches2, options);
+//
 // Thresholding after the mutual-best selection gives the same matches as thresholding first: a
 // match's cost is the lowest of its row and column, so removing costs above T never changes a
 // surviving pair's best partner.
@@ -41,6 +47,17 @@
 //                           full patch, unless like_sides_without_object. Features without a
 //                           side mask (every detector but CoMIC) get one from the level line
 //                           through the point (ComputeLevelLineSides), only for this cost.
+//   kTrackSides             issue 15, for tracking: kCalibratedSides for every pair the matcher
+//                           sees (the same costs, bit for bit); the Tracker adds a memory along
+//                           the track: a feature whose own match into its frame (from the frame
+//                           before, at the tracker's threshold) cost its full patch is compared
+//                           by its full patch only when it is matched on; a feature matched by
+//                           its object side, or not matched into its frame, keeps its side. The
+//                           paper's "prefer the side that keeps matching along the track": a
+//                           feature on an occluding contour keeps losing its background from frame
+//                           to frame, an interior feature that matched by its full patch has no
+//                           background to lose, and its object side alone only adds chances to
+//                           match the wrong neighbour cheaply.
 // A split mode falls back to kFullPatch for a pair in which either feature has no side mask, so
 // one options struct serves CoMIC and the baselines. Caution when comparing modes: a split cost
 // averages over fewer pixels and takes a minimum over pairings, so it is lower than the
@@ -63,12 +80,19 @@
 #include <vector>
 
 #include "frontend/feature.h"
+#include "frontend/matching/patch_set.h"
 
 namespace comic::frontend {
 
-enum class MatchCost { kFullPatch, kSplitMinOfFourPairings, kSplitLikeSides, kCalibratedSides };
+enum class MatchCost {
+  kFullPatch,
+  kSplitMinOfFourPairings,
+  kSplitLikeSides,
+  kCalibratedSides,
+  kTrackSides
+};
 
-// "full", "split", "like-sides", "calibrated" (the command-line names).
+// "full", "split", "like-sides", "calibrated", "track-sides" (the command-line names).
 const char* MatchCostName(MatchCost cost);
 // Throws comic::Error(kInvalidArgument) listing the valid names.
 MatchCost ParseMatchCost(const std::string& name);
@@ -100,6 +124,12 @@ struct PatchMatcherOptions {
   // σ = 10, which lets small sides through at low costs and loses boundary matches at matched
   // precision (docs/side_aware_matching.md).
   double side_noise_sigma = 20.0;
+  // kCalibratedSides, kTrackSides: take σ from the pair itself instead (side_noise_sigma is then
+  // the fallback for a pair without any match): 2σ² = the median full-patch cost of the pair's
+  // mutual-best matches under the full patch (PairNoiseSigma). Most of those matches are correct,
+  // and their residual (sensor noise, resampling, a sub-pixel offset, lighting) is what the noise
+  // model describes, so σ follows the images instead of one number for every camera.
+  bool side_noise_from_pair = false;
   // kCalibratedSides: when a feature's object side is unknown (a straight edge), also try the
   // like pairings (ic+, ic+) and (ic−, ic−), each over the union of its two sides; false = the
   // full patch only (the default: at σ = 10, Harris's boundary M_score(1) at matched precision on
@@ -136,6 +166,22 @@ std::vector<PatchMatch> ComputeCandidateCosts(const cv::Mat& gray1, const Featur
                                               const PatchMatcherOptions& options,
                                               const SearchRegions& search = {});
 
+// The same from patches prepared once per frame (PreparePatches with these options, or any
+// PatchSet for the full patch). Throws comic::Error(kInvalidArgument) if a set does not hold one
+// patch per feature or lacks the sides the cost needs. Identical output to the overload above.
+std::vector<PatchMatch> ComputeCandidateCosts(const FeatureSet& features1, const PatchSet& patches1,
+                                              const FeatureSet& features2, const PatchSet& patches2,
+                                              const PatchMatcherOptions& options,
+                                              const SearchRegions& search = {});
+
+// The side labels `cost` reads: kNone (full), kDetector (split, like-sides), kLevelLines
+// (calibrated, track-sides).
+PatchSides SidesFor(MatchCost cost);
+
+// The patches of one frame's features as the matcher compares them under `options.cost`.
+PatchSet PreparePatches(const cv::Mat& gray, const FeatureSet& features,
+                        const PatchMatcherOptions& options);
+
 // One-to-one matching: the pairs that are each other's lowest-cost candidate (ties broken by the
 // lower index), ordered by index1.
 std::vector<PatchMatch> SelectMutualBest(const std::vector<PatchMatch>& candidates);
@@ -149,6 +195,17 @@ std::vector<PatchMatch> MatchFeatures(const cv::Mat& gray1, const FeatureSet& fe
                                       const PatchMatcherOptions& options,
                                       const SearchRegions& search = {});
 
+// MatchFeatures from patches prepared once per frame (see ComputeCandidateCosts).
+std::vector<PatchMatch> MatchFeatures(const FeatureSet& features1, const PatchSet& patches1,
+                                      const FeatureSet& features2, const PatchSet& patches2,
+                                      const PatchMatcherOptions& options,
+                                      const SearchRegions& search = {});
+
+// side_noise_from_pair: σ with 2σ² = the median cost of `full_patch_mutual` (a pair's mutual-best
+// matches under the full patch; the upper median of an even count), or `fallback` if there is no
+// match or the median is 0.
+double PairNoiseSigma(const std::vector<PatchMatch>& full_patch_mutual, double fallback);
+
 // kCalibratedSides: the full-patch (kPatchSize² pixels) mean squared difference that is as likely
 // under the noise model (σ = noise_sigma) as a mean of `mean_squared_difference` over `pixels`
 // pixels, by the Wilson–Hilferty cube-root approximation of the χ² distribution: with
@@ -156,9 +213,17 @@ std::vector<PatchMatch> MatchFeatures(const cv::Mat& gray1, const FeatureSet& fe
 // (0 if the bracket is negative). The identity for pixels = N; monotone in the mean.
 double CalibratedSideCost(double mean_squared_difference, int pixels, double noise_sigma);
 
+// True for the costs that compare the object sides of level-line patches (kCalibratedSides,
+// kTrackSides).
+bool IsCalibratedCost(MatchCost cost);
+
 // The cost of one pair under `options.cost` (no gate), +inf if a patch does not fit or no side
 // pairing overlaps enough.
 float PatchCost(const cv::Mat& gray1, const Feature& feature1, const cv::Mat& gray2,
                 const Feature& feature2, const PatchMatcherOptions& options);
+// The same for patch i of `patches1` and patch j of `patches2` (prepared as ComputeCandidateCosts
+// needs them).
+float PatchCost(const PatchSet& patches1, size_t i, const PatchSet& patches2, size_t j,
+                const PatchMatcherOptions& options);
 
 }  // namespace comic::frontend

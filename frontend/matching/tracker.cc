@@ -179,6 +179,7 @@ Tracker::CoarseFrame Tracker::MakeCoarseFrame(const cv::Mat& gray) const {
   cv::resize(gray, coarse.gray, coarse_size, 0, 0, cv::INTER_AREA);
   coarse.features =
       StrongestFitting(detector_->Detect(coarse.gray), coarse_size, options_.coarse_features);
+  coarse.patches = PreparePatches(coarse.gray, coarse.features, options_.matcher);
   return coarse;
 }
 
@@ -187,9 +188,12 @@ Tracker::TurnedFrame Tracker::TurnFrame180(const cv::Mat& gray, const FeatureSet
   TurnedFrame turned;
   cv::rotate(gray, turned.gray, cv::ROTATE_180);
   turned.features = TurnFeatures180(features, gray.size());
+  turned.patches = PreparePatches(turned.gray, turned.features, options_.matcher);
   if (!coarse.gray.empty()) {
     cv::rotate(coarse.gray, turned.coarse.gray, cv::ROTATE_180);
     turned.coarse.features = TurnFeatures180(coarse.features, coarse.gray.size());
+    turned.coarse.patches =
+        PreparePatches(turned.coarse.gray, turned.coarse.features, options_.matcher);
   }
   return turned;
 }
@@ -254,8 +258,8 @@ SearchRegions Tracker::PredictSearchRegions(
     coarse_options.radius = options_.coarse_radius / f;
     const double sx = static_cast<double>(gray2.cols) / coarse2.gray.cols;
     const double sy = static_cast<double>(gray2.rows) / coarse2.gray.rows;
-    for (const PatchMatch& m : MatchFeatures(coarse1.gray, coarse1.features, coarse2.gray,
-                                             coarse2.features, coarse_options)) {
+    for (const PatchMatch& m : MatchFeatures(coarse1.features, coarse1.patches, coarse2.features,
+                                             coarse2.patches, coarse_options)) {
       const Feature& a = coarse1.features[m.index1];
       const Feature& b = coarse2.features[m.index2];
       // Coarse pixel centres map back as areas do: x = (x_c + 0.5)·s − 0.5.
@@ -289,7 +293,11 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
                                 << image_size_.height);
   const int frame = static_cast<int>(features_.size());
   CoarseFrame coarse = MakeCoarseFrame(gray);
+  // This frame's patches, prepared once: it is image 2 of the pairs below and image 1 of the
+  // next match_window frames' pairs.
+  PatchSet patches = PreparePatches(gray, features, options_.matcher);
   std::optional<TurnedFrame> turned;  // made when first needed
+  bool previous_pair_turned = false;  // the pair (frame − 1, frame) kept the turned hypothesis
   // Earlier frames matched to this one, nearest first: the predictions for the farther ones
   // build on the matches to the nearer ones.
   std::vector<std::vector<PatchMatch>> mutual_to_frame, accepted_to_frame;
@@ -299,44 +307,59 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
     // The earlier frame matched to this one as given (gray2, features2, coarse2), or turned by
     // 180°: the mutual best matches, and those accepted (cost threshold, then the epipolar
     // verification on the features as stored, whose indices the turned ones share).
-    auto match = [&](const cv::Mat& gray2, const FeatureSet& features2, const CoarseFrame& coarse2,
-                     bool is_turned, std::vector<PatchMatch>* mutual,
+    auto match = [&](const cv::Mat& gray2, const FeatureSet& features2, const PatchSet& patches2,
+                     const CoarseFrame& coarse2, bool is_turned, std::vector<PatchMatch>* mutual,
                      std::vector<PatchMatch>* accepted) {
       const SearchRegions search =
           PredictSearchRegions(earlier, gray2, features2, coarse2, accepted_to_frame, is_turned);
-      *mutual = SelectMutualBest(ComputeCandidateCosts(grays_[earlier], features_[earlier], gray2,
-                                                       features2, options_.matcher, search));
+      *mutual = SelectMutualBest(ComputeCandidateCosts(
+          features_[earlier], patches_[earlier], features2, patches2, options_.matcher, search));
       *accepted = ApplyCostThreshold(*mutual, options_.matcher.max_cost);
       if (verify) {
         *accepted = VerifyMatches(features_[earlier], features, *accepted, options_.verification);
       }
     };
     std::vector<PatchMatch> mutual, accepted;
-    match(gray, features, coarse, false, &mutual, &accepted);
+    match(gray, features, patches, coarse, false, &mutual, &accepted);
     if (verify && options_.match_turned_180) {
       if (!turned) turned = TurnFrame180(gray, features, coarse);
       std::vector<PatchMatch> turned_mutual, turned_accepted;
-      match(turned->gray, turned->features, turned->coarse, true, &turned_mutual, &turned_accepted);
+      match(turned->gray, turned->features, turned->patches, turned->coarse, true, &turned_mutual,
+            &turned_accepted);
       if (turned_accepted.size() > accepted.size()) {
         mutual = std::move(turned_mutual);
         accepted = std::move(turned_accepted);
         turned_pairs_.emplace_back(earlier, frame);
+        if (gap == 1) previous_pair_turned = true;
       }
     }
     accepted_to_frame.push_back(std::move(accepted));
     mutual_to_frame.push_back(std::move(mutual));
   }
+  if (options_.matcher.cost == MatchCost::kTrackSides && frame > 0) {
+    // The memory along the track: a feature whose match from the frame before cost its full
+    // patch (the side did not win) is compared by its full patch when it is matched on. Done
+    // after every pair into this frame, so that it changes only the pairs out of it.
+    PatchMatcherOptions full = options_.matcher;
+    full.cost = MatchCost::kFullPatch;
+    const PatchSet& matched = previous_pair_turned ? turned->patches : patches;
+    for (const PatchMatch& m : accepted_to_frame.front()) {
+      if (m.cost >= PatchCost(patches_[frame - 1], m.index1, matched, m.index2, full)) {
+        patches.DropSides(m.index2);
+      }
+    }
+  }
   features_.push_back(std::move(features));
   names_.push_back(name);
   mutual_.push_back(std::move(mutual_to_frame));
   accepted_.push_back(std::move(accepted_to_frame));
-  grays_.push_back(gray.clone());
+  patches_.push_back(std::move(patches));
   coarse_.push_back(std::move(coarse));
   image_size_ = gray.size();
-  // Frames no later frame will be matched to: free their images.
+  // Frames no later frame will be matched to: free their patches.
   const int expired = frame - options_.match_window;
   if (expired >= 0) {
-    grays_[expired].release();
+    patches_[expired] = PatchSet();
     coarse_[expired] = CoarseFrame();
   }
 }

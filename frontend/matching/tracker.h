@@ -47,6 +47,12 @@
 // fall back to the coarse pass or to their own position with unpredicted_radius. kNone never
 // predicts, at any gap.
 //
+// Each frame's patches (and, for the calibrated costs, its level-line sides) are prepared once
+// (PatchSet) and kept while a later frame may still be matched to it. With
+// matcher.cost = kTrackSides the tracker remembers, per feature, whether its match from the frame
+// before was won by its object side or by its full patch, and compares the latter by the full
+// patch only when matching on (patch_matcher.h).
+//
 // Deterministic: the result depends only on the frames, the detector and the options.
 #pragma once
 
@@ -179,12 +185,14 @@ class Tracker {
   struct CoarseFrame {
     cv::Mat gray;
     FeatureSet features;
+    PatchSet patches;  // the features' patches, prepared once for every pair the frame is in
   };
   CoarseFrame MakeCoarseFrame(const cv::Mat& gray) const;
   // A frame turned by 180° in its plane (match_turned_180), with its features and coarse frame.
   struct TurnedFrame {
     cv::Mat gray;
     FeatureSet features;
+    PatchSet patches;
     CoarseFrame coarse;
   };
   TurnedFrame TurnFrame180(const cv::Mat& gray, const FeatureSet& features,
@@ -203,8 +211,9 @@ class Tracker {
   std::string detector_name_;
   const Detector* detector_;
   cv::Size image_size_;
-  // Per frame; images are kept only while a later frame may still be matched to them.
-  std::vector<cv::Mat> grays_;
+  // Per frame; patches (and coarse frames) are kept only while a later frame may still be matched
+  // to them.
+  std::vector<PatchSet> patches_;
   std::vector<CoarseFrame> coarse_;
   std::vector<FeatureSet> features_;
   std::vector<std::string> names_;

@@ -214,11 +214,15 @@ TEST(PatchMatcher, MutualBestIsOneToOneWithDeterministicTies) {
 }
 
 TEST(PatchMatcher, NamesOptionsAndBadInput) {
-  for (MatchCost cost : {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings,
-                         MatchCost::kSplitLikeSides, MatchCost::kCalibratedSides}) {
+  for (MatchCost cost :
+       {MatchCost::kFullPatch, MatchCost::kSplitMinOfFourPairings, MatchCost::kSplitLikeSides,
+        MatchCost::kCalibratedSides, MatchCost::kTrackSides}) {
     EXPECT_EQ(ParseMatchCost(MatchCostName(cost)), cost);
   }
   EXPECT_EQ(ParseMatchCost("calibrated"), MatchCost::kCalibratedSides);
+  EXPECT_EQ(ParseMatchCost("track-sides"), MatchCost::kTrackSides);
+  EXPECT_TRUE(IsCalibratedCost(MatchCost::kTrackSides));
+  EXPECT_FALSE(IsCalibratedCost(MatchCost::kSplitLikeSides));
   EXPECT_THROW(ParseMatchCost("ncc"), Error);
   PatchMatcherOptions options;
   options.radius = 0;
@@ -385,6 +389,42 @@ TEST(CalibratedSideCost, FeaturesWithoutSidesCostTheFullPatch) {
   options = {};
   options.side_noise_sigma = 0;
   EXPECT_THROW(options.Check(), Error);
+}
+
+TEST(CalibratedSideCost, PairNoiseSigmaIsHalfTheMedianFullPatchCostOfThePairsMatches) {
+  auto matches = [](std::vector<float> costs) {
+    std::vector<PatchMatch> out;
+    for (size_t k = 0; k < costs.size(); ++k) out.push_back({static_cast<int>(k), 0, costs[k]});
+    return out;
+  };
+  EXPECT_DOUBLE_EQ(PairNoiseSigma(matches({800, 100, 200}), 20), 10.0);  // 2σ² = 200
+  EXPECT_DOUBLE_EQ(PairNoiseSigma(matches({300, 100, 800, 200}), 20), std::sqrt(150.0));
+  EXPECT_DOUBLE_EQ(PairNoiseSigma({}, 20), 20.0);                  // no match: the fallback
+  EXPECT_DOUBLE_EQ(PairNoiseSigma(matches({0, 0, 5}), 17), 17.0);  // identical images
+
+  // side_noise_from_pair is the calibrated cost at that σ, bit for bit.
+  const cv::Mat a = Texture({120, 100}, 8);
+  cv::Mat b;
+  cv::GaussianBlur(a, b, cv::Size(3, 3), 0.8);
+  const HarrisDetector harris;
+  const FeatureSet f1 = ApplyThreshold(harris.Detect(a), 1.0f);
+  const FeatureSet f2 = ApplyThreshold(harris.Detect(b), 1.0f);
+  PatchMatcherOptions full;
+  const double sigma =
+      PairNoiseSigma(SelectMutualBest(ComputeCandidateCosts(a, f1, b, f2, full)), 20.0);
+  EXPECT_GT(sigma, 0.5);
+  EXPECT_LT(sigma, 20.0);
+  PatchMatcherOptions from_pair;
+  from_pair.cost = MatchCost::kCalibratedSides;
+  from_pair.side_noise_from_pair = true;
+  PatchMatcherOptions fixed = from_pair;
+  fixed.side_noise_from_pair = false;
+  fixed.side_noise_sigma = sigma;
+  const std::vector<PatchMatch> x = ComputeCandidateCosts(a, f1, b, f2, from_pair);
+  const std::vector<PatchMatch> y = ComputeCandidateCosts(a, f1, b, f2, fixed);
+  ASSERT_EQ(x.size(), y.size());
+  ASSERT_GT(x.size(), 10u);
+  for (size_t k = 0; k < x.size(); ++k) EXPECT_EQ(x[k].cost, y[k].cost);
 }
 
 TEST(CalibratedSideCost, ObjectSidesOfDifferentShapesAreComparedOverTheirUnion) {

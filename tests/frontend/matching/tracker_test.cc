@@ -329,6 +329,58 @@ TEST(Tracker, MatchWindowIsDeterministicAndRethresholds) {
   EXPECT_THROW(options.Check(), Error);
 }
 
+// A bright square's corner at (50, 50) whose background (everything but the square) has grey
+// `background` in each frame.
+std::vector<cv::Mat> CornerOverBackgrounds(const std::vector<int>& backgrounds) {
+  std::vector<cv::Mat> frames;
+  for (int background : backgrounds) {
+    cv::Mat gray(100, 100, CV_8UC1, cv::Scalar(background));
+    gray(cv::Rect(50, 50, 40, 40)).setTo(200);
+    frames.push_back(gray);
+  }
+  return frames;
+}
+
+// The accepted matches of every consecutive pair when tracking the corner with `cost`.
+std::vector<size_t> CornerMatches(const std::vector<cv::Mat>& frames, MatchCost cost,
+                                  TrackingResult* result = nullptr) {
+  TrackerOptions options;
+  options.matcher.cost = cost;
+  Tracker tracker(options, "corner");
+  Feature corner;
+  corner.x = 50;
+  corner.y = 50;
+  for (const cv::Mat& frame : frames) tracker.AddFrame(frame, {corner});
+  TrackingResult tracked = tracker.Result();
+  std::vector<size_t> accepted;
+  for (const auto& pair : tracked.accepted_matches) accepted.push_back(pair.size());
+  if (result) *result = std::move(tracked);
+  return accepted;
+}
+
+TEST(Tracker, TrackSidesComparesByTheFullPatchAFeatureWhoseLastMatchWasWonByItsFullPatch) {
+  // Frames 0 and 1 identical: the match costs its full patch (0), so in the pair (1, 2), where
+  // the background changes, the corner is compared by its full patch and lost; the calibrated
+  // cost, without memory, matches it on its object side.
+  const std::vector<cv::Mat> still_then_changed = CornerOverBackgrounds({40, 40, 120});
+  EXPECT_EQ(CornerMatches(still_then_changed, MatchCost::kCalibratedSides),
+            (std::vector<size_t>{1, 1}));
+  EXPECT_EQ(CornerMatches(still_then_changed, MatchCost::kTrackSides), (std::vector<size_t>{1, 0}));
+  EXPECT_EQ(CornerMatches(still_then_changed, MatchCost::kFullPatch), (std::vector<size_t>{1, 0}));
+  // A background that keeps changing: the side won the first match, so it is kept.
+  const std::vector<cv::Mat> changing = CornerOverBackgrounds({40, 120, 80});
+  TrackingResult calibrated, track_sides;
+  EXPECT_EQ(CornerMatches(changing, MatchCost::kCalibratedSides, &calibrated),
+            (std::vector<size_t>{1, 1}));
+  EXPECT_EQ(CornerMatches(changing, MatchCost::kTrackSides, &track_sides),
+            (std::vector<size_t>{1, 1}));
+  EXPECT_EQ(CornerMatches(changing, MatchCost::kFullPatch), (std::vector<size_t>{0, 0}));
+  // The first pair has no memory yet: the calibrated cost bit for bit.
+  ASSERT_EQ(track_sides.mutual_matches[0].size(), 1u);
+  EXPECT_EQ(track_sides.mutual_matches[0][0].cost, calibrated.mutual_matches[0][0].cost);
+  EXPECT_EQ(track_sides.mutual_matches[1][0].cost, calibrated.mutual_matches[1][0].cost);
+}
+
 TEST(Tracker, SelectsTrackableFeatures) {
   FeatureSet detected(4);
   detected[0].x = 50, detected[0].y = 50, detected[0].response = 1;
