@@ -104,6 +104,9 @@ struct IncrementalReconstruction {
   // Over all models grown:
   int num_local_ba = 0;
   int num_global_ba = 0;
+  // Levenberg-Marquardt iterations summed over those adjustments (their cost, load-free).
+  int num_local_ba_iterations = 0;
+  int num_global_ba_iterations = 0;
   double local_ba_time_s = 0.0;
   double global_ba_time_s = 0.0;
   // The same as CPU time of the process (all threads): stable when other jobs share the machine.
