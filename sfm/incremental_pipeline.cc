@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "io/error.h"
@@ -263,10 +264,19 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
     // later attempt, started from frames it did not reach, registers more.
     // The initial pairs are searched once and reused; only when every remaining candidate
     // touches a frame an earlier model reached is the search repeated without those frames.
-    const IncrementalMapper searcher(tracks, camera, options.mapper);
+    IncrementalMapper::Options search_options = options.mapper;
+    std::optional<IncrementalMapper> searcher;
+    searcher.emplace(tracks, camera, search_options);
     IncrementalMapper::InitialPairSearch first_search;
     std::vector<IncrementalMapper::InitialPair> candidates =
-        searcher.FindInitialPairs({}, &first_search);
+        searcher->FindInitialPairs({}, &first_search);
+    if (candidates.empty() && options.relax_initial_pair) {
+      // COLMAP's relaxation; the diagnosis of a failure stays that of the strict search.
+      search_options.init_min_num_matches = std::max(5, search_options.init_min_num_matches / 2);
+      search_options.init_min_num_inliers = std::max(5, search_options.init_min_num_inliers / 2);
+      searcher.emplace(tracks, camera, search_options);
+      candidates = searcher->FindInitialPairs({});
+    }
     std::set<image_t> excluded;
     std::vector<Reconstruction> earlier_models;
     for (int attempt = 0; attempt < options.max_num_models; ++attempt) {
@@ -275,7 +285,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
       };
       auto it = std::find_if(candidates.begin(), candidates.end(), usable);
       if (it == candidates.end() && attempt > 0) {
-        candidates = searcher.FindInitialPairs(excluded);
+        candidates = searcher->FindInitialPairs(excluded);
         it = candidates.begin();
       }
       std::optional<IncrementalMapper::InitialPair> pair;

@@ -168,6 +168,37 @@ TEST(IncrementalPipeline, TwoViewTracksGiveNoPointsUnlessAsked) {
   EXPECT_LT(ignored.reconstruction.NumPoints3D(), kept.reconstruction.NumPoints3D());
 }
 
+// A sparsely tracked video: no two frames share the 100 tracks an initial pair needs, so the
+// strict search finds none; the relaxed search (COLMAP's halving) starts a model, and with
+// relax_initial_pair off the result is kNoInitialPair, diagnosed by the strict search.
+TEST(IncrementalPipeline, SparseTracksStartAModelAfterRelaxingTheInitialPair) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kHandHeld;
+  scene_options.num_frames = 12;
+  scene_options.num_points = 90;
+  scene_options.outlier_ratio = 0.05;
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  IncrementalPipelineOptions options;
+  ASSERT_TRUE(options.relax_initial_pair);  // the default
+  const IncrementalReconstruction relaxed =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  ASSERT_EQ(relaxed.status, ReconstructionStatus::kSuccess);
+  EXPECT_GE(relaxed.registered_frames.size(), 10u);
+  const auto evaluation = Evaluate(relaxed, scene);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_LT(evaluation->ate_fraction_of_path, 0.02);
+  // The strict search's verdict is what a failure reports.
+  EXPECT_EQ(relaxed.initial_pair_search.stage,
+            IncrementalMapper::InitialPairSearch::Stage::kSharedTracks);
+
+  options.relax_initial_pair = false;
+  const IncrementalReconstruction strict =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  EXPECT_EQ(strict.status, ReconstructionStatus::kNoInitialPair);
+  EXPECT_EQ(strict.initial_pair_search.stage,
+            IncrementalMapper::InitialPairSearch::Stage::kSharedTracks);
+}
+
 TEST(IncrementalPipeline, PureRotationReportsNoInitialPair) {
   SyntheticSceneOptions scene_options;
   scene_options.motion = SyntheticMotion::kPureRotation;
