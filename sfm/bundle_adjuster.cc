@@ -17,9 +17,24 @@
 
 namespace comic::sfm {
 
+const char* BundleAdjustmentLossName(BundleAdjustmentLoss loss) {
+  switch (loss) {
+    case BundleAdjustmentLoss::kTrivial:
+      return "trivial";
+    case BundleAdjustmentLoss::kHuber:
+      return "huber";
+    case BundleAdjustmentLoss::kSoftL1:
+      return "soft_l1";
+  }
+  return "unknown";
+}
+
 void BundleAdjustmentOptions::Check() const {
-  COMIC_CHECK(huber_loss_scale_px > 0, kInvalidArgument,
-              "bundle adjustment huber_loss_scale_px must be > 0, got " << huber_loss_scale_px);
+  COMIC_CHECK(loss == BundleAdjustmentLoss::kTrivial || loss == BundleAdjustmentLoss::kHuber ||
+                  loss == BundleAdjustmentLoss::kSoftL1,
+              kInvalidArgument, "bundle adjustment loss is not a BundleAdjustmentLoss");
+  COMIC_CHECK(loss_scale_px > 0, kInvalidArgument,
+              "bundle adjustment loss_scale_px must be > 0, got " << loss_scale_px);
   COMIC_CHECK(max_num_iterations >= 1, kInvalidArgument,
               "bundle adjustment max_num_iterations must be >= 1");
   COMIC_CHECK(function_tolerance >= 0 && gradient_tolerance >= 0 && parameter_tolerance >= 0,
@@ -379,7 +394,13 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   summary.refined_intrinsics = !variable_cameras.empty();
 
   ceres::Problem problem;
-  ceres::LossFunction* loss = new ceres::HuberLoss(options_.huber_loss_scale_px);
+  // Owned by the problem (one object shared by every residual; nullptr: plain least squares).
+  ceres::LossFunction* loss = nullptr;
+  if (options_.loss == BundleAdjustmentLoss::kHuber) {
+    loss = new ceres::HuberLoss(options_.loss_scale_px);
+  } else if (options_.loss == BundleAdjustmentLoss::kSoftL1) {
+    loss = new ceres::SoftLOneLoss(options_.loss_scale_px);
+  }
   for (image_t image_id : image_ids) {
     const Image& image = reconstruction->image(image_id);
     double* pose = pose_params.at(image_id);

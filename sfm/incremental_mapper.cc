@@ -280,13 +280,22 @@ point3D_t IncrementalMapper::TrackPoint(int track_id) const {
 }
 
 std::vector<image_t> IncrementalMapper::NextImageCandidates() const {
+  // Which tracks have a point, from one pass over the points (TrackPoint for every feature of
+  // every unregistered frame walked each track again, after every registration).
+  std::vector<char> track_has_point(tracks_->tracks.size(), 0);
+  for (const auto& [point3D_id, point] : reconstruction_.points3D()) {
+    if (point.track.empty()) continue;
+    const TrackElement& element = point.track.front();
+    const int t = track_of_feature_[FrameOfImageId(element.image_id)][element.point2D_idx];
+    if (t >= 0) track_has_point[t] = 1;
+  }
   std::vector<std::pair<int, image_t>> candidates;
   for (const auto& [image_id, image] : reconstruction_.images()) {
     if (image.registered) continue;
     const int frame = FrameOfImageId(image_id);
     int num_visible = 0;
     for (int t : track_of_feature_[frame]) {
-      if (t >= 0 && TrackPoint(t) != kInvalidPoint3DId) ++num_visible;
+      if (t >= 0 && track_has_point[t]) ++num_visible;
     }
     if (num_visible >= options_.absolute_pose.min_num_inliers) {
       candidates.emplace_back(num_visible, image_id);
@@ -379,6 +388,10 @@ bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id, bool retriangul
     return false;
   }
   if (views.size() < 2) return false;
+  // A track of two frames gives a point no third view checks (COLMAP's
+  // tri_ignore_two_view_tracks): on KITTI and the dino ring such points were a third of the
+  // model, slowed every adjustment and pulled the poses (docs/sfm.md "Two-view tracks").
+  if (options_.ignore_two_view_tracks && track.Length() < 3) return false;
   const auto point = TriangulateMultiView(views, options_.triangulation);
   if (!point) return false;
   std::vector<TrackElement> inlier_elements;

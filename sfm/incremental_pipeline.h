@@ -65,6 +65,12 @@ struct IncrementalPipelineOptions {
   // initial pair among the frames no earlier model reached, and the model with the most
   // registered frames is returned.
   int max_num_models = 4;
+  // When no frame pair qualifies as the initial pair, search once more with the minimum shared
+  // tracks and inliers (mapper.init_min_num_matches, init_min_num_inliers) halved, as COLMAP
+  // relaxes its initialisation constraints. A sparsely tracked sequence (MSER on the dino ring:
+  // 774 tracks) then starts a model instead of none; sequences whose strict search succeeds are
+  // unaffected.
+  bool relax_initial_pair = true;
   // When a model stops short, the earlier models sharing a registered frame with it are merged
   // into it (IncrementalMapper::MergeModel), and it grows on from the merged frames.
   bool merge_models = true;
@@ -104,6 +110,9 @@ struct IncrementalReconstruction {
   // Over all models grown:
   int num_local_ba = 0;
   int num_global_ba = 0;
+  // Levenberg-Marquardt iterations summed over those adjustments (their cost, load-free).
+  int num_local_ba_iterations = 0;
+  int num_global_ba_iterations = 0;
   double local_ba_time_s = 0.0;
   double global_ba_time_s = 0.0;
   // The same as CPU time of the process (all threads): stable when other jobs share the machine.

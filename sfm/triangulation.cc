@@ -1,6 +1,6 @@
 #include "sfm/triangulation.h"
 
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -16,15 +16,21 @@ std::optional<Eigen::Vector3d> TriangulatePointDlt(
               "triangulation: " << cams_from_world.size() << " poses for "
                                 << points_normalized.size() << " points");
   if (cams_from_world.size() < 2) return std::nullopt;
-  // Each view gives two rows x·P₃ − P₁ and y·P₃ − P₂ of A X = 0.
-  Eigen::MatrixXd a(2 * cams_from_world.size(), 4);
+  // Each view gives two rows x·P₃ − P₁ and y·P₃ − P₂ of A X = 0; X is the eigenvector of the
+  // 4×4 AᵀA with the smallest eigenvalue (as COLMAP's multi-view triangulation). The SVD of the
+  // 2n×4 A gives the same vector but cost a tenth of the mapper's time (it runs for every
+  // candidate pair of every track after each global bundle adjustment).
+  Eigen::Matrix4d ata = Eigen::Matrix4d::Zero();
   for (size_t i = 0; i < cams_from_world.size(); ++i) {
     const Eigen::Matrix<double, 3, 4> p = cams_from_world[i].ToMatrix();
-    a.row(2 * i) = points_normalized[i].x() * p.row(2) - p.row(0);
-    a.row(2 * i + 1) = points_normalized[i].y() * p.row(2) - p.row(1);
+    const Eigen::RowVector4d row_x = points_normalized[i].x() * p.row(2) - p.row(0);
+    const Eigen::RowVector4d row_y = points_normalized[i].y() * p.row(2) - p.row(1);
+    ata.noalias() += row_x.transpose() * row_x;
+    ata.noalias() += row_y.transpose() * row_y;
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
-  const Eigen::Vector4d x = svd.matrixV().col(3);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(ata);
+  if (eigen.info() != Eigen::Success) return std::nullopt;
+  const Eigen::Vector4d x = eigen.eigenvectors().col(0);  // eigenvalues ascending
   if (std::abs(x(3)) < 1e-12 * x.head<3>().norm() || x(3) == 0.0) return std::nullopt;
   const Eigen::Vector3d point = x.head<3>() / x(3);
   if (!point.allFinite()) return std::nullopt;

@@ -42,6 +42,34 @@ void Evaluate(const std::vector<std::optional<Rigid3d>>& estimated,
   row->rotation_error_deg = evaluation->mean_rotation_error_deg;
 }
 
+// The common_ate_rmse of two rows: each model's ATE over the frames both registered (at least
+// 3 with ground truth), the similarity fitted on those frames alone.
+void EvaluateOnCommonFrames(const std::vector<std::optional<Rigid3d>>& poses_a,
+                            const std::vector<std::optional<Rigid3d>>& poses_b,
+                            const std::vector<std::optional<Rigid3d>>& ground_truth,
+                            ColmapComparisonRow* row_a, ColmapComparisonRow* row_b) {
+  if (ground_truth.empty() || poses_a.size() != ground_truth.size() ||
+      poses_b.size() != ground_truth.size()) {
+    return;
+  }
+  std::vector<std::optional<Rigid3d>> common_truth(ground_truth.size());
+  int num_common = 0;
+  for (size_t i = 0; i < ground_truth.size(); ++i) {
+    if (poses_a[i] && poses_b[i] && ground_truth[i]) {
+      common_truth[i] = ground_truth[i];
+      ++num_common;
+    }
+  }
+  if (num_common < 3) return;
+  const auto evaluation_a = EvaluateTrajectory(poses_a, common_truth);
+  const auto evaluation_b = EvaluateTrajectory(poses_b, common_truth);
+  if (!evaluation_a || !evaluation_b) return;
+  row_a->common_ate_rmse = evaluation_a->ate_rmse;
+  row_a->num_common_frames = num_common;
+  row_b->common_ate_rmse = evaluation_b->ate_rmse;
+  row_b->num_common_frames = num_common;
+}
+
 // COLMAP's image names of the frames.
 std::vector<std::string> ColmapImageNames(const frontend::FeatureTracks& tracks,
                                           const std::string& prefix) {
@@ -101,7 +129,7 @@ io::ReportTable ColmapComparison::Table() const {
   io::ReportTable table({"method", "registered frames", "3-D points", "mean track length",
                          "mean reprojection error (px)", "ATE RMSE", "ATE % of path",
                          "rotation error (deg)", "wall time (s)", "local BA (s)", "global BA (s)",
-                         "CPU time (s)"});
+                         "CPU time (s)", "common frames", "ATE RMSE, common frames"});
   table.SetPrecision("mean track length", 2);
   table.SetPrecision("mean reprojection error (px)", 3);
   table.SetPrecision("ATE RMSE", 3);
@@ -111,6 +139,7 @@ io::ReportTable ColmapComparison::Table() const {
   table.SetPrecision("local BA (s)", 1);
   table.SetPrecision("global BA (s)", 1);
   table.SetPrecision("CPU time (s)", 1);
+  table.SetPrecision("ATE RMSE, common frames", 4);
   const auto optional_cell = [](const std::optional<double>& value,
                                 double scale) -> io::ReportTable::Cell {
     if (!value) return std::monostate();
@@ -123,7 +152,10 @@ io::ReportTable ColmapComparison::Table() const {
                   optional_cell(row.ate_rmse, 1.0), optional_cell(row.ate_fraction_of_path, 100.0),
                   optional_cell(row.rotation_error_deg, 1.0), optional_cell(row.wall_time_s, 1.0),
                   optional_cell(row.local_ba_time_s, 1.0), optional_cell(row.global_ba_time_s, 1.0),
-                  optional_cell(row.cpu_time_s, 1.0)});
+                  optional_cell(row.cpu_time_s, 1.0),
+                  row.common_ate_rmse ? io::ReportTable::Cell(int64_t{row.num_common_frames})
+                                      : io::ReportTable::Cell(std::monostate()),
+                  optional_cell(row.common_ate_rmse, 1.0)});
   }
   return table;
 }
@@ -159,6 +191,7 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
     computed = ReconstructIncrementally(tracks, camera, options.ours);
     ours = &computed;
   }
+  std::vector<std::optional<Rigid3d>> our_poses, colmap_poses;
   ColmapComparisonRow our_row;
   our_row.method = "comic-sfm";
   our_row.num_frames = num_frames;
@@ -172,7 +205,8 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
     our_row.num_points3D = static_cast<int64_t>(reconstruction.NumPoints3D());
     our_row.mean_track_length = reconstruction.ComputeMeanTrackLength();
     our_row.mean_reprojection_error_px = MeanPointReprojectionError(reconstruction);
-    Evaluate(RegisteredPosesByName(reconstruction, tracks.frame_names), ground_truth, &our_row);
+    our_poses = RegisteredPosesByName(reconstruction, tracks.frame_names);
+    Evaluate(our_poses, ground_truth, &our_row);
   }
   comparison.rows.push_back(our_row);
 
@@ -208,7 +242,8 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
                                  num_frames);
     ConvertColmapModel(*comparison.colmap_model_path, path("sparse_text"), "TXT",
                        comparison.log_path, options.colmap_executable);
-    Evaluate(ModelPoses(path("sparse_text"), colmap_names), ground_truth, &colmap_row);
+    colmap_poses = ModelPoses(path("sparse_text"), colmap_names);
+    Evaluate(colmap_poses, ground_truth, &colmap_row);
   }
   colmap_row.wall_time_s = mapper_time;
   colmap_row.cpu_time_s = mapper_cpu_time;
@@ -220,6 +255,7 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
       colmap_row.global_ba_time_s = times.global_s;
     }
   }
+  EvaluateOnCommonFrames(our_poses, colmap_poses, ground_truth, &comparison.rows[0], &colmap_row);
   comparison.rows.push_back(colmap_row);
 
   // Our model read back through COLMAP: our text model, converted to binary by COLMAP, measured
@@ -234,8 +270,11 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
         num_frames);
     ConvertColmapModel(path("ours_bin"), path("ours_from_colmap_text"), "TXT", comparison.log_path,
                        options.colmap_executable);
-    Evaluate(ModelPoses(path("ours_from_colmap_text"), tracks.frame_names), ground_truth,
-             &read_back);
+    const std::vector<std::optional<Rigid3d>> read_back_poses =
+        ModelPoses(path("ours_from_colmap_text"), tracks.frame_names);
+    Evaluate(read_back_poses, ground_truth, &read_back);
+    ColmapComparisonRow unused = colmap_row;
+    EvaluateOnCommonFrames(read_back_poses, colmap_poses, ground_truth, &read_back, &unused);
     comparison.rows.push_back(read_back);
   }
   return comparison;

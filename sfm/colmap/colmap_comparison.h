@@ -55,7 +55,12 @@ struct ColmapComparisonRow {
   std::optional<double> ate_rmse;              // ground-truth units (KITTI: metres)
   std::optional<double> ate_fraction_of_path;  // ate_rmse / path length
   std::optional<double> rotation_error_deg;    // mean
-  std::optional<double> wall_time_s;           // the mapper alone (not tracking or export)
+  // ATE RMSE over the frames both mappers registered (ours and COLMAP's rows; the Sim(3) fitted
+  // on those frames alone), so that a model that stopped short is compared on what it has, and
+  // how many frames that is.
+  std::optional<double> common_ate_rmse;
+  int num_common_frames = 0;
+  std::optional<double> wall_time_s;  // the mapper alone (not tracking or export)
   // Of wall_time_s: local and global bundle adjustment (ours: measured; COLMAP's: the sum of the
   // solver times its log reports, when it reports them).
   std::optional<double> local_ba_time_s;
@@ -77,7 +82,7 @@ struct ColmapComparison {
 
   // One table: method, registered frames, 3-D points, mean track length, mean reprojection
   // error, ATE RMSE, ATE as % of the path, rotation error, wall time, and of it local and global
-  // bundle adjustment.
+  // bundle adjustment, CPU time, then the frames both registered and the ATE over them.
   io::ReportTable Table() const;
 };
 

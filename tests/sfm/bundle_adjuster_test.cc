@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -193,6 +194,55 @@ TEST(BundleAdjuster, RefinesTheFocalLengthWhenAsked) {
   EXPECT_LT(summary.final_rmse_px, kNoisePx * std::sqrt(2.0));
 }
 
+// Each loss brings the perturbed scene back to the noise level; with wrong observations among
+// the right ones the robust losses (Huber, Soft-L1) keep the poses nearer the truth than plain
+// least squares.
+TEST(BundleAdjuster, EveryLossReachesTheNoiseLevelAndRobustOnesResistWrongObservations) {
+  EXPECT_STREQ(BundleAdjustmentLossName(BundleAdjustmentLoss::kTrivial), "trivial");
+  EXPECT_STREQ(BundleAdjustmentLossName(BundleAdjustmentLoss::kHuber), "huber");
+  EXPECT_STREQ(BundleAdjustmentLossName(BundleAdjustmentLoss::kSoftL1), "soft_l1");
+  const double noise_rmse = kNoisePx * std::sqrt(2.0);
+  // Largest camera-centre error against the truth after adjusting `scene` with `loss`.
+  const auto adjust = [](Scene scene, BundleAdjustmentLoss loss, BundleAdjustmentSummary* out) {
+    BundleAdjustmentOptions options;
+    options.loss = loss;
+    *out = BundleAdjuster(options, FullConfig(scene.perturbed)).Solve(&scene.perturbed);
+    double max_error = 0.0;
+    for (image_t id : scene.truth.RegisteredImageIds()) {
+      max_error = std::max(max_error, (ProjectionCenter(scene.perturbed.image(id).cam_from_world) -
+                                       ProjectionCenter(scene.truth.image(id).cam_from_world))
+                                          .norm());
+    }
+    return max_error;
+  };
+  const Scene clean = MakeScene(15);
+  for (BundleAdjustmentLoss loss : {BundleAdjustmentLoss::kTrivial, BundleAdjustmentLoss::kHuber,
+                                    BundleAdjustmentLoss::kSoftL1}) {
+    BundleAdjustmentSummary summary;
+    EXPECT_LT(adjust(clean, loss, &summary), 0.05) << BundleAdjustmentLossName(loss);
+    ASSERT_TRUE(summary.usable) << summary.termination;
+    EXPECT_LT(summary.final_rmse_px, noise_rmse) << BundleAdjustmentLossName(loss);
+  }
+  // Every 15th observation moved by 40 px (a wrong match the tracker kept).
+  Scene wrong = MakeScene(15);
+  size_t count = 0;
+  for (image_t id : wrong.perturbed.RegisteredImageIds()) {
+    for (Point2D& point2D : wrong.perturbed.image(id).points2D) {
+      if (point2D.HasPoint3D() && ++count % 15 == 0) point2D.xy += Eigen::Vector2d(40.0, -25.0);
+    }
+  }
+  BundleAdjustmentSummary summary;
+  const double trivial_error = adjust(wrong, BundleAdjustmentLoss::kTrivial, &summary);
+  const double huber_error = adjust(wrong, BundleAdjustmentLoss::kHuber, &summary);
+  const double soft_l1_error = adjust(wrong, BundleAdjustmentLoss::kSoftL1, &summary);
+  EXPECT_LT(huber_error, 0.5 * trivial_error);
+  EXPECT_LT(soft_l1_error, 0.5 * trivial_error);
+
+  BundleAdjustmentOptions bad;
+  bad.loss = static_cast<BundleAdjustmentLoss>(7);
+  EXPECT_THROW(bad.Check(), Error);
+}
+
 TEST(BundleAdjuster, IsDeterministic) {
   Scene a = MakeScene(13);
   Scene b = MakeScene(13);
@@ -278,7 +328,7 @@ TEST(BundleAdjuster, EmptyProblemsAndBadInput) {
   unknown.image_ids.insert(99);
   EXPECT_THROW(BundleAdjuster(BundleAdjustmentOptions(), unknown).Solve(&scene.perturbed), Error);
   BundleAdjustmentOptions bad;
-  bad.huber_loss_scale_px = 0;
+  bad.loss_scale_px = 0;
   EXPECT_THROW(BundleAdjuster(bad, nothing), Error);
 }
 

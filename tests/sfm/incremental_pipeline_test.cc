@@ -100,6 +100,105 @@ TEST(IncrementalPipeline, WeakStartStillEndsInOneModelWithEveryFrame) {
   EXPECT_LT(evaluation->ate_fraction_of_path, 0.01);
 }
 
+// COLMAP's tri_ignore_two_view_tracks: a track seen in only two frames gives no point, except
+// among the initial pair's (they start the model); with ignore_two_view_tracks off such tracks
+// are triangulated wherever their two frames are registered. Either way every frame registers
+// near the truth, and the adjustments report their iterations.
+TEST(IncrementalPipeline, TwoViewTracksGiveNoPointsUnlessAsked) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kHandHeld;
+  scene_options.num_frames = 16;
+  scene_options.num_points = 900;
+  SyntheticScene scene = MakeSyntheticScene(scene_options);
+  // Every third track cut to its first two observations.
+  for (size_t t = 0; t < scene.tracks.tracks.size(); t += 3) {
+    auto& observations = scene.tracks.tracks[t].observations;
+    if (observations.size() > 2) observations.resize(2);
+  }
+  // Per frame, per feature: the length of its track.
+  std::vector<std::vector<size_t>> track_length(scene.tracks.NumFrames());
+  for (size_t frame = 0; frame < scene.tracks.NumFrames(); ++frame) {
+    track_length[frame].assign(scene.tracks.features[frame].size(), 0);
+  }
+  for (const frontend::Track& track : scene.tracks.tracks) {
+    for (const auto& obs : track.observations)
+      track_length[obs.frame][obs.feature] = track.Length();
+  }
+  // Points of two-view tracks, and of those the ones outside the initial pair's frames.
+  const auto count_two_view = [&](const IncrementalReconstruction& result, int* outside) {
+    int num_two_view = 0;
+    *outside = 0;
+    for (const auto& [id, point] : result.reconstruction.points3D()) {
+      const TrackElement& element = point.track.front();
+      const int frame = static_cast<int>(element.image_id) - 1;
+      if (track_length[frame][element.point2D_idx] != 2) continue;
+      ++num_two_view;
+      for (const TrackElement& other : point.track) {
+        const int f = static_cast<int>(other.image_id) - 1;
+        if (f != result.initial_frame1 && f != result.initial_frame2) {
+          ++*outside;
+          break;
+        }
+      }
+    }
+    return num_two_view;
+  };
+
+  IncrementalPipelineOptions options;
+  ASSERT_TRUE(options.mapper.ignore_two_view_tracks);  // the default
+  const IncrementalReconstruction ignored =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  options.mapper.ignore_two_view_tracks = false;
+  const IncrementalReconstruction kept =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  for (const IncrementalReconstruction* result : {&ignored, &kept}) {
+    ASSERT_EQ(result->status, ReconstructionStatus::kSuccess);
+    EXPECT_TRUE(result->unregistered_frames.empty());
+    const auto evaluation = Evaluate(*result, scene);
+    ASSERT_TRUE(evaluation.has_value());
+    EXPECT_LT(evaluation->ate_fraction_of_path, 0.01);
+    EXPECT_GE(result->num_global_ba_iterations, result->num_global_ba);
+    EXPECT_GE(result->num_local_ba_iterations, result->num_local_ba);
+  }
+  int outside_ignored = 0, outside_kept = 0;
+  count_two_view(ignored, &outside_ignored);
+  EXPECT_EQ(outside_ignored, 0);
+  EXPECT_GT(count_two_view(kept, &outside_kept), 50);
+  EXPECT_GT(outside_kept, 50);
+  EXPECT_LT(ignored.reconstruction.NumPoints3D(), kept.reconstruction.NumPoints3D());
+}
+
+// A sparsely tracked video: no two frames share the 100 tracks an initial pair needs, so the
+// strict search finds none; the relaxed search (COLMAP's halving) starts a model, and with
+// relax_initial_pair off the result is kNoInitialPair, diagnosed by the strict search.
+TEST(IncrementalPipeline, SparseTracksStartAModelAfterRelaxingTheInitialPair) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kHandHeld;
+  scene_options.num_frames = 12;
+  scene_options.num_points = 90;
+  scene_options.outlier_ratio = 0.05;
+  const SyntheticScene scene = MakeSyntheticScene(scene_options);
+  IncrementalPipelineOptions options;
+  ASSERT_TRUE(options.relax_initial_pair);  // the default
+  const IncrementalReconstruction relaxed =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  ASSERT_EQ(relaxed.status, ReconstructionStatus::kSuccess);
+  EXPECT_GE(relaxed.registered_frames.size(), 10u);
+  const auto evaluation = Evaluate(relaxed, scene);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_LT(evaluation->ate_fraction_of_path, 0.02);
+  // The strict search's verdict is what a failure reports.
+  EXPECT_EQ(relaxed.initial_pair_search.stage,
+            IncrementalMapper::InitialPairSearch::Stage::kSharedTracks);
+
+  options.relax_initial_pair = false;
+  const IncrementalReconstruction strict =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  EXPECT_EQ(strict.status, ReconstructionStatus::kNoInitialPair);
+  EXPECT_EQ(strict.initial_pair_search.stage,
+            IncrementalMapper::InitialPairSearch::Stage::kSharedTracks);
+}
+
 TEST(IncrementalPipeline, PureRotationReportsNoInitialPair) {
   SyntheticSceneOptions scene_options;
   scene_options.motion = SyntheticMotion::kPureRotation;

@@ -92,6 +92,12 @@ TEST(ColmapComparison, RunsBothMappersAndReadsOurModelBackThroughColmap) {
     ASSERT_TRUE(row.rotation_error_deg) << row.method;
     EXPECT_LT(*row.rotation_error_deg, 0.5) << row.method;
   }
+  // Every frame is common to both models here, so the common-frame ATE is the ATE.
+  for (const ColmapComparisonRow& row : comparison.rows) {
+    ASSERT_TRUE(row.common_ate_rmse) << row.method;
+    EXPECT_EQ(row.num_common_frames, 10) << row.method;
+    EXPECT_NEAR(*row.common_ate_rmse, *row.ate_rmse, 1e-12) << row.method;
+  }
   ASSERT_TRUE(ours.wall_time_s && colmap.wall_time_s);
   EXPECT_FALSE(read_back.wall_time_s);
   // COLMAP reads exactly what we wrote.
