@@ -20,6 +20,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "frontend/detector.h"
 
@@ -36,6 +37,11 @@ struct ComicDirectDetectorOptions {
   // Cornerness floor κ >= this (as ComicDetectorOptions::min_cornerness: 0.03 keeps turns of
   // more than ~35°; without it the noise wiggles of straight edges would be corners).
   double min_cornerness = 0.03;
+  // The vertex correction (curve_cornerness.h, RefineCurveCorner) fades out as the arms' RMS
+  // distance from their fitted lines grows from 0.03 px to this (px). Above RefineCurveCorner's
+  // 0.1: the arms of an acute corner on a textured background wiggle by ~0.1 px around the run's
+  // middle levels while the apex lies ~2 px inside the vertex.
+  double max_arm_rms = 0.15;
   // Levels traced on either side of each stable lineage maximum of the tree: the levels whose
   // curves can carry the same corner as the component's MSICS (a run's ρ_w peak may lie a few
   // levels from the component's, since ρ of a segment peaks where its own edge is steepest).
@@ -48,6 +54,13 @@ struct ComicDirectDetectorOptions {
   // κ maxima of consecutive levels (or, with none at the next level, of the one after it) closer
   // than this (px) are the same corner, linked into a run.
   double link_radius = 1.5;
+  // Up to this many consecutive grey levels without the corner's κ maximum are bridged by a link
+  // (noise removes a maximum at a level or two; a level may be traced by neither tree).
+  int max_level_gap = 2;
+  // A run must span at least this many grey levels (first to last member) to give a feature: a κ
+  // maximum seen at one or two levels only is a wiggle of one curve (noise, fine texture), not a
+  // corner of the level lines, and one grey level of noise removes it.
+  int min_run_levels = 3;
   // The levels of a run whose smoothed ρ_w is at least this fraction of the peak's, contiguous
   // with the peak, are equally stable: the feature is the mean of their vertices over a window
   // symmetric about the middle of those levels.
@@ -66,8 +79,27 @@ struct ComicDirectDetectorOptions {
   void Check() const;
 };
 
+// One run of linked κ maxima and what became of it (diagnostics: where repeatability is lost).
+struct ComicDirectRunRecord {
+  enum class Fate { kOutput, kNoStability, kBelowThreshold, kMerged, kThinSide };
+  int tree = 0;         // 0: dark components, 1: bright
+  int first_level = 0;  // grey levels of the run's first and last member
+  int last_level = 0;
+  int peak_level = 0;    // grey level of the smoothed ρ_w peak
+  int window_begin = 0;  // grey levels of the consensus window's ends
+  int window_end = 0;
+  Polarity polarity = Polarity::kNone;
+  cv::Point2f position;     // the feature's position (consensus vertex)
+  cv::Point2f peak_vertex;  // the vertex of the peak member
+  double stability = 0.0;   // smoothed ρ_w at the peak
+  Fate fate = Fate::kOutput;
+};
+
 // Where one detection spent its work (the features do not depend on whether it is asked for).
 struct ComicDirectDetectionStats {
+  // Input: record every run in `runs` (costs memory; off by default).
+  bool record_runs = false;
+  std::vector<ComicDirectRunRecord> runs;
   double trees_ms = 0.0;      // smoothing, both component trees, stable maxima
   double curves_ms = 0.0;     // traced curves, κ maxima
   double stability_ms = 0.0;  // linking, ρ_w of every run member, consensus
