@@ -37,6 +37,8 @@ void ComicDirectDetectorOptions::Check() const {
               "comic: max_level_gap must be >= 0, got " << max_level_gap);
   COMIC_CHECK(min_run_levels >= 1, kInvalidArgument,
               "comic: min_run_levels must be >= 1, got " << min_run_levels);
+  COMIC_CHECK(level_step >= 1 && level_step <= 8, kInvalidArgument,
+              "comic: level_step must be in [1, 8], got " << level_step);
   COMIC_CHECK(link_radius > 0, kInvalidArgument,
               "comic: link_radius must be > 0, got " << link_radius);
   COMIC_CHECK(consensus_fraction >= 0 && consensus_fraction <= 1, kInvalidArgument,
@@ -140,6 +142,7 @@ void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDe
   out->jobs.clear();
   auto add_job = [&](int from_node, int level) {
     if (level < 0 || level > 254) return;
+    if ((tree_index == 1 ? 254 - level : level) % o.level_step != 0) return;
     const int node = level >= tree.Level(from_node) ? tree.AncestorAtLevel(from_node, level)
                                                     : tree.MainDescendantAtLevel(from_node, level);
     if (node < 0 || node == root || tree.Perimeter(node) < 2 * k + 1) return;
@@ -247,7 +250,7 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
 // traced from both trees, or from two components the tree separates but marching squares joins
 // across a saddle): it is neither linked nor a run of its own.
 std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, double radius,
-                                  int max_gap, std::vector<uint8_t>* duplicate) {
+                                  int level_step, int max_gap, std::vector<uint8_t>* duplicate) {
   const int n = static_cast<int>(corners.size());
   const double cell = std::max(radius, 1.0);
   auto cell_of = [cell](float v) { return static_cast<int64_t>(std::floor(v / cell)); };
@@ -302,7 +305,7 @@ std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, doubl
   // traces): with none at the next level, the nearest of the following ones is linked.
   auto following = [&](int i, int direction) {
     for (int step = 1; step <= max_gap + 1; ++step) {
-      const int j = nearest(i, step * direction);
+      const int j = nearest(i, step * direction * level_step);
       if (j >= 0) return j;
     }
     return -1;
@@ -419,7 +422,7 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   // ---- Runs: one corner seen at consecutive levels. ----
   std::vector<uint8_t> duplicate;
   const std::vector<int> next =
-      LinkAcrossLevels(corners, o.link_radius, o.max_level_gap, &duplicate);
+      LinkAcrossLevels(corners, o.link_radius, o.level_step, o.max_level_gap, &duplicate);
   std::vector<uint8_t> has_previous(duplicate);
   for (int j : next) {
     if (j >= 0) has_previous[j] = 1;

@@ -110,6 +110,8 @@ TEST(ComicDirectDetector, NameAndOptionValidation) {
   EXPECT_TRUE(rejects([](Options* o) { o->level_radius = -1; }));
   EXPECT_TRUE(rejects([](Options* o) { o->link_radius = 0; }));
   EXPECT_TRUE(rejects([](Options* o) { o->max_level_gap = -1; }));
+  EXPECT_TRUE(rejects([](Options* o) { o->level_step = 0; }));
+  EXPECT_TRUE(rejects([](Options* o) { o->level_step = 9; }));
   EXPECT_TRUE(rejects([](Options* o) { o->min_run_levels = 0; }));
   EXPECT_TRUE(rejects([](Options* o) { o->max_arm_rms = 0.03; }));
   EXPECT_TRUE(rejects([](Options* o) { o->consensus_fraction = 1.5; }));
