@@ -428,7 +428,7 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     if (j >= 0) has_previous[j] = 1;
   }
   // Members of each run, runs in the order of their first member. A run must span
-  // min_run_levels grey levels: a κ maximum seen at a level or two only is a wiggle of a curve
+  // min_run_levels grey levels: a κ maximum seen at a few levels only is a wiggle of a curve
   // (noise, texture), not a corner of the level lines, and one grey level of noise removes it.
   std::vector<int> run_members;  // concatenated
   std::vector<int> run_begin;    // run r is run_members[run_begin[r], run_begin[r + 1])
