@@ -419,6 +419,56 @@ TEST(ComicDirectDetector, StatisticsCountTheWorkAndLeaveTheFeaturesUnchanged) {
   EXPECT_EQ(none.num_runs, 0);
 }
 
+// The run records (comic_bench's loss split reads them): asking for them changes no feature,
+// every feature is the position of exactly one run recorded as output, and every recorded run
+// spans min_run_levels grey levels.
+TEST(ComicDirectDetector, RunRecordsAccountForEveryFeature) {
+  const cv::Mat image = TexturedScene(11);
+  const ComicDirectDetector detector;
+  ComicDirectDetectionStats stats;
+  stats.record_runs = true;
+  const FeatureSet features = detector.Detect(image, &stats);
+  ExpectIdentical(features, detector.Detect(image));
+  ASSERT_FALSE(features.empty());
+  using Fate = ComicDirectRunRecord::Fate;
+  int output = 0;
+  for (const ComicDirectRunRecord& r : stats.runs) {
+    EXPECT_GE(std::abs(r.last_level - r.first_level) + 1, detector.options().min_run_levels);
+    if (r.fate != Fate::kOutput) continue;
+    ++output;
+    EXPECT_EQ(
+        std::count_if(features.begin(), features.end(),
+                      [&](const Feature& f) { return f.x == r.position.x && f.y == r.position.y; }),
+        1);
+  }
+  EXPECT_EQ(output, static_cast<int>(features.size()));
+  EXPECT_LE(static_cast<int>(stats.runs.size()), stats.num_runs);
+  // Not asked for: nothing recorded.
+  ComicDirectDetectionStats quiet;
+  detector.Detect(image, &quiet);
+  EXPECT_TRUE(quiet.runs.empty());
+}
+
+// Shorter runs are the wiggles of single curves: allowing them adds features, it does not move
+// the ones the default keeps.
+TEST(ComicDirectDetector, ShortRunsAddFeaturesWithoutMovingTheOthers) {
+  const cv::Mat image = TexturedScene(12);
+  ComicDirectDetectorOptions short_runs;
+  short_runs.min_run_levels = 1;
+  const FeatureSet strict = ComicDirectDetector().Detect(image);
+  const FeatureSet loose = ComicDirectDetector(short_runs).Detect(image);
+  EXPECT_GT(loose.size(), strict.size());
+  int kept = 0;
+  for (const Feature& f : strict) {
+    const Feature* g = Nearest(loose, cv::Point2d(f.x, f.y));
+    if (g != nullptr && g->x == f.x && g->y == f.y) ++kept;
+  }
+  // A kept feature may be merged away by a stronger short run within 2 px; most are not.
+  Report("runs of >= 1 level instead of >= 5: features of the default left in place (share)",
+         static_cast<double>(kept) / strict.size());
+  EXPECT_GE(kept, static_cast<int>(0.8 * strict.size()));
+}
+
 TEST(ComicDirectDetector, BoundaryCornersAreTheSameOnDifferentBackgrounds) {
   // The paper's point: the iso-curves of an object's boundary, hence its corners, follow the
   // object whatever the background it is seen against. Under blur a level line's offset from
