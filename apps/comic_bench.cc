@@ -17,6 +17,8 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/shared_flags.h"
@@ -75,6 +77,89 @@ double Repeated(const comic::frontend::FeatureSet& features,
   return count > 0 ? static_cast<double>(repeated) / count : 0.0;
 }
 
+// Where comic's repeatability is lost (docs/comic_detector.md): every feature of `base` (its
+// strongest features, response >= cut, away from the border) not found again within 1 px in
+// `changed` (>= cut) is put in the first class that explains it, using both detections' run
+// records: its place in `changed` holds a feature below the cut (the response cut); a run there
+// was merged into a stronger neighbour or dropped for a thin side; a run of the same polarity
+// and overlapping levels lies within 3 px but its span changed (a run break or extension) or,
+// with the same span, its position moved; no run within 3 px (vanished). Values in points of
+// repeatability (% of the base features).
+struct LossSplit {
+  double cut = 0, merged = 0, thin_side = 0, run_changed = 0, moved = 0, vanished = 0;
+};
+
+LossSplit SplitLosses(const comic::frontend::FeatureSet& base,
+                      const comic::frontend::ComicDirectDetectionStats& base_stats,
+                      const comic::frontend::FeatureSet& changed,
+                      const comic::frontend::ComicDirectDetectionStats& changed_stats,
+                      const cv::Point2f& offset, float cut, const cv::Size& size) {
+  using Fate = comic::frontend::ComicDirectRunRecord::Fate;
+  auto distance = [](const cv::Point2f& a, const cv::Point2f& b) {
+    return std::hypot(a.x - b.x, a.y - b.y);
+  };
+  LossSplit split;
+  int count = 0;
+  for (const comic::frontend::Feature& f : base) {
+    if (f.response < cut) continue;
+    if (f.x < 30 || f.y < 30 || f.x > size.width - 31 || f.y > size.height - 31) continue;
+    ++count;
+    const cv::Point2f want(f.x + offset.x, f.y + offset.y);
+    bool found = false, below = false;
+    for (const comic::frontend::Feature& g : changed) {
+      if (distance({g.x, g.y}, want) <= 1.0) (g.response >= cut ? found : below) = true;
+    }
+    if (found) continue;
+    if (below) {
+      ++split.cut;
+      continue;
+    }
+    const comic::frontend::ComicDirectRunRecord* own = nullptr;
+    for (const auto& r : base_stats.runs) {
+      if (r.fate == Fate::kOutput && r.position.x == f.x && r.position.y == f.y) own = &r;
+    }
+    bool explained = false;
+    for (const auto& r : changed_stats.runs) {
+      if ((r.fate == Fate::kMerged || r.fate == Fate::kThinSide) &&
+          distance(r.position, want) <= 1.0) {
+        ++(r.fate == Fate::kMerged ? split.merged : split.thin_side);
+        explained = true;
+        break;
+      }
+    }
+    if (explained) continue;
+    const comic::frontend::ComicDirectRunRecord* nearest = nullptr;
+    double nearest_distance = 3.0;
+    for (const auto& r : changed_stats.runs) {
+      if (own == nullptr || r.polarity != own->polarity || r.fate == Fate::kNoStability) continue;
+      const int lo = std::min(own->first_level, own->last_level);
+      const int hi = std::max(own->first_level, own->last_level);
+      if (std::max(r.first_level, r.last_level) < lo ||
+          std::min(r.first_level, r.last_level) > hi) {
+        continue;
+      }
+      const double d = distance(r.position, want);
+      if (d <= nearest_distance) {
+        nearest_distance = d;
+        nearest = &r;
+      }
+    }
+    if (nearest == nullptr) {
+      ++split.vanished;
+    } else if (nearest->first_level == own->first_level && nearest->last_level == own->last_level) {
+      ++split.moved;
+    } else {
+      ++split.run_changed;
+    }
+  }
+  const double scale = count > 0 ? 100.0 / count : 0.0;
+  for (double* v : {&split.cut, &split.merged, &split.thin_side, &split.run_changed, &split.moved,
+                    &split.vanished}) {
+    *v *= scale;
+  }
+  return split;
+}
+
 // Repeatability on the same frame under two small changes that leave every corner where it is:
 // Gaussian noise of one grey level (seeded) and a shift by 0.5 px (bilinear). Every detector keeps
 // the same number of features, by one response cut chosen on the frame and applied unchanged to
@@ -97,6 +182,10 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
   table.SetPrecision("noise 1 grey level: repeated within 1 px %", 1);
   table.SetPrecision("0.5 px shift: repeated within 1 px %", 1);
   size_t kept = count > 0 ? static_cast<size_t>(count) : 0;
+  comic::io::ReportTable losses(
+      {"comic: lost to", "noise 1 grey level, points", "0.5 px shift, points"});
+  losses.SetPrecision("noise 1 grey level, points", 1);
+  losses.SetPrecision("0.5 px shift, points", 1);
   for (const std::string name : {"comic", "comic-paper", "harris", "hessian", "fast"}) {
     comic::frontend::DetectorOptions options;
     options.name = name;
@@ -109,6 +198,32 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
                      features.end());
       return features;
     };
+    if (name == "comic") {
+      // The same detector with its runs recorded (the features do not change).
+      const comic::frontend::ComicDirectDetector comic(options.comic);
+      comic::frontend::ComicDirectDetectionStats stats[3];
+      const cv::Mat* images[3] = {&gray, &noisy, &shifted};
+      comic::frontend::FeatureSet found[3];
+      for (int i = 0; i < 3; ++i) {
+        stats[i].record_runs = true;
+        found[i] = comic.Detect(*images[i], &stats[i]);
+      }
+      if (kept == 0) kept = found[0].size();
+      const float cut = found[0].size() > kept && kept > 0 ? found[0][kept - 1].response : -1e30f;
+      const LossSplit on_noisy =
+          SplitLosses(found[0], stats[0], found[1], stats[1], {0, 0}, cut, gray.size());
+      const LossSplit on_shifted =
+          SplitLosses(found[0], stats[0], found[2], stats[2], {0.5f, 0}, cut, gray.size());
+      for (const auto& [what, field] : std::vector<std::pair<std::string, double LossSplit::*>>{
+               {"a feature there, below the response cut", &LossSplit::cut},
+               {"a run there, merged into a stronger feature (2 px)", &LossSplit::merged},
+               {"a run there, < 40 px on a side of its curve", &LossSplit::thin_side},
+               {"its run broken or extended (other levels)", &LossSplit::run_changed},
+               {"its run, same levels, position moved > 1 px", &LossSplit::moved},
+               {"no run within 3 px (vanished)", &LossSplit::vanished}}) {
+        losses.AddRow({what, on_noisy.*field, on_shifted.*field});
+      }
+    }
     comic::frontend::FeatureSet base = detector->Detect(gray);
     if (kept == 0) kept = base.size();
     const float cut = base.size() > kept && kept > 0 ? base[kept - 1].response : -1e30f;
@@ -122,7 +237,8 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
   std::cout << "\nRepeatability on the same frame (features kept: "
             << (count > 0 ? "the " + std::to_string(count) + " strongest" : "CoMIC's count")
             << "):\n\n"
-            << table.ToMarkdown();
+            << table.ToMarkdown() << "\nWhere comic's losses go (points of repeatability):\n\n"
+            << losses.ToMarkdown();
 }
 
 // Matcher speed (issue 15): ms per frame pair for the patch matcher with the radius gate

@@ -27,10 +27,18 @@ void ComicDirectDetectorOptions::Check() const {
               "comic: half_length must be >= 2, got " << half_length);
   COMIC_CHECK(min_cornerness >= 0 && min_cornerness <= 0.25, kInvalidArgument,
               "comic: min_cornerness must be in [0, 0.25], got " << min_cornerness);
+  COMIC_CHECK(max_arm_rms > 0.03, kInvalidArgument,
+              "comic: max_arm_rms must be > 0.03 (where the fade begins), got " << max_arm_rms);
   COMIC_CHECK(level_radius >= 0, kInvalidArgument,
               "comic: level_radius must be >= 0, got " << level_radius);
   COMIC_CHECK(bridge_levels >= 0, kInvalidArgument,
               "comic: bridge_levels must be >= 0, got " << bridge_levels);
+  COMIC_CHECK(max_level_gap >= 0, kInvalidArgument,
+              "comic: max_level_gap must be >= 0, got " << max_level_gap);
+  COMIC_CHECK(min_run_levels >= 1, kInvalidArgument,
+              "comic: min_run_levels must be >= 1, got " << min_run_levels);
+  COMIC_CHECK(level_step >= 1 && level_step <= 8, kInvalidArgument,
+              "comic: level_step must be in [1, 8], got " << level_step);
   COMIC_CHECK(link_radius > 0, kInvalidArgument,
               "comic: link_radius must be > 0, got " << link_radius);
   COMIC_CHECK(consensus_fraction >= 0 && consensus_fraction <= 1, kInvalidArgument,
@@ -57,9 +65,8 @@ constexpr int kMinSidePixels = 40;
 
 // One κ maximum on the curve of one level.
 struct LevelCorner {
-  int tree = 0;        // 0: lower level sets (dark components), 1: upper
-  int tree_level = 0;  // level in the tree's values (consecutive levels are linked)
-  int level = 0;       // grey level I of the image: the curve is at I + 0.5
+  int tree = 0;   // 0: lower level sets (dark components), 1: upper
+  int level = 0;  // grey level I of the image: the curve is at I + 0.5 (runs link these)
   cv::Point2f apex;
   cv::Point2f vertex;
   double cornerness = 0.0;
@@ -135,6 +142,7 @@ void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDe
   out->jobs.clear();
   auto add_job = [&](int from_node, int level) {
     if (level < 0 || level > 254) return;
+    if ((tree_index == 1 ? 254 - level : level) % o.level_step != 0) return;
     const int node = level >= tree.Level(from_node) ? tree.AncestorAtLevel(from_node, level)
                                                     : tree.MainDescendantAtLevel(from_node, level);
     if (node < 0 || node == root || tree.Perimeter(node) < 2 * k + 1) return;
@@ -218,7 +226,6 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
         RefineCurveCorner(samples, curve.closed, ws->kappa, index, corner_options);
     LevelCorner corner;
     corner.tree = job.tree;
-    corner.tree_level = job.level;
     corner.level = upper ? 254 - job.level : job.level;
     corner.apex = refined.apex;
     corner.vertex = refined.vertex;
@@ -234,22 +241,45 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
   }
 }
 
-// Links each κ maximum to the mutually nearest maximum of the next tree level of the same tree
-// and corner polarity within `radius`: next[i] is the index linked after i, or -1.
-std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, double radius) {
+// Links each κ maximum to the mutually nearest maximum of the next grey level with the same
+// corner polarity within `radius`: next[i] is the index linked after i, or -1. A level line's
+// corner is a property of the image, not of the tree whose component it bounds: the same curve is
+// the outer boundary of a dark component at some levels and of a bright one at others (and of both
+// where neither encloses the other), so both trees' maxima are linked on one scale of grey
+// levels. `duplicate[i]` marks a maximum already seen at the same level and place (the same curve
+// traced from both trees, or from two components the tree separates but marching squares joins
+// across a saddle): it is neither linked nor a run of its own.
+std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, double radius,
+                                  int level_step, int max_gap, std::vector<uint8_t>* duplicate) {
   const int n = static_cast<int>(corners.size());
   const double cell = std::max(radius, 1.0);
   auto cell_of = [cell](float v) { return static_cast<int64_t>(std::floor(v / cell)); };
-  auto key = [](int tree, int level, int64_t cx, int64_t cy) {
-    return (((static_cast<int64_t>(tree) * 512 + level) * 65536 + (cx & 0xffff)) << 16) |
-           (cy & 0xffff);
+  auto key = [](int level, int64_t cx, int64_t cy) {
+    return ((static_cast<int64_t>(level + 1024) * 65536 + (cx & 0xffff)) << 16) | (cy & 0xffff);
   };
   std::unordered_map<int64_t, std::vector<int>> grid;
+  duplicate->assign(n, 0);
+
+  constexpr double kSamePlace = 0.05;  // px: the same curve traced twice
   for (int i = 0; i < n; ++i) {
     const LevelCorner& c = corners[i];
-    grid[key(c.tree, c.tree_level, cell_of(c.apex.x), cell_of(c.apex.y))].push_back(i);
+    const int64_t cx = cell_of(c.apex.x), cy = cell_of(c.apex.y);
+    for (int64_t dy = -1; dy <= 1 && !(*duplicate)[i]; ++dy) {
+      for (int64_t dx = -1; dx <= 1 && !(*duplicate)[i]; ++dx) {
+        auto it = grid.find(key(c.level, cx + dx, cy + dy));
+        if (it == grid.end()) continue;
+        for (int j : it->second) {
+          if (corners[j].polarity == c.polarity &&
+              std::hypot(corners[j].apex.x - c.apex.x, corners[j].apex.y - c.apex.y) < kSamePlace) {
+            (*duplicate)[i] = 1;
+            break;
+          }
+        }
+      }
+    }
+    if (!(*duplicate)[i]) grid[key(c.level, cx, cy)].push_back(i);
   }
-  // The nearest maximum at tree level + step (ties: the lower index, the grid lists ascend).
+  // The nearest maximum at level + step (ties: the lower index, the grid lists ascend).
   auto nearest = [&](int i, int step) {
     const LevelCorner& c = corners[i];
     const int64_t cx = cell_of(c.apex.x), cy = cell_of(c.apex.y);
@@ -257,7 +287,7 @@ std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, doubl
     double best_distance = radius;
     for (int64_t dy = -1; dy <= 1; ++dy) {
       for (int64_t dx = -1; dx <= 1; ++dx) {
-        auto it = grid.find(key(c.tree, c.tree_level + step, cx + dx, cy + dy));
+        auto it = grid.find(key(c.level + step, cx + dx, cy + dy));
         if (it == grid.end()) continue;
         for (int j : it->second) {
           if (corners[j].polarity != c.polarity) continue;
@@ -271,14 +301,18 @@ std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, doubl
     }
     return best;
   };
-  // A κ maximum may vanish at one level (noise, a saddle of the curve): with none at the next
-  // level, the one after it is linked.
+  // A κ maximum may vanish at a level or two (noise, a saddle of the curve, a level neither tree
+  // traces): with none at the next level, the nearest of the following ones is linked.
   auto following = [&](int i, int direction) {
-    const int j = nearest(i, direction);
-    return j >= 0 ? j : nearest(i, 2 * direction);
+    for (int step = 1; step <= max_gap + 1; ++step) {
+      const int j = nearest(i, step * direction * level_step);
+      if (j >= 0) return j;
+    }
+    return -1;
   };
   std::vector<int> next(n, -1);
   for (int i = 0; i < n; ++i) {
+    if ((*duplicate)[i]) continue;
     const int j = following(i, 1);
     if (j >= 0 && following(j, -1) == i) next[i] = j;
   }
@@ -321,6 +355,7 @@ struct RunFeature {
   cv::Point2f position;
   double stability = 0.0;
   int member = -1;  // the member whose curve, level and κ the feature carries
+  int record = -1;  // index in ComicDirectDetectionStats::runs (when recorded)
 };
 
 }  // namespace
@@ -332,7 +367,10 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   const ComicDirectDetectorOptions& o = options_;
   ComicDirectDetectionStats local_stats;
   if (stats == nullptr) stats = &local_stats;
+  const bool record_runs = stats->record_runs;
   *stats = ComicDirectDetectionStats();
+  stats->record_runs = record_runs;
+  using Fate = ComicDirectRunRecord::Fate;
   const int k = o.half_length;
   if (gray.cols < 2 * k + 1 || gray.rows < 2 * k + 1) return {};
   auto stage_start = std::chrono::steady_clock::now();
@@ -364,6 +402,7 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   corner_options.arm_end = k;
   corner_options.arm_begin = std::min(4.0, 0.5 * k);
   corner_options.max_vertex_shift = 0.25 * k;
+  corner_options.straight_arms_rms_end = o.max_arm_rms;
   const int num_workers = ResolveNumThreads(o.num_threads, 1 << 20);
   std::vector<CurveWorkspace> workspaces(num_workers);
   std::vector<std::vector<LevelCorner>> per_job(jobs.size());
@@ -380,13 +419,40 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   stats->num_maxima = static_cast<int>(corners.size());
   stats->curves_ms = lap();
 
-  // ---- ρ_w of every maximum (Eq. 1, §2.1 weights), on its own segment. ----
+  // ---- Runs: one corner seen at consecutive levels. ----
+  std::vector<uint8_t> duplicate;
+  const std::vector<int> next =
+      LinkAcrossLevels(corners, o.link_radius, o.level_step, o.max_level_gap, &duplicate);
+  std::vector<uint8_t> has_previous(duplicate);
+  for (int j : next) {
+    if (j >= 0) has_previous[j] = 1;
+  }
+  // Members of each run, runs in the order of their first member. A run must span
+  // min_run_levels grey levels: a κ maximum seen at a few levels only is a wiggle of a curve
+  // (noise, texture), not a corner of the level lines, and one grey level of noise removes it.
+  std::vector<int> run_members;  // concatenated
+  std::vector<int> run_begin;    // run r is run_members[run_begin[r], run_begin[r + 1])
+  for (int start = 0; start < static_cast<int>(corners.size()); ++start) {
+    if (has_previous[start]) continue;
+    ++stats->num_runs;
+    const size_t first = run_members.size();
+    for (int i = start; i >= 0; i = next[i]) run_members.push_back(i);
+    const int span = std::abs(corners[run_members.back()].level - corners[start].level) + 1;
+    if (span < o.min_run_levels) {
+      run_members.resize(first);
+      continue;
+    }
+    run_begin.push_back(static_cast<int>(first));
+  }
+  run_begin.push_back(static_cast<int>(run_members.size()));
+
+  // ---- ρ_w of every member of a run (Eq. 1, §2.1 weights), on its own segment. ----
   WeightedStabilityOptions stability_options;
   stability_options.half_length = k;
   stability_options.sigma = o.scale / kSqrt2;
   stability_options.delta = o.delta;
-  ParallelFor(static_cast<int>(corners.size()), o.num_threads, [&](int i, int worker) {
-    LevelCorner& c = corners[i];
+  ParallelFor(static_cast<int>(run_members.size()), o.num_threads, [&](int i, int worker) {
+    LevelCorner& c = corners[run_members[i]];
     WeightedStabilityEvaluator& evaluator = workspaces[worker].evaluator;
     c.stability = 0.0;
     if (c.segment_centre < 1 || c.segment_centre + 1 >= static_cast<int>(c.segment.size())) return;
@@ -402,20 +468,13 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     }
   });
 
-  // ---- Runs: one corner seen at consecutive levels; one feature per run. ----
-  const std::vector<int> next = LinkAcrossLevels(corners, o.link_radius);
-  std::vector<uint8_t> has_previous(corners.size(), 0);
-  for (int j : next) {
-    if (j >= 0) has_previous[j] = 1;
-  }
+  // ---- One feature per run. ----
   std::vector<RunFeature> features_of_runs;
   std::vector<int> run;
   std::vector<double> smoothed;
-  for (int start = 0; start < static_cast<int>(corners.size()); ++start) {
-    if (has_previous[start]) continue;
-    run.clear();
-    for (int i = start; i >= 0; i = next[i]) run.push_back(i);
-    ++stats->num_runs;
+  for (size_t r_index = 0; r_index + 1 < run_begin.size(); ++r_index) {
+    run.assign(run_members.begin() + run_begin[r_index],
+               run_members.begin() + run_begin[r_index + 1]);
     const int m = static_cast<int>(run.size());
     // ρ_w smoothed across levels ([1 2 1] / 4, ends replicated): one grey level of noise moves a
     // single level's ρ_w, not the run's peak.
@@ -428,6 +487,19 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     int peak = 0;
     for (int r = 1; r < m; ++r) {
       if (smoothed[r] > smoothed[peak]) peak = r;
+    }
+    ComicDirectRunRecord* record = nullptr;
+    if (record_runs) {
+      stats->runs.emplace_back();
+      record = &stats->runs.back();
+      record->tree = corners[run[0]].tree;
+      record->first_level = corners[run[0]].level;
+      record->last_level = corners[run[m - 1]].level;
+      record->peak_level = corners[run[peak]].level;
+      record->polarity = corners[run[0]].polarity;
+      record->peak_vertex = corners[run[peak]].vertex;
+      record->stability = smoothed[peak];
+      record->fate = Fate::kNoStability;
     }
     if (!(smoothed[peak] > 0.0)) continue;
     // Consensus: the levels around the peak that are equally stable (smoothed ρ_w within
@@ -455,6 +527,13 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     f.position = cv::Point2f(static_cast<float>(sum_x / sum_w), static_cast<float>(sum_y / sum_w));
     f.stability = smoothed[peak];
     f.member = run[member];
+    if (record != nullptr) {
+      record->window_begin = corners[run[begin]].level;
+      record->window_end = corners[run[end]].level;
+      record->position = f.position;
+      record->fate = Fate::kBelowThreshold;
+      f.record = static_cast<int>(stats->runs.size()) - 1;
+    }
     // On the response as stored (float), so that a threshold equals a cut of the full output.
     if (static_cast<float>(f.stability) < o.min_stability) continue;
     features_of_runs.push_back(f);
@@ -469,8 +548,14 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
               if (a.position.x != b.position.x) return a.position.x < b.position.x;
               return a.member < b.member;
             });
+  if (record_runs) {
+    for (const RunFeature& f : features_of_runs) stats->runs[f.record].fate = Fate::kMerged;
+  }
   features_of_runs = SuppressNeighbours(std::move(features_of_runs), o.merge_radius,
                                         [](const RunFeature& f) { return f.position; });
+  if (record_runs) {
+    for (const RunFeature& f : features_of_runs) stats->runs[f.record].fate = Fate::kOutput;
+  }
   FeatureSet features(features_of_runs.size());
   ParallelFor(static_cast<int>(features.size()), o.num_threads, [&](int i, int) {
     const RunFeature& r = features_of_runs[i];
@@ -487,16 +572,19 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     const cv::Point centre(static_cast<int>(std::lround(f.x)), static_cast<int>(std::lround(f.y)));
     f.side_mask = ComputeSideMask(image, c.level + 0.5, c.apex, centre);
   });
-  features.erase(std::remove_if(features.begin(), features.end(),
-                                [&](const Feature& f) {
-                                  if (!PatchFits(f, gray.size())) return false;
-                                  const auto count = [&](PatchSide side) {
-                                    return std::count(f.side_mask.begin(), f.side_mask.end(), side);
-                                  };
-                                  return count(PatchSide::kPlus) < kMinSidePixels ||
-                                         count(PatchSide::kMinus) < kMinSidePixels;
-                                }),
-                 features.end());
+  auto thin_side = [&](const Feature& f) {
+    if (!PatchFits(f, gray.size())) return false;
+    const auto count = [&](PatchSide side) {
+      return std::count(f.side_mask.begin(), f.side_mask.end(), side);
+    };
+    return count(PatchSide::kPlus) < kMinSidePixels || count(PatchSide::kMinus) < kMinSidePixels;
+  };
+  if (record_runs) {
+    for (size_t i = 0; i < features.size(); ++i) {
+      if (thin_side(features[i])) stats->runs[features_of_runs[i].record].fate = Fate::kThinSide;
+    }
+  }
+  features.erase(std::remove_if(features.begin(), features.end(), thin_side), features.end());
   SortByResponse(&features);
   stats->output_ms = lap();
   return features;
