@@ -207,6 +207,12 @@ const std::vector<Case> kCases = {
   {"comic_bench", "{d}/good.png --threads 100000", 2, {"--threads", "hardware"}},
   {"comic_bench", "{d}/good.png --runs 0", 2, {"--runs"}},
   {"comic_bench", "{d}/good.png --json {d}/notes.txt/b.json", 1, {"notes.txt", "not a folder"}},
+  {"comic_bench", "{d}/good.png --match-only", 2, {"--match-only", "--match-pair"}},
+  {"comic_bench", "{d}/good.png --match-pair {d}/missing.png --match-only", 1,
+   {"missing.png", "no such file"}},
+  {"comic_bench", "{d}/mismatched/a.png --match-pair {d}/mismatched/b.png", 2,
+   {"b.png", "equal sizes"}},
+  {"comic_bench", "{d}/good.png --keep 1000", 2, {"--keep", "--perturbations"}},
 };
 // clang-format on
 
