@@ -254,51 +254,81 @@ std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, doubl
   const int n = static_cast<int>(corners.size());
   const double cell = std::max(radius, 1.0);
   auto cell_of = [cell](float v) { return static_cast<int64_t>(std::floor(v / cell)); };
-  auto key = [](int level, int64_t cx, int64_t cy) {
-    return ((static_cast<int64_t>(level + 1024) * 65536 + (cx & 0xffff)) << 16) | (cy & 0xffff);
+  // The maxima of each grey level by cell row (`cell` px high), in index order within a row: the
+  // 3 × 3 cells around a point are read from three rows of one level, filtered by column (rows
+  // hold about one maximum a level; a hash map of cells found the same neighbours with more
+  // instructions).
+  constexpr int kLevels = 256;
+  int64_t min_row = 0, max_row = 0;
+  for (int i = 0; i < n; ++i) {
+    const int64_t row = cell_of(corners[i].apex.y);
+    min_row = i == 0 ? row : std::min(min_row, row);
+    max_row = i == 0 ? row : std::max(max_row, row);
+  }
+  const int64_t origin_row = min_row - 1;  // rows origin_row .. max_row + 1 can be asked for
+  const int64_t num_rows = max_row - origin_row + 2;
+  auto bucket = [&](int level, int64_t row) { return level * num_rows + (row - origin_row); };
+  std::vector<int> row_start(kLevels * num_rows + 1, 0);
+  for (int i = 0; i < n; ++i) {
+    const LevelCorner& c = corners[i];
+    if (c.level >= 0 && c.level < kLevels) ++row_start[bucket(c.level, cell_of(c.apex.y)) + 1];
+  }
+  for (size_t b = 1; b < row_start.size(); ++b) row_start[b] += row_start[b - 1];
+  std::vector<int> members(row_start.back());
+  {
+    std::vector<int> fill(row_start.begin(), row_start.end() - 1);
+    for (int i = 0; i < n; ++i) {
+      const LevelCorner& c = corners[i];
+      if (c.level >= 0 && c.level < kLevels)
+        members[fill[bucket(c.level, cell_of(c.apex.y))]++] = i;
+    }
+  }
+  // Calls visit(j) for every maximum j at `level` in the 3 × 3 cells around `c`'s, until it
+  // returns true.
+  auto for_neighbours = [&](const LevelCorner& c, int level, auto&& visit) {
+    if (level < 0 || level >= kLevels) return;
+    const int64_t cx = cell_of(c.apex.x), cy = cell_of(c.apex.y);
+    for (int64_t row = cy - 1; row <= cy + 1; ++row) {
+      if (row < origin_row || row >= origin_row + num_rows) continue;
+      const int64_t b = bucket(level, row);
+      for (int m = row_start[b]; m < row_start[b + 1]; ++m) {
+        const int j = members[m];
+        const int64_t column = cell_of(corners[j].apex.x);
+        if (column < cx - 1 || column > cx + 1) continue;
+        if (visit(j)) return;
+      }
+    }
   };
-  std::unordered_map<int64_t, std::vector<int>> grid;
   duplicate->assign(n, 0);
 
   constexpr double kSamePlace = 0.05;  // px: the same curve traced twice
   for (int i = 0; i < n; ++i) {
     const LevelCorner& c = corners[i];
-    const int64_t cx = cell_of(c.apex.x), cy = cell_of(c.apex.y);
-    for (int64_t dy = -1; dy <= 1 && !(*duplicate)[i]; ++dy) {
-      for (int64_t dx = -1; dx <= 1 && !(*duplicate)[i]; ++dx) {
-        auto it = grid.find(key(c.level, cx + dx, cy + dy));
-        if (it == grid.end()) continue;
-        for (int j : it->second) {
-          if (corners[j].polarity == c.polarity &&
-              std::hypot(corners[j].apex.x - c.apex.x, corners[j].apex.y - c.apex.y) < kSamePlace) {
-            (*duplicate)[i] = 1;
-            break;
-          }
-        }
+    // Against the earlier maxima that are not duplicates themselves.
+    for_neighbours(c, c.level, [&](int j) {
+      if (j >= i || (*duplicate)[j]) return false;
+      if (corners[j].polarity == c.polarity &&
+          std::hypot(corners[j].apex.x - c.apex.x, corners[j].apex.y - c.apex.y) < kSamePlace) {
+        (*duplicate)[i] = 1;
+        return true;
       }
-    }
-    if (!(*duplicate)[i]) grid[key(c.level, cx, cy)].push_back(i);
+      return false;
+    });
   }
-  // The nearest maximum at level + step (ties: the lower index, the grid lists ascend).
+  // The nearest maximum at level + step (ties: the lower index).
   auto nearest = [&](int i, int step) {
     const LevelCorner& c = corners[i];
-    const int64_t cx = cell_of(c.apex.x), cy = cell_of(c.apex.y);
     int best = -1;
     double best_distance = radius;
-    for (int64_t dy = -1; dy <= 1; ++dy) {
-      for (int64_t dx = -1; dx <= 1; ++dx) {
-        auto it = grid.find(key(c.level + step, cx + dx, cy + dy));
-        if (it == grid.end()) continue;
-        for (int j : it->second) {
-          if (corners[j].polarity != c.polarity) continue;
-          const double d = std::hypot(corners[j].apex.x - c.apex.x, corners[j].apex.y - c.apex.y);
-          if (d < best_distance || (d == best_distance && best >= 0 && j < best)) {
-            best_distance = d;
-            best = j;
-          }
-        }
+    for_neighbours(c, c.level + step, [&](int j) {
+      if ((*duplicate)[j] || corners[j].polarity != c.polarity) return false;
+      const double d = std::hypot(corners[j].apex.x - c.apex.x, corners[j].apex.y - c.apex.y);
+      if (d < best_distance || (d == best_distance && best >= 0 && j < best)) {
+        best_distance = d;
+        best = j;
       }
-    }
+      return false;
+    });
     return best;
   };
   // A κ maximum may vanish at a level or two (noise, a saddle of the curve, a level neither tree

@@ -12,35 +12,41 @@ constexpr double kPi = 3.14159265358979323846;
 // Floor division for possibly negative numerators.
 long FloorDiv(long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-constexpr int kChannels = 6;  // 1, x, y, x², xy, y²
+// Channels x, y, x², xy, y² of the moments (the weight channel "1" is an integer count, kept
+// apart in CurveCornerness).
+constexpr long kChannels = 5;
 
-// One box-filter pass of radius r over the six interleaved channels of n samples:
+// Grows `buffer` to at least `size` elements, never shrinking it (a shrink and regrow would zero
+// the regrown part every time a longer curve follows a shorter one), and returns its data.
+template <typename T>
+T* Reserved(std::vector<T>* buffer, size_t size) {
+  if (buffer->size() < size) buffer->resize(size);
+  return buffer->data();
+}
+
+// One box-filter pass of radius r over the interleaved channels of n samples:
 // out[i] = sum of in[i - r .. i + r], truncated at the ends of an open sequence, wrapped around a
-// closed one, through prefix sums. `prefix` is scratch space.
-void BoxPass(const std::vector<double>& in, long n, bool closed, int r, std::vector<double>* prefix,
-             std::vector<double>* out) {
+// closed one, through prefix sums. `p` is scratch space of (n + 1) * C values.
+void BoxPass(const double* x, long n, bool closed, int r, double* p, double* y) {
   constexpr long C = kChannels;
-  prefix->resize((n + 1) * C);
-  out->resize(n * C);
-  double* p = prefix->data();
-  const double* x = in.data();
-  double* y = out->data();
   for (long c = 0; c < C; ++c) p[c] = 0.0;
   for (long i = 0; i < n; ++i) {
     for (long c = 0; c < C; ++c) p[(i + 1) * C + c] = p[i * C + c] + x[i * C + c];
   }
-  if (closed) {
-    const double* total = p + n * C;
-    for (long i = 0; i < n; ++i) {
-      if (i - r >= 0 && i + r + 1 < n) {
-        // No wrap on either side (both wrap counts 0): the same sums as below, where
-        // 0 * total + p is p exactly (up to the sign of a zero, which no later step reads).
-        const double* p_hi = p + (i + r + 1) * C;
-        const double* p_lo = p + (i - r) * C;
-        for (long c = 0; c < C; ++c) y[i * C + c] = p_hi[c] - p_lo[c];
-        continue;
-      }
+  // Samples whose window lies inside [0, n): the same difference for both kinds of curve (for a
+  // closed one both wrap counts are 0, and 0 * total + p is p exactly, up to the sign of a zero,
+  // which no later step reads).
+  const long inner_begin = std::min<long>(r, n);
+  const long inner_end = std::max(inner_begin, n - r - 1);
+  for (long i = inner_begin; i < inner_end; ++i) {
+    const double* p_hi = p + (i + r + 1) * C;
+    const double* p_lo = p + (i - r) * C;
+    for (long c = 0; c < C; ++c) y[i * C + c] = p_hi[c] - p_lo[c];
+  }
+  auto edge = [&](long i) {
+    if (closed) {
       // Sums of in[j mod n] for j in [0, i + r + 1) and [0, i - r).
+      const double* total = p + n * C;
       const long hi = i + r + 1, lo = i - r;
       const long hi_wraps = FloorDiv(hi, n), lo_wraps = FloorDiv(lo, n);
       const double* p_hi = p + (hi - hi_wraps * n) * C;
@@ -48,12 +54,28 @@ void BoxPass(const std::vector<double>& in, long n, bool closed, int r, std::vec
       for (long c = 0; c < C; ++c) {
         y[i * C + c] = (hi_wraps * total[c] + p_hi[c]) - (lo_wraps * total[c] + p_lo[c]);
       }
-    }
-  } else {
-    for (long i = 0; i < n; ++i) {
+    } else {
       const double* p_hi = p + std::min(n, i + r + 1) * C;
       const double* p_lo = p + std::max(0L, i - r) * C;
       for (long c = 0; c < C; ++c) y[i * C + c] = p_hi[c] - p_lo[c];
+    }
+  };
+  for (long i = 0; i < inner_begin; ++i) edge(i);
+  for (long i = inner_end; i < n; ++i) edge(i);
+}
+
+// The same pass on the weight channel (the filtered "1"): integer counts, exact in double, so
+// the doubles the six-channel filter gave are these integers.
+void CountPass(const long* x, long n, bool closed, int r, long* p, long* y) {
+  p[0] = 0;
+  for (long i = 0; i < n; ++i) p[i + 1] = p[i] + x[i];
+  for (long i = 0; i < n; ++i) {
+    if (closed) {
+      const long hi = i + r + 1, lo = i - r;
+      const long hi_wraps = FloorDiv(hi, n), lo_wraps = FloorDiv(lo, n);
+      y[i] = (hi_wraps * p[n] + p[hi - hi_wraps * n]) - (lo_wraps * p[n] + p[lo - lo_wraps * n]);
+    } else {
+      y[i] = p[std::min(n, i + r + 1)] - p[std::max(0L, i - r)];
     }
   }
 }
@@ -139,38 +161,53 @@ void CurveCornerness(const std::vector<cv::Point2f>& points, bool closed, double
   kappa->assign(n, -1.0);
   if (n < 3) return;
   const int r = BoxRadiusForGaussian(sigma);
-  // Channels 1, x, y, x², xy, y² (relative to the first point, for numerical range), interleaved;
-  // the filtered "1" channel normalises truncated windows.
-  std::vector<double>& channels = workspace->channels;
-  channels.resize(static_cast<size_t>(n) * kChannels);
+  // Channels x, y, x², xy, y² (relative to the first point, for numerical range), interleaved.
+  const size_t size = static_cast<size_t>(n) * kChannels;
+  double* channels = Reserved(&workspace->channels, size);
+  double* filtered = Reserved(&workspace->filtered, size);
+  double* prefix = Reserved(&workspace->prefix, size + kChannels);
   const cv::Point2d origin = points[0];
   for (int i = 0; i < n; ++i) {
     const double x = points[i].x - origin.x;
     const double y = points[i].y - origin.y;
-    double* c = &channels[static_cast<size_t>(i) * kChannels];
-    c[0] = 1.0;
-    c[1] = x;
-    c[2] = y;
-    c[3] = x * x;
-    c[4] = x * y;
-    c[5] = y * y;
+    double* c = channels + static_cast<size_t>(i) * kChannels;
+    c[0] = x;
+    c[1] = y;
+    c[2] = x * x;
+    c[3] = x * y;
+    c[4] = y * y;
   }
   for (int pass = 0; pass < 3; ++pass) {
-    BoxPass(channels, n, closed, r, &workspace->prefix, &workspace->filtered);
-    channels.swap(workspace->filtered);
+    BoxPass(channels, n, closed, r, prefix, filtered);
+    std::swap(channels, filtered);
   }
+  // The filtered weight normalises truncated windows: (2r + 1)³ wherever the window is whole (a
+  // closed curve always), fewer near the ends of an open one.
+  const long whole = static_cast<long>(2 * r + 1) * (2 * r + 1) * (2 * r + 1);
+  long* counts = nullptr;
+  if (!closed) {
+    long* ones = Reserved(&workspace->counts, 3 * static_cast<size_t>(n) + 1);
+    long* scratch = ones + n;
+    counts = scratch + n + 1;
+    std::fill(ones, ones + n, 1L);
+    for (int pass = 0; pass < 3; ++pass) {
+      CountPass(ones, n, closed, r, scratch, counts);
+      std::copy(counts, counts + n, ones);
+    }
+  }
+  double* k = kappa->data();
   for (int i = 0; i < n; ++i) {
     if (!closed && (i < min_support || i > n - 1 - min_support)) continue;
-    const double* c = &channels[static_cast<size_t>(i) * kChannels];
-    const double w = c[0];
-    const double mx = c[1] / w;
-    const double my = c[2] / w;
-    const double sxx = c[3] / w - mx * mx;
-    const double sxy = c[4] / w - mx * my;
-    const double syy = c[5] / w - my * my;
+    const double* c = channels + static_cast<size_t>(i) * kChannels;
+    const double w = static_cast<double>(closed ? whole : counts[i]);
+    const double mx = c[0] / w;
+    const double my = c[1] / w;
+    const double sxx = c[2] / w - mx * mx;
+    const double sxy = c[3] / w - mx * my;
+    const double syy = c[4] / w - my * my;
     const double trace = sxx + syy;
     const double det = sxx * syy - sxy * sxy;
-    (*kappa)[i] = trace > 1e-12 ? std::clamp(det / (trace * trace), 0.0, 0.25) : 0.0;
+    k[i] = trace > 1e-12 ? std::clamp(det / (trace * trace), 0.0, 0.25) : 0.0;
   }
 }
 
@@ -192,12 +229,19 @@ std::vector<int> CornernessMaxima(const std::vector<double>& kappa, bool closed,
     if (kappa[j] < 0) return true;
     return offset < 0 ? kappa[j] < k : kappa[j] <= k;
   };
+  const double* values = kappa.data();
   for (int i = 0; i < n; ++i) {
-    const double k = kappa[i];
+    const double k = values[i];
     if (k < 0 || k < min_cornerness) continue;
     // Nearest neighbours first: most samples are rejected by an adjacent one.
     bool is_max = true;
-    for (int d = 1; d <= radius && is_max; ++d) is_max = allows(i, -d, k) && allows(i, d, k);
+    if (i >= radius && i + radius < n) {
+      // Every neighbour inside the curve, none wrapped onto i: allows() reduces to the
+      // comparisons (a neighbour without κ, -1, is below k >= 0 either way).
+      for (int d = 1; d <= radius && is_max; ++d) is_max = values[i - d] < k && values[i + d] <= k;
+    } else {
+      for (int d = 1; d <= radius && is_max; ++d) is_max = allows(i, -d, k) && allows(i, d, k);
+    }
     if (is_max) maxima.push_back(i);
   }
   return maxima;

@@ -44,6 +44,7 @@ struct CornernessWorkspace {
   std::vector<double> channels;
   std::vector<double> prefix;
   std::vector<double> filtered;
+  std::vector<long> counts;
 };
 // The same, into *kappa, with reused buffers.
 void CurveCornerness(const std::vector<cv::Point2f>& points, bool closed, double sigma,

@@ -44,7 +44,12 @@ cv::Point2f IsoCurveTracer::Crossing(const CurveEdge& edge) const {
   if (!forward) t = -t;
   const cv::Point a = edge.inside + t;   // ahead of the inside pixel
   const cv::Point b = edge.outside + t;  // ahead of the outside pixel
-  if (!InDomain(a) || !InDomain(b)) return false;
+  // The edge's pixels are in the domain and t is perpendicular to d, so a and b share the one
+  // coordinate that moved: a single compare decides whether both are in.
+  const bool ahead_in_domain =
+      t.x != 0 ? static_cast<unsigned>(a.x - domain_.x) < static_cast<unsigned>(domain_.width)
+               : static_cast<unsigned>(a.y - domain_.y) < static_cast<unsigned>(domain_.height);
+  if (!ahead_in_domain) return false;
   const bool a_inside = IsInside(a);
   const bool b_inside = IsInside(b);
   if (!a_inside) {
@@ -78,14 +83,12 @@ void IsoCurveTracer::Trace(const CurveEdge& seed, int max_points_each_way, IsoCu
     edge = next;
   }
   if (curve->closed) {
-    // A closed curve: restart from the seed going forward so that the order is the natural one.
-    edges.clear();
-    edge = seed;
+    // A closed curve, in the natural order: the seed, then going forward. A step is reversible
+    // (both directions pair the crossings of a cell alike, saddles included, by the same four
+    // values), so the backward walk already visited every crossing of the loop: reversed, it is
+    // the forward walk, and the loop need not be traced a second time.
     edges.push_back(seed);
-    while (Step(edge, true, &next) && !(next == seed)) {
-      edges.push_back(next);
-      edge = next;
-    }
+    std::reverse(edges.begin(), edges.end());
     curve->seed_index = 0;
   } else {
     std::reverse(edges.begin(), edges.end());
@@ -98,8 +101,19 @@ void IsoCurveTracer::Trace(const CurveEdge& seed, int max_points_each_way, IsoCu
       edge = next;
     }
   }
-  curve->points.resize(edges.size());
-  for (size_t i = 0; i < edges.size(); ++i) curve->points[i] = Crossing(edges[i]);
+  // The crossings (Crossing's expression, inlined: it runs once per point of every curve).
+  const size_t count = edges.size();
+  curve->points.resize(count);
+  cv::Point2f* points = curve->points.data();
+  const CurveEdge* e = edges.data();
+  for (size_t i = 0; i < count; ++i) {
+    const double v_in = Value(e[i].inside);
+    const double v_out = Value(e[i].outside);
+    const double t = (threshold_ - v_in) / (v_out - v_in);
+    points[i] =
+        cv::Point2f(static_cast<float>(e[i].inside.x + t * (e[i].outside.x - e[i].inside.x)),
+                    static_cast<float>(e[i].inside.y + t * (e[i].outside.y - e[i].inside.y)));
+  }
 }
 
 bool IsoCurveTracer::FindNearestCrossing(const cv::Point2f& point, int radius,
@@ -183,7 +197,8 @@ std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points
   if (closed) {
     const int n = std::max(3, static_cast<int>(std::lround(length / spacing)));
     const double step = length / n;
-    samples.reserve(n);
+    samples.resize(n);
+    cv::Point2f* out = samples.data();
     // The segment of each sample as Interpolate finds it (the last vertex at or before s), by a
     // walk instead of a binary search while s increases (it wraps at most once, for an origin
     // other than 0): the same segment, hence the same point.
@@ -206,8 +221,8 @@ std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points
       const double t =
           segment_length > 0 ? std::clamp((s - cumulative[i]) / segment_length, 0.0, 1.0) : 0.0;
       const cv::Point2f& a = points[i];
-      const cv::Point2f& b = points[(i + 1) % num_points];
-      samples.emplace_back(static_cast<float>(a.x + t * (b.x - a.x)),
+      const cv::Point2f& b = points[i + 1 == num_points ? 0 : i + 1];
+      out[k] = cv::Point2f(static_cast<float>(a.x + t * (b.x - a.x)),
                            static_cast<float>(a.y + t * (b.y - a.y)));
     }
     return samples;
@@ -218,7 +233,8 @@ std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points
   const int k_last =
       std::min(max_after, static_cast<int>(std::floor((length + kSlack - origin) / spacing)));
   if (k_last < k_first) return samples;
-  samples.reserve(k_last - k_first + 1);
+  samples.resize(k_last - k_first + 1);
+  cv::Point2f* out = samples.data();
   // Arc lengths increase with k: walk the segments once.
   size_t segment = 0;
   const size_t last_segment = points.size() - 2;
@@ -230,8 +246,8 @@ std::vector<cv::Point2f> ResamplePolyline(const std::vector<cv::Point2f>& points
         segment_length > 0 ? std::clamp((s - cumulative[segment]) / segment_length, 0.0, 1.0) : 0.0;
     const cv::Point2f& a = points[segment];
     const cv::Point2f& b = points[segment + 1];
-    samples.emplace_back(static_cast<float>(a.x + t * (b.x - a.x)),
-                         static_cast<float>(a.y + t * (b.y - a.y)));
+    out[k - k_first] = cv::Point2f(static_cast<float>(a.x + t * (b.x - a.x)),
+                                   static_cast<float>(a.y + t * (b.y - a.y)));
   }
   if (origin_index) *origin_index = std::max(0, -k_first);
   return samples;
