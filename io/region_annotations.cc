@@ -175,8 +175,11 @@ cv::Mat RasterizeRegion(const RegionPolygon& polygon, const cv::Size& source_siz
     std::sort(crossings.begin(), crossings.end());
     uint8_t* row = mask.ptr<uint8_t>(y);
     for (size_t k = 0; k + 1 < crossings.size(); k += 2) {
-      const int x0 = std::max(0, static_cast<int>(std::ceil(crossings[k])));
-      const int x1 = std::min(mask.cols, static_cast<int>(std::ceil(crossings[k + 1])));
+      // Clamp in double first: a crossing far outside the image (a vertex at 1e10 in a region
+      // file) does not fit an int, and converting it would be undefined behaviour.
+      const double cols = mask.cols;
+      const int x0 = static_cast<int>(std::clamp(std::ceil(crossings[k]), 0.0, cols));
+      const int x1 = static_cast<int>(std::clamp(std::ceil(crossings[k + 1]), 0.0, cols));
       for (int x = x0; x < x1; ++x) row[x] = 255;
     }
   }

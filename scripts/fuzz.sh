@@ -5,6 +5,7 @@
 #   scripts/fuzz.sh TARGET SECONDS    # fuzz one target, e.g. fuzz_regions 600
 #   scripts/fuzz.sh --all SECONDS     # every target in turn (CI: 20 s each)
 #   scripts/fuzz.sh --list            # the targets
+#   COMIC_FUZZ_SEED=N scripts/fuzz.sh ...   # another seed than 1 (long runs: vary it)
 #
 # Seeds come from fuzz/corpus/TARGET/ (made from the bundled example); inputs that reach new code
 # are kept in build-fuzz/corpus/TARGET/, crashes in build-fuzz/artifacts/TARGET/ (the script
@@ -49,7 +50,10 @@ for target in "${selected[@]}"; do
   mkdir -p "$corpus" "$artifacts"
   log="$build_dir/$target.log"
   # -rss_limit_mb: a single input may not take more than 2.5 GB; -timeout: nor 25 s.
-  if ! "$build_dir/fuzz/$target" -max_total_time="$seconds" -rss_limit_mb=2560 -timeout=25 \
+  # -seed: a fixed seed (COMIC_FUZZ_SEED, default 1) makes a CI run repeatable: the inputs it
+  # tries are the same on every machine, only how far it gets in SECONDS differs.
+  if ! "$build_dir/fuzz/$target" -max_total_time="$seconds" -seed="${COMIC_FUZZ_SEED:-1}" \
+      -rss_limit_mb=2560 -timeout=25 \
       -print_final_stats=1 -artifact_prefix="$artifacts/" "$corpus" "fuzz/corpus/$target" \
       >"$log" 2>&1; then
     tail -n 40 "$log" >&2

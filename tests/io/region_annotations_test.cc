@@ -101,6 +101,18 @@ TEST(RegionAnnotations, RasterizesRotatedPolygonsByPixelCentres) {
   EXPECT_NEAR(cv::countNonZero(mask), 200, 20);
 }
 
+TEST(RegionAnnotations, RasterizesPolygonsReachingFarOutsideTheImage) {
+  // A vertex far beyond int's range (found by fuzz_regions: "1e10" in a region file) clips to the
+  // image instead of overflowing: the triangle covers the whole right part of rows it crosses.
+  const RegionPolygon huge = {{10, 0}, {1e10, 5}, {10, 10}};
+  const cv::Mat mask = RasterizeRegion(huge, {40, 40}, {40, 40});
+  EXPECT_EQ(mask.at<uint8_t>(5, 39), 255);
+  EXPECT_EQ(mask.at<uint8_t>(5, 9), 0);
+  EXPECT_EQ(mask.at<uint8_t>(20, 20), 0);
+  const RegionPolygon left = {{-1e12, 0}, {5, 5}, {-1e12, 10}};
+  EXPECT_EQ(RasterizeRegion(left, {40, 40}, {40, 40}).at<uint8_t>(5, 0), 255);
+}
+
 TEST(RegionAnnotations, ReadsTheSharedTrackingSequences) {
   COMIC_REQUIRE_SHARED_DATA();
   const std::string data = test::SharedDataDir();
