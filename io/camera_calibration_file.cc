@@ -62,6 +62,34 @@ std::vector<std::pair<int, std::vector<std::string>>> ContentLines(const std::st
   return lines;
 }
 
+// Reads a small matrix node (an !!opencv-matrix map or a plain sequence of numbers). OpenCV's own
+// reader trusts the node's rows and cols and allocates rows x cols before it looks at the data, so
+// a garbled size ("cols: ls: 5") asks for tens of GB: check the shape against the data first.
+cv::Mat ReadSmallMatrix(const cv::FileNode& node, const std::string& path, const char* name) {
+  constexpr int kMaxElements = 16;
+  cv::Mat matrix;
+  if (node.empty() || node.isNone()) return matrix;
+  if (node.isSeq()) {
+    COMIC_CHECK(node.size() <= static_cast<size_t>(kMaxElements), kInvalidData,
+                path << ": " << name << " has " << node.size() << " values (at most "
+                     << kMaxElements << " expected)");
+  } else {
+    COMIC_CHECK(
+        node.isMap() && node["rows"].isInt() && node["cols"].isInt() && node["data"].isSeq(),
+        kInvalidData, path << ": " << name << " is not a matrix (rows, cols, dt, data)");
+    const int rows = static_cast<int>(node["rows"]);
+    const int cols = static_cast<int>(node["cols"]);
+    COMIC_CHECK(rows >= 1 && cols >= 1 && rows <= kMaxElements && cols <= kMaxElements &&
+                    rows * cols <= kMaxElements &&
+                    node["data"].size() == static_cast<size_t>(rows * cols),
+                kInvalidData,
+                path << ": " << name << " is " << rows << " x " << cols << " with "
+                     << node["data"].size() << " values");
+  }
+  node >> matrix;
+  return matrix;
+}
+
 CameraCalibration ReadOpenCvFile(const std::string& path) {
   cv::FileStorage storage;
   try {
@@ -75,8 +103,9 @@ CameraCalibration ReadOpenCvFile(const std::string& path) {
   cv::Mat camera_matrix, distortion;
   int width = 0, height = 0;
   try {
-    storage["camera_matrix"] >> camera_matrix;
-    storage["distortion_coefficients"] >> distortion;
+    camera_matrix = ReadSmallMatrix(storage["camera_matrix"], path, "camera_matrix");
+    distortion =
+        ReadSmallMatrix(storage["distortion_coefficients"], path, "distortion_coefficients");
     if (!storage["image_width"].empty()) storage["image_width"] >> width;
     if (!storage["image_height"].empty()) storage["image_height"] >> height;
   } catch (const cv::Exception&) {

@@ -104,7 +104,19 @@ TEST(CameraCalibrationFile, RefusesOpenCvFilesTheModelsCannotHold) {
   EXPECT_NE(ErrorOf(dir.File("nomatrix.yml")).find("camera_matrix"), std::string::npos);
   Write(dir.File("broken.yml"), "%YAML:1.0\n---\ncamera_matrix: [1, 2\n  : :\n");
   EXPECT_NE(ErrorOf(dir.File("broken.yml")).find("broken.yml"), std::string::npos);
-  for (const std::string name : {"k3.yml", "three.yml", "nomatrix.yml", "broken.yml"}) {
+  // A garbled size (found by fuzz_ground_truth): OpenCV alone would try to allocate 48 GB.
+  Write(dir.File("hugecols.yml"),
+        "%YAML:1.0\n---\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: ls: 5\n"
+        "   dt: d\n   data: [ -0.05, 0.01, 0.001, -0.002, 0. ]\n");
+  EXPECT_NE(ErrorOf(dir.File("hugecols.yml")).find("camera_matrix"), std::string::npos)
+      << ErrorOf(dir.File("hugecols.yml"));
+  Write(dir.File("wrongcount.yml"),
+        "%YAML:1.0\n---\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n"
+        "   dt: d\n   data: [ 1, 0, 0 ]\n");
+  EXPECT_NE(ErrorOf(dir.File("wrongcount.yml")).find("3 x 3 with 3 values"), std::string::npos)
+      << ErrorOf(dir.File("wrongcount.yml"));
+  for (const std::string name :
+       {"k3.yml", "three.yml", "nomatrix.yml", "broken.yml", "hugecols.yml", "wrongcount.yml"}) {
     EXPECT_EQ(ErrorOf(dir.File(name)).find('\n'), std::string::npos) << name;  // one line
   }
 }
