@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
 #include <opencv2/core.hpp>
 #include <sstream>
@@ -94,7 +95,9 @@ CameraCalibration ReadOpenCvFile(const std::string& path) {
   cv::FileStorage storage;
   try {
     storage.open(path, cv::FileStorage::READ);
-  } catch (const cv::Exception&) {
+  } catch (const std::exception&) {
+    // cv::Exception, and what OpenCV's parser lets through from below it (an empty YAML key
+    // throws std::length_error from std::string, found by fuzz_ground_truth).
     throw Error(ErrorKind::kInvalidData,
                 path + ": not a readable OpenCV FileStorage (YAML/XML) file");
   }
@@ -108,7 +111,9 @@ CameraCalibration ReadOpenCvFile(const std::string& path) {
         ReadSmallMatrix(storage["distortion_coefficients"], path, "distortion_coefficients");
     if (!storage["image_width"].empty()) storage["image_width"] >> width;
     if (!storage["image_height"].empty()) storage["image_height"] >> height;
-  } catch (const cv::Exception&) {
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception&) {
     throw Error(ErrorKind::kInvalidData,
                 path + ": camera_matrix or distortion_coefficients is not a matrix of numbers");
   }

@@ -115,8 +115,13 @@ TEST(CameraCalibrationFile, RefusesOpenCvFilesTheModelsCannotHold) {
         "   dt: d\n   data: [ 1, 0, 0 ]\n");
   EXPECT_NE(ErrorOf(dir.File("wrongcount.yml")).find("3 x 3 with 3 values"), std::string::npos)
       << ErrorOf(dir.File("wrongcount.yml"));
-  for (const std::string name :
-       {"k3.yml", "three.yml", "nomatrix.yml", "broken.yml", "hugecols.yml", "wrongcount.yml"}) {
+  // An empty key: OpenCV's YAML parser throws std::length_error, not cv::Exception.
+  Write(dir.File("emptykey.yml"),
+        "%YAML:1.0\n---\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+        "   \n   : [ 1., 0., 2., 0., 1., 2., 0., 0., 1. ]\n");
+  EXPECT_NE(ErrorOf(dir.File("emptykey.yml")).find("emptykey.yml"), std::string::npos);
+  for (const std::string name : {"k3.yml", "three.yml", "nomatrix.yml", "broken.yml",
+                                 "hugecols.yml", "wrongcount.yml", "emptykey.yml"}) {
     EXPECT_EQ(ErrorOf(dir.File(name)).find('\n'), std::string::npos) << name;  // one line
   }
 }
