@@ -1,6 +1,7 @@
 // Fuzz target: image decoding (OpenCV's codecs through cv::imdecode, as cv::imread uses them) and
 // our conversion to 8-bit grey, then every detector of the factory on the decoded image. Images
 // are capped at 160x160 pixels after decoding so that one input takes milliseconds, not seconds.
+#include <cstdio>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -39,7 +40,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       const auto detector = comic::frontend::MakeDetector(name);
       const comic::frontend::FeatureSet features = detector->Detect(gray);
       for (const comic::frontend::Feature& f : features) {
-        if (!(f.x >= -1 && f.x <= gray.cols && f.y >= -1 && f.y <= gray.rows)) __builtin_trap();
+        if (!(f.x >= -1 && f.x <= gray.cols && f.y >= -1 && f.y <= gray.rows)) {
+          std::fprintf(stderr,
+                       "fuzz_image_detectors: %s put a feature at (%g, %g) in a %dx%d image\n",
+                       name.c_str(), f.x, f.y, gray.cols, gray.rows);
+          __builtin_trap();
+        }
       }
     } catch (const comic::Error&) {
     }

@@ -90,7 +90,9 @@ struct ComicDirectDetectorOptions {
 
 // One run of linked κ maxima and what became of it (diagnostics: where repeatability is lost).
 struct ComicDirectRunRecord {
-  enum class Fate { kOutput, kNoStability, kBelowThreshold, kMerged, kThinSide };
+  // kOutsideImage: the run's consensus position (an extrapolated vertex near the border) lies
+  // outside the image's pixel area.
+  enum class Fate { kOutput, kNoStability, kBelowThreshold, kMerged, kThinSide, kOutsideImage };
   int tree = 0;         // 0: dark components, 1: bright
   int first_level = 0;  // grey levels of the run's first and last member
   int last_level = 0;

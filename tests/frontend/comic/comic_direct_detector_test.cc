@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/error.h"
@@ -608,10 +610,46 @@ TEST(ComicDirectDetector, BundledKittiFrame) {
   const FeatureSet features = ComicDirectDetector(options).Detect(frame.gray);
   EXPECT_GT(features.size(), 500u);
   int bright = 0;
-  for (const Feature& f : features) bright += f.polarity == Polarity::kBright;
+  for (const Feature& f : features) {
+    bright += f.polarity == Polarity::kBright;
+    // Inside the pixel area (before the check, one corner near the top came out at y = -0.85).
+    EXPECT_TRUE(f.x >= -0.5f && f.y >= -0.5f && f.x <= frame.gray.cols - 0.5f &&
+                f.y <= frame.gray.rows - 0.5f)
+        << f.x << ", " << f.y;
+  }
   // Both polarities occur in a real scene.
   EXPECT_GT(bright, static_cast<int>(features.size()) / 5);
   EXPECT_LT(bright, static_cast<int>(features.size()) * 4 / 5);
+}
+
+// fuzz_image_detectors found a 64x48 JPEG (corrupt, but OpenCV decodes it) whose corner near the
+// left border was extrapolated to x = -1.8; such corners are dropped, and the record says why.
+TEST(ComicDirectDetector, CornersExtrapolatedOutsideTheImageAreDropped) {
+  const std::string path =
+      test::SourceDir() + "/fuzz/corpus/fuzz_image_detectors/corner_outside_image.jpg";
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)),
+                                   std::istreambuf_iterator<char>());
+  ASSERT_FALSE(bytes.empty()) << path;
+  const cv::Mat gray = io::ToGray8(cv::imdecode(bytes, cv::IMREAD_UNCHANGED));
+  ASSERT_EQ(gray.size(), cv::Size(64, 48));
+  const ComicDirectDetector detector;
+  ComicDirectDetectionStats stats;
+  stats.record_runs = true;
+  const FeatureSet features = detector.Detect(gray, &stats);
+  for (const Feature& f : features) {
+    EXPECT_TRUE(f.x >= -0.5f && f.y >= -0.5f && f.x <= 63.5f && f.y <= 47.5f) << f.x << ", " << f.y;
+  }
+  using Fate = ComicDirectRunRecord::Fate;
+  const auto outside =
+      std::count_if(stats.runs.begin(), stats.runs.end(),
+                    [](const ComicDirectRunRecord& r) { return r.fate == Fate::kOutsideImage; });
+  EXPECT_GE(outside, 1);
+  for (const ComicDirectRunRecord& r : stats.runs) {
+    if (r.fate != Fate::kOutsideImage) continue;
+    EXPECT_TRUE(r.position.x < -0.5f || r.position.y < -0.5f || r.position.x > 63.5f ||
+                r.position.y > 47.5f);
+  }
 }
 
 TEST(ComicDirectDetector, ConesCornersLieOnSilhouettesAndInside) {
