@@ -60,8 +60,9 @@ int Run(int argc, char** argv) {
   fe::StereoEvaluationOptions options;
   options.detectors.comic.num_threads = 0;  // one per core: the output does not depend on it
   std::string methods =
-      "comic/split,comic/like-sides,comic/full,comic/calibrated,harris/full,harris/calibrated,"
-      "hessian/full,hessian/calibrated,mser/full,fast/full,fast/calibrated";
+      "comic/split,comic/like-sides,comic/full,comic/calibrated,comic-paper/split,comic-paper/full,"
+      "harris/full,harris/calibrated,hessian/full,hessian/calibrated,mser/full,fast/full,"
+      "fast/calibrated";
   std::string counts = "0,1000";
   std::string sensitivity = "200,400,800";
   std::string repeatability = "1,1.5,2.5";

@@ -123,7 +123,8 @@ cv::Mat OverlayMosaic(const fe::TrackEvaluation& evaluation, const comic::io::Fr
 
 int Run(int argc, char** argv) {
   std::string frames_path, region_format = "auto";
-  std::string detector_list = "comic,harris,hessian,mser,fast";
+  // Both CoMIC searches by default (issue 14): the direct search and Algorithm 1 side by side.
+  std::string detector_list = "comic,comic-paper,harris,hessian,mser,fast";
   std::string comic_matchers = "split,like-sides,full,calibrated";
   std::string baseline_matchers = "full";
   std::string poses_file, calib_file, out_dir = "track_eval";
