@@ -28,10 +28,10 @@
 #include "frontend/detector_factory.h"
 #include "frontend/matching/patch_matcher.h"
 #include "frontend/parallel_for.h"
-#include "io/error.h"
-#include "io/file_utils.h"
-#include "io/image_io.h"
-#include "io/report_table.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/image/image_io.h"
+#include "io/report/report_table.h"
 
 namespace {
 

@@ -13,12 +13,12 @@
 #include "apps/common/thread_count.h"
 #include "frontend/comic/comic_detector.h"
 #include "frontend/comic/comic_direct_detector.h"
-#include "io/error.h"
-#include "io/file_utils.h"
-#include "io/image_io.h"
-#include "io/interrupt_cleanup.h"
-#include "io/pixel_budget.h"
-#include "io/staged_files.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/core/interrupt_cleanup.h"
+#include "io/core/pixel_budget.h"
+#include "io/core/staged_files.h"
+#include "io/image/image_io.h"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
 #include "apps/common/shared_flags.h"
-#include "io/error.h"
-#include "io/file_utils.h"
-#include "io/image_sequence.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/image/image_sequence.h"
 
 namespace {
 

@@ -14,12 +14,12 @@
 #include "frontend/evaluation/stereo_evaluation.h"
 #include "frontend/evaluation/stereo_evaluation_report.h"
 #include "frontend/evaluation/stereo_match_figure.h"
-#include "io/error.h"
-#include "io/file_utils.h"
-#include "io/image_io.h"
-#include "io/interrupt_cleanup.h"
-#include "io/middlebury.h"
-#include "io/staged_folder.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/core/interrupt_cleanup.h"
+#include "io/core/staged_folder.h"
+#include "io/datasets/middlebury.h"
+#include "io/image/image_io.h"
 
 namespace {
 

@@ -15,26 +15,35 @@ endif()
 # common room that may see the detectors it constructs.
 set(layers
   frontend/detector_factory frontend/comic frontend/baselines frontend/matching
-  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm apps python io)
+  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm apps python
+  io/core io/image io/colmap io/report io/datasets io)
 
 # What each layer may include (besides itself).
-set(allowed_io "")
-set(allowed_frontend io)
-set(allowed_frontend/comic io frontend)
-set(allowed_frontend/baselines io frontend)
-set(allowed_frontend/detector_factory io frontend frontend/comic frontend/baselines)
-set(allowed_frontend/matching io frontend frontend/comic frontend/baselines
+# io/'s rooms: core (errors, files, staged outputs) under everything; image, colmap and report
+# side by side on core; datasets (ground truth and calibration files) over image and colmap.
+set(allowed_io/core "")
+set(allowed_io/image io/core)
+set(allowed_io/colmap io/core)
+set(allowed_io/report io/core)
+set(allowed_io/datasets io/core io/image io/colmap)
+set(io_all io/core io/image io/colmap io/report io/datasets)
+set(allowed_io ${io_all})
+set(allowed_frontend ${io_all})
+set(allowed_frontend/comic ${io_all} frontend)
+set(allowed_frontend/baselines ${io_all} frontend)
+set(allowed_frontend/detector_factory ${io_all} frontend frontend/comic frontend/baselines)
+set(allowed_frontend/matching ${io_all} frontend frontend/comic frontend/baselines
   frontend/detector_factory)
-set(allowed_frontend/evaluation io frontend frontend/comic frontend/baselines
+set(allowed_frontend/evaluation ${io_all} frontend frontend/comic frontend/baselines
   frontend/detector_factory frontend/matching)
 set(frontend_all frontend frontend/comic frontend/baselines frontend/detector_factory
   frontend/matching frontend/evaluation)
-set(allowed_sfm io ${frontend_all})
-set(allowed_sfm/evaluation io ${frontend_all} sfm)
-set(allowed_sfm/colmap io ${frontend_all} sfm sfm/evaluation)
-set(allowed_apps io ${frontend_all} sfm sfm/evaluation sfm/colmap)
+set(allowed_sfm ${io_all} ${frontend_all})
+set(allowed_sfm/evaluation ${io_all} ${frontend_all} sfm)
+set(allowed_sfm/colmap ${io_all} ${frontend_all} sfm sfm/evaluation)
+set(allowed_apps ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap)
 # The Python bindings sit where the apps do: over every library, under nothing.
-set(allowed_python io ${frontend_all} sfm sfm/evaluation sfm/colmap)
+set(allowed_python ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap)
 
 function(layer_of path out)
   foreach(layer ${layers})

@@ -14,7 +14,7 @@ function(comic_add_library)
   add_library(${ARG_NAME} STATIC ${ARG_SRCS})
   # In the tree, headers are found as "io/...", "frontend/...", "sfm/..."; once installed they live
   # under include/comic/ (cmake/ComicInstall.cmake), so a consumer's -I<prefix>/include never lets
-  # our io/error.h shadow one of its own.
+  # our io/core/error.h shadow one of its own.
   target_include_directories(${ARG_NAME} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
                                                 $<INSTALL_INTERFACE:include>)
   # Position-independent, so the archives link into the Python module (python/) and into a

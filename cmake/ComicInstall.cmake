@@ -6,8 +6,8 @@
 #   P/lib/cmake/comic/comicConfig.cmake       find_package(comic) -> comic::io, comic::frontend,
 #                                             comic::sfm (with their dependencies found again)
 #
-# In the tree our headers include each other as "io/error.h"; the installed copies must say
-# "comic/io/error.h". Rather than spell every include in the tree with a comic/ prefix, the
+# In the tree our headers include each other as "io/core/error.h"; the installed copies must say
+# "comic/io/core/error.h". Rather than spell every include in the tree with a comic/ prefix, the
 # install step copies the headers and then rewrites, in the installed copies only, the
 # project-relative includes ("io/", "frontend/", "sfm/") to "comic/...": see
 # cmake/RewriteInstalledIncludes.cmake. The installed headers then need nothing but

@@ -1,6 +1,6 @@
 # Run by `cmake --install` after the headers are copied (cmake/ComicInstall.cmake): in the
 # installed copies under COMIC_INSTALLED_INCLUDE_DIR, rewrites the project-relative includes
-#   #include "io/error.h"  ->  #include "comic/io/error.h"
+#   #include "io/core/error.h"  ->  #include "comic/io/core/error.h"
 # (likewise frontend/ and sfm/), so that the installed headers resolve against <prefix>/include
 # alone and never against a consumer's own io/... headers. System includes (<...>) and any other
 # quoted include are left as they are. Rewriting is idempotent: an already rewritten line no

@@ -4,8 +4,8 @@
 #include <iostream>
 #include <opencv2/core.hpp>
 
-#include "io/error.h"
-#include "io/image_sequence.h"
+#include "io/core/error.h"
+#include "io/image/image_sequence.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

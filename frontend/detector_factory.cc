@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "frontend/combined_detector.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

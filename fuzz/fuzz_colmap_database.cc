@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "fuzz/fuzz_input.h"
-#include "io/colmap_database.h"
-#include "io/error.h"
+#include "io/colmap/colmap_database.h"
+#include "io/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace comic::io;

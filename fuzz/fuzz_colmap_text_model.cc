@@ -5,8 +5,8 @@
 #include <string>
 
 #include "fuzz/fuzz_input.h"
-#include "io/colmap_text_model.h"
-#include "io/error.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);

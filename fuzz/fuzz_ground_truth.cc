@@ -7,10 +7,10 @@
 #include <filesystem>
 
 #include "fuzz/fuzz_input.h"
-#include "io/camera_calibration_file.h"
-#include "io/error.h"
-#include "io/ground_truth_cameras.h"
-#include "io/kitti_odometry.h"
+#include "io/core/error.h"
+#include "io/datasets/camera_calibration_file.h"
+#include "io/datasets/ground_truth_cameras.h"
+#include "io/datasets/kitti_odometry.h"
 
 namespace {
 

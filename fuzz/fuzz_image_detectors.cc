@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "frontend/detector_factory.h"
-#include "io/error.h"
-#include "io/image_io.h"
+#include "io/core/error.h"
+#include "io/image/image_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const bool quiet = [] {

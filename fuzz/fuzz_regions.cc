@@ -1,8 +1,8 @@
 // Fuzz target: the region/box parsers (VOT polygons, OTB boxes, auto-detected) and the
 // rasterisation of what they return into a small mask.
 #include "fuzz/fuzz_input.h"
-#include "io/error.h"
-#include "io/region_annotations.h"
+#include "io/core/error.h"
+#include "io/datasets/region_annotations.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace comic::io;

@@ -22,15 +22,15 @@
 #include "frontend/detector_factory.h"
 #include "frontend/matching/patch_matcher.h"
 #include "frontend/matching/tracker.h"
-#include "io/colmap_binary_model.h"
-#include "io/colmap_text_model.h"
-#include "io/error.h"
-#include "io/file_utils.h"
-#include "io/ground_truth_cameras.h"
-#include "io/image_io.h"
-#include "io/image_sequence.h"
-#include "io/ply.h"
-#include "io/version.h"
+#include "io/colmap/colmap_binary_model.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/core/version.h"
+#include "io/datasets/ground_truth_cameras.h"
+#include "io/image/image_io.h"
+#include "io/image/image_sequence.h"
+#include "io/report/ply.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/colmap/colmap_runner.h"
@@ -779,7 +779,7 @@ py::dict ExportColmap(const std::string& frames, const std::string& database,
 PYBIND11_MODULE(_core, m) {
   using namespace comic::python;
   m.doc() = "comic-sfm's compiled core; use the package `comic` (python/comic/__init__.py).";
-  m.attr("__version__") = comic::Version();  // project(VERSION), through io/version.cc
+  m.attr("__version__") = comic::Version();  // project(VERSION), through io/core/version.cc
   m.attr("detector_names") = comic::frontend::DetectorNames();
   m.attr("patch_size") = comic::frontend::kPatchSize;
 

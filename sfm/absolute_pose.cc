@@ -3,7 +3,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {

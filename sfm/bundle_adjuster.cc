@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <random>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/trajectory_evaluation.h"
 
 namespace comic::sfm {

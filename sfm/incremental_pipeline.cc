@@ -6,7 +6,7 @@
 #include <optional>
 #include <set>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 

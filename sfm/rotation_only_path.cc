@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 

@@ -7,7 +7,7 @@
 #include <map>
 
 #include "frontend/matching/combined_tracking.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 

@@ -12,7 +12,7 @@
 #include "frontend/detector.h"
 #include "frontend/matching/track.h"
 #include "frontend/matching/tracker.h"
-#include "io/image_sequence.h"
+#include "io/image/image_sequence.h"
 #include "sfm/camera.h"
 #include "sfm/incremental_pipeline.h"
 

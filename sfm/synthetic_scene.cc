@@ -3,7 +3,7 @@
 #include <cmath>
 #include <random>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {

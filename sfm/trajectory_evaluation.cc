@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {

@@ -5,7 +5,7 @@
 #include <opencv2/core/eigen.hpp>
 
 #include "frontend/matching/usac_params.h"
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/triangulation.h"
 
 namespace comic::sfm {

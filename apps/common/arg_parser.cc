@@ -7,10 +7,10 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
-#include "io/error.h"
-#include "io/library_messages.h"
-#include "io/printable_text.h"
-#include "io/version.h"
+#include "io/core/error.h"
+#include "io/core/library_messages.h"
+#include "io/core/printable_text.h"
+#include "io/core/version.h"
 
 namespace comic::apps {
 

@@ -1,7 +1,7 @@
 // A small command-line parser shared by the apps: positional arguments, `--name value` /
 // `--name=value` options bound to variables (their initial values are the documented defaults),
 // boolean switches, one-letter short names (`-o DIR`, `-q`), hidden aliases for old spellings,
-// `--` ending the options, a generated --help and --version (comic::Version(), io/version.h).
+// `--` ending the options, a generated --help and --version (comic::Version(), io/core/version.h).
 // Flags are parsed here and nowhere below apps/; the names shared by several apps are defined
 // once in apps/common/shared_flags.h.
 #pragma once

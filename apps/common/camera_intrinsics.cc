@@ -1,7 +1,7 @@
 #include "apps/common/camera_intrinsics.h"
 
-#include "io/camera_calibration_file.h"
-#include "io/error.h"
+#include "io/core/error.h"
+#include "io/datasets/camera_calibration_file.h"
 
 namespace comic::apps {
 

@@ -1,7 +1,7 @@
 // --intrinsics FILE as a camera of the frames as used: the file describes the frames as stored
-// (io/camera_calibration_file.h: 'fx fy cx cy [k1 k2 p1 p2]', a 3x3 K or a 3x4 P such as KITTI's
-// calib.txt, an OpenCV FileStorage YAML/XML calibration or a COLMAP cameras.txt; OpenCV pixel
-// convention), and a resized sequence scales it (pixel centre c -> (c + 0.5) s - 0.5,
+// (io/datasets/camera_calibration_file.h: 'fx fy cx cy [k1 k2 p1 p2]', a 3x3 K or a 3x4 P such as
+// KITTI's calib.txt, an OpenCV FileStorage YAML/XML calibration or a COLMAP cameras.txt; OpenCV
+// pixel convention), and a resized sequence scales it (pixel centre c -> (c + 0.5) s - 0.5,
 // sfm::Camera::Scaled; distortion acts on normalised coordinates and stays).
 // --camera-model NAME picks the model (sfm/camera_model.h) of the default camera, or converts
 // the file's camera to it where that loses nothing.

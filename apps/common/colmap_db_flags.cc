@@ -1,7 +1,7 @@
 #include "apps/common/colmap_db_flags.h"
 
 #include "apps/common/thread_count.h"
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/colmap/colmap_runner.h"
 
 namespace comic::apps {

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "apps/common/arg_parser.h"
-#include "io/image_sequence.h"
+#include "io/image/image_sequence.h"
 
 namespace comic::apps {
 

@@ -1,5 +1,5 @@
 // The options that bound what an app accepts as input, one definition each (issue 19):
-// --max-pixels (the work budget per image or frame, io/pixel_budget.h) and --allow-truncated
+// --max-pixels (the work budget per image or frame, io/core/pixel_budget.h) and --allow-truncated
 // (a video that stops decoding early is used up to the break, with a warning line).
 #pragma once
 

@@ -3,7 +3,7 @@
 #include <cerrno>
 #include <cstdlib>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::apps {
 

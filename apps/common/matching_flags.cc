@@ -1,6 +1,6 @@
 #include "apps/common/matching_flags.h"
 
-#include "io/image_sequence.h"
+#include "io/image/image_sequence.h"
 
 namespace comic::apps {
 

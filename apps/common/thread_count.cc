@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <thread>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::apps {
 

@@ -4,7 +4,7 @@
 #include <opencv2/features2d.hpp>
 
 #include "frontend/baselines/response_peaks.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

@@ -2,7 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

@@ -3,7 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/baselines/response_peaks.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

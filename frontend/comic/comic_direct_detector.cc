@@ -16,7 +16,7 @@
 #include "frontend/comic/side_mask.h"
 #include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "frontend/comic/iso_curve.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

@@ -5,7 +5,7 @@
 
 #include "frontend/comic/curve_cornerness.h"
 #include "frontend/comic/iso_curve_stability.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

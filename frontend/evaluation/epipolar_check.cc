@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

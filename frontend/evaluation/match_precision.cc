@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

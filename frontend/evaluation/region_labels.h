@@ -4,7 +4,7 @@
 //
 // One rule for every kind of region. The region is a binary mask per frame: a DAVIS object mask,
 // or a VOT polygon / OTB box rasterised (the paper approximates the object region of tracking
-// sequences by the ground-truth box; io/region_annotations.h). A pixel is
+// sequences by the ground-truth box; io/datasets/region_annotations.h). A pixel is
 //   kBoundary  if it lies within `band` pixels of the region's edge, on either side — measured
 //              centre to centre to the nearest pixel across the edge;
 //   kInterior  if it is inside the region and farther than `band` from the edge;

@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

@@ -50,7 +50,7 @@
 #include "frontend/evaluation/match_precision.h"
 #include "frontend/evaluation/threshold_equalisation.h"
 #include "frontend/matching/patch_matcher.h"
-#include "io/middlebury.h"
+#include "io/datasets/middlebury.h"
 
 namespace comic::frontend {
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <sstream>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "frontend/evaluation/stereo_evaluation.h"
-#include "io/report_table.h"
+#include "io/report/report_table.h"
 
 namespace comic::frontend {
 

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <string>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

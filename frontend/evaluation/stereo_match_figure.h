@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "frontend/evaluation/stereo_evaluation.h"
-#include "io/middlebury.h"
+#include "io/datasets/middlebury.h"
 
 namespace comic::frontend {
 

@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "frontend/evaluation/epipolar_check.h"
-#include "io/error.h"
-#include "io/image_sequence.h"
+#include "io/core/error.h"
+#include "io/image/image_sequence.h"
 
 namespace comic::frontend {
 

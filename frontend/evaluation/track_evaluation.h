@@ -35,7 +35,7 @@
 #include "frontend/evaluation/matching_evaluation.h"
 #include "frontend/evaluation/threshold_equalisation.h"
 #include "frontend/matching/tracker.h"
-#include "io/report_table.h"
+#include "io/report/report_table.h"
 
 namespace comic::io {
 class ImageSequence;

@@ -1,7 +1,7 @@
 #include "frontend/matching/combined_tracking.h"
 
-#include "io/error.h"
-#include "io/image_sequence.h"
+#include "io/core/error.h"
+#include "io/image/image_sequence.h"
 
 namespace comic::frontend {
 

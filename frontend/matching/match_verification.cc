@@ -3,7 +3,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "frontend/matching/usac_params.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

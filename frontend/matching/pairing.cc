@@ -5,8 +5,8 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
-#include "io/error.h"
-#include "io/image_sequence.h"
+#include "io/core/error.h"
+#include "io/image/image_sequence.h"
 
 namespace comic::frontend {
 namespace {

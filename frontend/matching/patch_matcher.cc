@@ -6,7 +6,7 @@
 #include <unordered_map>
 
 #include "frontend/grid_cell_key.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

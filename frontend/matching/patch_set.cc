@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "frontend/matching/level_line_sides.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

@@ -3,7 +3,7 @@
 #include <set>
 #include <utility>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

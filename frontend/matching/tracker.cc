@@ -6,8 +6,8 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
-#include "io/error.h"
-#include "io/image_sequence.h"
+#include "io/core/error.h"
+#include "io/image/image_sequence.h"
 
 namespace comic::frontend {
 

@@ -1,6 +1,6 @@
 #include "frontend/matching/usac_params.h"
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 

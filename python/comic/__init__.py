@@ -72,7 +72,7 @@ def _columns(features, what):
 
 
 def imread(path, resize_height=0, color=False):
-    """Reads an image as the apps do (io/image_io.h): grey uint8 H x W, or BGR H x W x 3 with
+    """Reads an image as the apps do (io/image/image_io.h): grey uint8 H x W, or BGR H x W x 3 with
     color=True, resized to resize_height (0 = as stored). Raises RuntimeError naming the file."""
     return _core.imread(str(path), int(resize_height), bool(color))
 

@@ -5,9 +5,9 @@
 #include <chrono>
 #include <filesystem>
 
-#include "io/colmap_text_model.h"
-#include "io/error.h"
-#include "io/file_utils.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/trajectory_evaluation.h"

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "frontend/matching/track.h"
-#include "io/report_table.h"
+#include "io/report/report_table.h"
 #include "sfm/camera.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_runner.h"

@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
-#include "io/error.h"
-#include "io/file_utils.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
 
 namespace comic::sfm {
 namespace {

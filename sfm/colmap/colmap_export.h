@@ -21,7 +21,7 @@
 #include <string>
 
 #include "frontend/matching/track.h"
-#include "io/colmap_database.h"
+#include "io/colmap/colmap_database.h"
 #include "sfm/camera.h"
 #include "sfm/two_view_geometry.h"
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 

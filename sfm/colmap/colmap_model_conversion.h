@@ -1,4 +1,4 @@
-// Conversion between a Reconstruction and COLMAP's text model (io/colmap_text_model.h). Our
+// Conversion between a Reconstruction and COLMAP's text model (io/colmap/colmap_text_model.h). Our
 // pixels follow OpenCV (top-left pixel centre at (0, 0)), COLMAP's put it at (0.5, 0.5): keypoints
 // and principal points shift by +0.5 on the way out and −0.5 on the way back. Cameras are written
 // as PINHOLE (fx fy cx cy); only registered images are written, as COLMAP does.
@@ -8,7 +8,7 @@
 //                                               /*ignore_distortion=*/true);
 #pragma once
 
-#include "io/colmap_text_model.h"
+#include "io/colmap/colmap_text_model.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {

@@ -16,9 +16,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/colmap_text_model.h"
-#include "io/error.h"
-#include "io/file_utils.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
 
 extern char** environ;
 
@@ -135,8 +135,8 @@ void RunColmap(const std::vector<std::string>& args, const std::string& log_path
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
                                    O_WRONLY | O_APPEND | O_CREAT, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  // The apps block SIGINT/SIGTERM in every thread (io/interrupt_cleanup.h); COLMAP must not inherit
-  // that mask, or Ctrl-C would leave it running.
+  // The apps block SIGINT/SIGTERM in every thread (io/core/interrupt_cleanup.h); COLMAP must not
+  // inherit that mask, or Ctrl-C would leave it running.
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
   sigset_t no_signals;

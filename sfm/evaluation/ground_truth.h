@@ -1,7 +1,7 @@
-// Ground truth as the SfM uses it: io's ground-truth cameras (io/ground_truth_cameras.h) matched
-// to the frames of a run, as per-frame cam_from_world poses and a Camera at the frames' size; and
-// any Reconstruction's poses (ours, or COLMAP's read back) matched to frames by image name, so
-// both can go to EvaluateTrajectory.
+// Ground truth as the SfM uses it: io's ground-truth cameras (io/datasets/ground_truth_cameras.h)
+// matched to the frames of a run, as per-frame cam_from_world poses and a Camera at the frames'
+// size; and any Reconstruction's poses (ours, or COLMAP's read back) matched to frames by image
+// name, so both can go to EvaluateTrajectory.
 //
 //   const FrameGroundTruth truth = MatchGroundTruthToFrames(
 //       io::ReadGroundTruthCameras(gt_path), sequence.FrameNames(), source_indices,
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "io/ground_truth_cameras.h"
+#include "io/datasets/ground_truth_cameras.h"
 #include "sfm/camera.h"
 #include "sfm/reconstruction.h"
 #include "sfm/rigid3d.h"

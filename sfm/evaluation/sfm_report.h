@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/report_table.h"
+#include "io/report/report_table.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/sequence_reconstruction.h"
 #include "sfm/trajectory_evaluation.h"

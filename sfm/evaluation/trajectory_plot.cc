@@ -7,7 +7,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 

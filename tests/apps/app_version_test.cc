@@ -1,11 +1,11 @@
-// Every app prints the one project version (io/version.h, from the top-level CMakeLists.txt's
+// Every app prints the one project version (io/core/version.h, from the top-level CMakeLists.txt's
 // project(VERSION)) for --version, exits 0 and does no work.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 
-#include "io/version.h"
+#include "io/core/version.h"
 #include "tests/test_support.h"
 
 namespace {

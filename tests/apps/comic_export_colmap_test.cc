@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <regex>
 
-#include "io/colmap_database.h"
-#include "io/file_utils.h"
+#include "io/colmap/colmap_database.h"
+#include "io/core/file_utils.h"
 #include "tests/test_support.h"
 
 namespace {

@@ -3,8 +3,8 @@
 // tracks and writes the side-by-side table.
 #include <gtest/gtest.h>
 
-#include "io/colmap_database.h"
-#include "io/file_utils.h"
+#include "io/colmap/colmap_database.h"
+#include "io/core/file_utils.h"
 #include "tests/test_support.h"
 
 namespace {

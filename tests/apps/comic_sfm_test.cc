@@ -11,11 +11,11 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/colmap_binary_model.h"
-#include "io/colmap_database.h"
-#include "io/colmap_text_model.h"
-#include "io/file_utils.h"
-#include "io/ply.h"
+#include "io/colmap/colmap_binary_model.h"
+#include "io/colmap/colmap_database.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/file_utils.h"
+#include "io/report/ply.h"
 #include "tests/test_support.h"
 
 namespace {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "io/colmap_database.h"
-#include "io/colmap_text_model.h"
-#include "io/file_utils.h"
+#include "io/colmap/colmap_database.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/file_utils.h"
 #include "tests/test_support.h"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/file_utils.h"
+#include "io/core/file_utils.h"
 #include "tests/frontend/synthetic_stereo_scene.h"
 #include "tests/test_support.h"
 

@@ -5,7 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/detector_factory.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

@@ -16,7 +16,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/middlebury.h"
+#include "io/datasets/middlebury.h"
 
 namespace comic::test {
 

@@ -23,7 +23,7 @@ run_step("cmake --install" ${CMAKE_COMMAND_PATH} --install ${COMIC_BINARY_DIR} -
 # The installed layout: libraries, the package files, headers under include/comic/, the apps.
 foreach(file lib/libcomic_io.a lib/libcomic_frontend.a lib/libcomic_sfm.a
              lib/cmake/comic/comicConfig.cmake lib/cmake/comic/comicConfigVersion.cmake
-             lib/cmake/comic/comicTargets.cmake include/comic/io/error.h
+             lib/cmake/comic/comicTargets.cmake include/comic/io/core/error.h
              include/comic/frontend/detector_factory.h include/comic/sfm/reconstruction.h
              bin/comic_detect bin/comic_sfm)
   if(NOT EXISTS ${prefix}/${file})

@@ -11,7 +11,7 @@
 #include <random>
 #include <set>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
 
 namespace comic::sfm {

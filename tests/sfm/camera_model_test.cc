@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/camera.h"
 
 namespace comic::sfm {

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/synthetic_scene.h"
 #include "sfm/trajectory_evaluation.h"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
 
 namespace comic::sfm {

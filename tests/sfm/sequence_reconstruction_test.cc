@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "frontend/detector_factory.h"
-#include "io/error.h"
-#include "io/ground_truth_cameras.h"
+#include "io/core/error.h"
+#include "io/datasets/ground_truth_cameras.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/trajectory_evaluation.h"
 #include "tests/test_support.h"

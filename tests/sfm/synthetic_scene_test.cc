@@ -8,7 +8,7 @@
 #include <random>
 
 #include "frontend/matching/pairing.h"
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
 
 namespace comic::sfm {

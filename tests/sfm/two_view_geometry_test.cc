@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "sfm/reconstruction.h"
 #include "sfm/synthetic_scene.h"
 

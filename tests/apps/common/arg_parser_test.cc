@@ -7,8 +7,8 @@
 #include <tuple>
 #include <vector>
 
-#include "io/error.h"
-#include "io/version.h"
+#include "io/core/error.h"
+#include "io/core/version.h"
 
 namespace {
 

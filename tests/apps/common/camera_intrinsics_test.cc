@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "io/error.h"
-#include "io/file_utils.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
 #include "tests/test_support.h"
 
 namespace {

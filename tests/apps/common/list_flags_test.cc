@@ -7,7 +7,7 @@
 #include <functional>
 #include <string>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace {
 

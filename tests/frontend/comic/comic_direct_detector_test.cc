@@ -13,8 +13,8 @@
 #include <iterator>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/error.h"
-#include "io/image_io.h"
+#include "io/core/error.h"
+#include "io/image/image_io.h"
 #include "tests/frontend/synthetic_images.h"
 #include "tests/test_support.h"
 

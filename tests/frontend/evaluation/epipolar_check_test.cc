@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "io/kitti_odometry.h"
+#include "io/datasets/kitti_odometry.h"
 #include "tests/test_support.h"
 
 namespace comic::frontend {

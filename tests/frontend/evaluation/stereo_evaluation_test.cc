@@ -6,7 +6,7 @@
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/error.h"
+#include "io/core/error.h"
 #include "tests/frontend/synthetic_stereo_scene.h"
 #include "tests/test_support.h"
 

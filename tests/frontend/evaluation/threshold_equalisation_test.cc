@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "frontend/baselines/harris_detector.h"
-#include "io/error.h"
-#include "io/image_io.h"
+#include "io/core/error.h"
+#include "io/image/image_io.h"
 #include "tests/test_support.h"
 
 namespace comic::frontend {

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "frontend/detector_factory.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

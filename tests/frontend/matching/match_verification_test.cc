@@ -6,7 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "frontend/evaluation/epipolar_check.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

@@ -9,7 +9,7 @@
 #include "frontend/baselines/harris_detector.h"
 #include "frontend/evaluation/threshold_equalisation.h"
 #include "frontend/matching/level_line_sides.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

@@ -8,7 +8,7 @@
 #include "frontend/evaluation/threshold_equalisation.h"
 #include "frontend/matching/level_line_sides.h"
 #include "frontend/matching/patch_matcher.h"
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "frontend/matching/tracker.h"
-#include "io/error.h"
+#include "io/core/error.h"
 #include "tests/frontend/track_test_helpers.h"
 
 namespace comic::frontend {

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

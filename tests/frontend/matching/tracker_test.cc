@@ -7,9 +7,9 @@
 
 #include "frontend/baselines/harris_detector.h"
 #include "frontend/evaluation/epipolar_check.h"
-#include "io/error.h"
-#include "io/image_sequence.h"
-#include "io/kitti_odometry.h"
+#include "io/core/error.h"
+#include "io/datasets/kitti_odometry.h"
+#include "io/image/image_sequence.h"
 #include "tests/frontend/track_test_helpers.h"
 #include "tests/test_support.h"
 

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::frontend {
 namespace {

@@ -2,7 +2,7 @@
 // background has four corners) through the installed package, and checks that bad input comes
 // back as comic::Error. Exits non-zero, with one line on stderr, on any wrong result.
 #include <comic/frontend/detector_factory.h>
-#include <comic/io/error.h>
+#include <comic/io/core/error.h>
 #include <comic/sfm/rigid3d.h>
 
 #include <algorithm>
@@ -11,7 +11,7 @@
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
-#include "io/error.h"  // the consumer's own, see io/error.h
+#include "io/core/error.h"  // the consumer's own, see io/core/error.h
 
 namespace {
 
@@ -24,7 +24,7 @@ int Fail(const std::string& message) {
 
 int main() {
   if (std::strcmp(consumer::io::kWhichErrorHeader, "consumer") != 0) {
-    return Fail("the consumer's own io/error.h was shadowed");
+    return Fail("the consumer's own io/core/error.h was shadowed");
   }
   // Pixels [60, 110) x [70, 120) at 200 on 50, lightly blurred: the square's corners lie at the
   // pixel edges, (59.5, 69.5) ... (109.5, 119.5) with pixel centres at integers.

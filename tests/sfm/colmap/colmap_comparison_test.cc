@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "io/error.h"
-#include "io/file_utils.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
 #include "sfm/synthetic_scene.h"
 #include "tests/test_support.h"
 

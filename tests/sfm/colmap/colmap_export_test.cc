@@ -7,8 +7,8 @@
 #include <random>
 #include <set>
 
-#include "io/error.h"
-#include "io/file_utils.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
 #include "tests/test_support.h"
 
 namespace comic::sfm {

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 
-#include "io/colmap_binary_model.h"
-#include "io/colmap_text_model.h"
-#include "io/error.h"
+#include "io/colmap/colmap_binary_model.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
 #include "tests/test_support.h"
 

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/colmap_text_model.h"
-#include "io/error.h"
-#include "io/file_utils.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
 #include "sfm/synthetic_scene.h"
 #include "sfm/trajectory_evaluation.h"
 #include "tests/test_support.h"

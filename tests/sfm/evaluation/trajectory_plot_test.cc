@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "io/error.h"
+#include "io/core/error.h"
 
 namespace comic::sfm {
 namespace {

@@ -1,0 +1,182 @@
+#include "io/core/file_utils.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "io/core/error.h"
+#include "io/core/interrupt_cleanup.h"
+#include "io/core/natural_sort.h"
+
+namespace comic::io {
+namespace fs = std::filesystem;
+
+bool PathExists(const std::string& path) {
+  std::error_code ec;
+  return fs::exists(path, ec);
+}
+
+bool IsDirectory(const std::string& path) {
+  std::error_code ec;
+  return fs::is_directory(path, ec);
+}
+
+bool IsRegularFile(const std::string& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
+std::string FileExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::string FileName(const std::string& path) { return fs::path(path).filename().string(); }
+
+std::string ParentPath(const std::string& path) { return fs::path(path).parent_path().string(); }
+
+std::string JoinPaths(const std::string& a, const std::string& b) {
+  if (a.empty()) return b;
+  return (fs::path(a) / b).string();
+}
+
+std::vector<std::string> ListFiles(const std::string& folder) {
+  COMIC_CHECK(PathExists(folder), kNotFound, folder << ": no such file or folder");
+  COMIC_CHECK(IsDirectory(folder), kInvalidArgument, folder << ": not a folder");
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    std::error_code type_ec;
+    if (entry.is_regular_file(type_ec)) names.push_back(entry.path().filename().string());
+  }
+  COMIC_CHECK(!ec, kIo, folder << ": cannot list folder: " << ec.message());
+  NaturalSort(&names);
+  return names;
+}
+
+void EnsureWritableDirectory(const std::string& folder) {
+  COMIC_CHECK(!folder.empty(), kInvalidArgument, "output folder name is empty");
+  std::error_code ec;
+  if (PathExists(folder)) {
+    COMIC_CHECK(IsDirectory(folder), kIo, folder << ": exists and is not a folder");
+  } else {
+    CheckCreatableFolder(folder);
+    fs::create_directories(folder, ec);
+    COMIC_CHECK(!ec, kIo, folder << ": cannot create folder: " << ec.message());
+  }
+  COMIC_CHECK(::access(folder.c_str(), W_OK | X_OK) == 0, kIo,
+              folder << ": folder is not writable");
+}
+
+std::string CheckCreatableFolder(const std::string& folder) {
+  COMIC_CHECK(!folder.empty(), kInvalidArgument, "output folder name is empty");
+  COMIC_CHECK(!PathExists(folder) || IsDirectory(folder), kIo,
+              folder << ": exists and is not a folder");
+  // The nearest existing ancestor must be a writable folder (a file there: "X is not a folder").
+  fs::path existing = fs::path(folder);
+  std::error_code ec;
+  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+  const std::string ancestor = existing.empty() ? "." : existing.string();
+  COMIC_CHECK(IsDirectory(ancestor), kIo,
+              folder << ": cannot create it, " << ancestor << " is not a folder");
+  COMIC_CHECK(::access(ancestor.c_str(), W_OK | X_OK) == 0, kIo,
+              folder << ": folder " << ancestor << " is not writable");
+  return ancestor;
+}
+
+void CheckWritableFile(const std::string& path, bool overwrite) {
+  COMIC_CHECK(!path.empty(), kInvalidArgument, "output file name is empty");
+  COMIC_CHECK(!IsDirectory(path), kIo, path << ": is a folder, cannot write a file there");
+  COMIC_CHECK(overwrite || !PathExists(path), kIo,
+              path << ": already exists (refusing to overwrite)");
+  const std::string parent = ParentPath(path).empty() ? "." : ParentPath(path);
+  COMIC_CHECK(!PathExists(parent) || IsDirectory(parent), kIo,
+              path << ": " << parent << " is not a folder");
+  COMIC_CHECK(IsDirectory(parent), kIo, path << ": folder " << parent << " does not exist");
+  COMIC_CHECK(::access(parent.c_str(), W_OK | X_OK) == 0, kIo,
+              path << ": folder " << parent << " is not writable");
+}
+
+std::string ReadFileToString(const std::string& path) {
+  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
+  COMIC_CHECK(!IsDirectory(path), kInvalidArgument, path << ": is a folder, expected a file");
+  std::ifstream in(path, std::ios::binary);
+  COMIC_CHECK(in.good(), kIo, path << ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  COMIC_CHECK(!in.bad(), kIo, path << ": read failed");
+  return buffer.str();
+}
+
+void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
+                     bool overwrite) {
+  CheckWritableFile(path, overwrite);
+  // The temporary name keeps the extension, so writers that pick the format from it still work.
+  const fs::path target(path);
+  const std::string temp =
+      (target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
+                               target.extension().string()))
+          .string();
+  // Removed on SIGINT/SIGTERM too, with an SQLite -journal beside it.
+  const ScopedTempPath registered(temp);
+  auto remove_temp = [&] {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    fs::remove(temp + "-journal", ec);
+  };
+  try {
+    write(temp);
+    COMIC_CHECK(IsRegularFile(temp), kIo, path << ": writing failed");
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    COMIC_CHECK(!ec, kIo, path << ": cannot rename temporary file into place: " << ec.message());
+  } catch (const Error& e) {
+    remove_temp();
+    // The user knows the path they gave, not our hidden temporary name.
+    std::string message = e.what();
+    for (size_t at = message.find(temp); at != std::string::npos; at = message.find(temp, at)) {
+      message.replace(at, temp.size(), path);
+      at += path.size();
+    }
+    throw Error(e.kind(), message);
+  } catch (...) {
+    remove_temp();
+    throw;
+  }
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& contents, bool overwrite) {
+  WriteAtomically(
+      path,
+      [&](const std::string& temp) {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        COMIC_CHECK(out.good(), kIo, path << ": cannot open for writing");
+        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+        out.close();
+        COMIC_CHECK(out.good(), kIo, path << ": write failed (disk full?)");
+      },
+      overwrite);
+}
+
+void WriteImageAtomically(const std::string& path, const cv::Mat& image) {
+  COMIC_CHECK(!image.empty(), kInvalidArgument, path << ": refusing to write an empty image");
+  WriteAtomically(path, [&](const std::string& temp) {
+    bool ok = false;
+    try {
+      ok = cv::imwrite(temp, image);
+    } catch (const cv::Exception& e) {
+      throw Error(ErrorKind::kIo, path + ": cannot write image: " + e.what());
+    }
+    COMIC_CHECK(ok, kIo, path << ": cannot write image (unknown extension or unwritable)");
+  });
+}
+
+}  // namespace comic::io

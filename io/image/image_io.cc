@@ -1,0 +1,134 @@
+#include "io/image/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/core/library_messages.h"
+
+namespace comic::io {
+namespace {
+
+cv::Mat To8Bit(const cv::Mat& image) {
+  switch (image.depth()) {
+    case CV_8U:
+      return image;
+    case CV_16U: {
+      cv::Mat out;
+      image.convertTo(out, CV_8U, 1.0 / 257.0);  // 65535 -> 255, exact for 257 * k
+      return out;
+    }
+    default:
+      throw Error(ErrorKind::kInvalidData,
+                  "unsupported image depth (only 8- and 16-bit integer images are supported)");
+  }
+}
+
+}  // namespace
+
+bool IsImageExtension(const std::string& extension) {
+  static constexpr const char* kExtensions[] = {"png", "jpg", "jpeg", "ppm",  "pgm",
+                                                "pnm", "pbm", "tif",  "tiff", "bmp"};
+  for (const char* e : kExtensions) {
+    if (extension == e) return true;
+  }
+  return false;
+}
+
+cv::Mat ToGray8(const cv::Mat& image) {
+  COMIC_CHECK(!image.empty(), kInvalidData, "empty image");
+  const cv::Mat image8 = To8Bit(image);
+  cv::Mat gray;
+  switch (image8.channels()) {
+    case 1:
+      gray = image8.clone();
+      break;
+    case 3:
+      cv::cvtColor(image8, gray, cv::COLOR_BGR2GRAY);
+      break;
+    case 4:
+      cv::cvtColor(image8, gray, cv::COLOR_BGRA2GRAY);
+      break;
+    default:
+      throw Error(ErrorKind::kInvalidData,
+                  "unsupported number of channels: " + std::to_string(image8.channels()));
+  }
+  return gray;
+}
+
+cv::Mat ToBgr8(const cv::Mat& image) {
+  COMIC_CHECK(!image.empty(), kInvalidData, "empty image");
+  const cv::Mat image8 = To8Bit(image);
+  cv::Mat color;
+  switch (image8.channels()) {
+    case 1:
+      cv::cvtColor(image8, color, cv::COLOR_GRAY2BGR);
+      break;
+    case 3:
+      color = image8.clone();
+      break;
+    case 4:
+      cv::cvtColor(image8, color, cv::COLOR_BGRA2BGR);
+      break;
+    default:
+      throw Error(ErrorKind::kInvalidData,
+                  "unsupported number of channels: " + std::to_string(image8.channels()));
+  }
+  return color;
+}
+
+cv::Size ResizedSize(cv::Size size, int height) {
+  if (height <= 0 || height == size.height || size.height <= 0) return size;
+  const double width = std::lround(size.width * static_cast<double>(height) / size.height);
+  return cv::Size(static_cast<int>(std::clamp(width, 1.0, 1e9)), height);
+}
+
+cv::Mat ResizeToHeight(const cv::Mat& image, int height) {
+  if (height <= 0 || height == image.rows) return image.clone();
+  cv::Mat out;
+  cv::resize(image, out, ResizedSize(image.size(), height), 0, 0,
+             height < image.rows ? cv::INTER_AREA : cv::INTER_LINEAR);
+  return out;
+}
+
+cv::Mat ReadImageUnchanged(const std::string& path) {
+  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
+  COMIC_CHECK(!IsDirectory(path), kInvalidData, path << ": is a folder, not an image file");
+  COMIC_CHECK(IsRegularFile(path), kInvalidData, path << ": not a regular file");
+  cv::Mat image;
+  std::string opencv_error;
+  // libpng and libjpeg print to stderr instead of reporting (a truncated JPEG even decodes, grey
+  // below the cut): their words are captured and become part of our one line.
+  const std::string library_message = CaptureLibraryMessages([&] {
+    try {
+      image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception& e) {
+      opencv_error = e.err;
+    }
+  });
+  const std::string detail = !library_message.empty() ? library_message : opencv_error;
+  COMIC_CHECK(!image.empty(), kInvalidData,
+              path << ": cannot decode image (corrupt, truncated or not an image"
+                   << (detail.empty() ? "" : ": " + detail) << ")");
+  COMIC_CHECK(!MessageReportsCorruptData(library_message), kInvalidData,
+              path << ": corrupt or truncated image (" << library_message << ")");
+  return image;
+}
+
+LoadedImage LoadImage(const std::string& path, int resize_height, int64_t max_pixels) {
+  const cv::Mat raw = ReadImageUnchanged(path);
+  CheckPixelBudget(path, ResizedSize(raw.size(), resize_height), max_pixels);
+  LoadedImage loaded;
+  try {
+    loaded.gray = ResizeToHeight(ToGray8(raw), resize_height);
+    loaded.color = ResizeToHeight(ToBgr8(raw), resize_height);
+  } catch (const Error& e) {
+    throw Error(e.kind(), path + ": " + e.what());
+  }
+  return loaded;
+}
+
+}  // namespace comic::io

@@ -1,0 +1,221 @@
+#include "io/image/image_sequence.h"
+
+#include <cstdio>
+#include <opencv2/videoio.hpp>
+#include <sstream>
+
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/core/library_messages.h"
+#include "io/image/image_io.h"
+
+namespace comic::io {
+
+struct ImageSequence::VideoState {
+  cv::VideoCapture capture;
+  int next_index = 0;  // source index of the frame the next read() returns
+};
+
+void ImageSequenceOptions::Check() const {
+  COMIC_CHECK(resize_height >= 0, kInvalidArgument,
+              "resize_height must be >= 0 (0 = keep), got " << resize_height);
+  COMIC_CHECK(resize_height == 0 || resize_height >= 8, kInvalidArgument,
+              "resize_height must be at least 8 pixels, got " << resize_height);
+  COMIC_CHECK(
+      resize_height <= kMaxResizeHeight, kInvalidArgument,
+      "resize_height must be at most " << kMaxResizeHeight << " pixels, got " << resize_height);
+  CheckMaxPixels(max_pixels);
+  COMIC_CHECK(first_frame >= 0, kInvalidArgument, "first_frame must be >= 0, got " << first_frame);
+  COMIC_CHECK(last_frame == -1 || last_frame >= first_frame, kInvalidArgument,
+              "last_frame must be -1 (to the end) or >= first_frame (" << first_frame << "), got "
+                                                                       << last_frame);
+  COMIC_CHECK(stride >= 1, kInvalidArgument, "stride must be >= 1, got " << stride);
+}
+
+ImageSequence::ImageSequence(ImageSequence&&) noexcept = default;
+ImageSequence& ImageSequence::operator=(ImageSequence&&) noexcept = default;
+ImageSequence::~ImageSequence() = default;
+
+namespace {
+
+// The name of the PNG file `comic_sfm --write-frames` writes for the frame (issue 17): a model's
+// images.txt and a COLMAP database name their images so, and COLMAP's image tools find them.
+std::string VideoFrameName(int index) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "frame_%06d.png", index);
+  return buffer;
+}
+
+// Source indices first, first+stride, ... up to min(last, count - 1).
+std::vector<int> SelectIndices(int count, const ImageSequenceOptions& options) {
+  std::vector<int> indices;
+  const int last = options.last_frame < 0 ? count - 1 : std::min(options.last_frame, count - 1);
+  for (int i = options.first_frame; i <= last; i += options.stride) indices.push_back(i);
+  return indices;
+}
+
+}  // namespace
+
+ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOptions& options) {
+  options.Check();
+  COMIC_CHECK(!path.empty(), kInvalidArgument, "no input path given");
+  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file or folder");
+
+  ImageSequence sequence;
+  sequence.path_ = path;
+  sequence.options_ = options;
+
+  if (IsDirectory(path)) {
+    std::vector<std::string> images;
+    for (const std::string& name : ListFiles(path)) {
+      if (IsImageExtension(FileExtension(name))) images.push_back(name);
+    }
+    COMIC_CHECK(!images.empty(), kInvalidArgument,
+                path << ": folder holds no images (png/jpg/jpeg/ppm/pgm/pnm/pbm/tif/tiff/bmp)");
+    sequence.folder_ = path;
+    sequence.source_indices_ = SelectIndices(static_cast<int>(images.size()), options);
+    COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,
+                path << ": frame range [" << options.first_frame << ", " << options.last_frame
+                     << "] selects none of its " << images.size() << " images");
+    for (int index : sequence.source_indices_) sequence.names_.push_back(images[index]);
+  } else if (IsImageExtension(FileExtension(path))) {
+    // A single image is a one-frame sequence.
+    sequence.folder_ = ParentPath(path);
+    sequence.source_indices_ = SelectIndices(1, options);
+    COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,
+                path << ": frame range selects no frame of a single image");
+    sequence.names_.push_back(FileName(path));
+  } else {
+    sequence.is_video_ = true;
+    SilenceLibraryLogging();
+    cv::VideoCapture capture;
+    // FFmpeg prints what it finds wrong ("moov atom not found", "overread 8"): captured per call,
+    // it becomes our one line, and tells where a damaged stream stops decoding.
+    std::string message = CaptureLibraryMessages([&] {
+      try {
+        capture.open(path, cv::CAP_FFMPEG);
+      } catch (const cv::Exception&) {
+      }
+    });
+    COMIC_CHECK(capture.isOpened(), kInvalidData,
+                path << ": cannot open as a video (unknown format, unsupported codec or corrupt"
+                     << (message.empty() ? "" : "; FFmpeg: " + message) << ")");
+    // Count frames by grabbing: CAP_PROP_FRAME_COUNT is an estimate for many containers.
+    int count = 0;
+    bool corrupt = false;
+    while (true) {
+      bool grabbed = false;
+      message = CaptureLibraryMessages([&] { grabbed = capture.grab(); });
+      if (MessageReportsCorruptData(message)) corrupt = true;
+      if (!grabbed || corrupt) break;
+      ++count;
+    }
+    const double announced = capture.get(cv::CAP_PROP_FRAME_COUNT);
+    const int header_count = announced > 0 && announced < 1e9 ? static_cast<int>(announced) : 0;
+    COMIC_CHECK(count > 0, kInvalidData,
+                path << ": video has no decodable frames"
+                     << (message.empty() ? "" : " (FFmpeg: " + message + ")"));
+    if (corrupt || count < header_count) {
+      std::ostringstream what;
+      what << path << ": video stops decoding after frame " << count - 1;
+      if (header_count > 0) what << " of the " << header_count << " its header announces";
+      if (!message.empty()) what << " (FFmpeg: " << message << ")";
+      COMIC_CHECK(
+          options.allow_truncated, kInvalidData,
+          what.str() << "; --allow-truncated uses the " << count << " frames before the break");
+      sequence.warning_ = what.str() + "; using its first " + std::to_string(count) + " frames";
+    }
+    sequence.source_indices_ = SelectIndices(count, options);
+    COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,
+                path << ": frame range [" << options.first_frame << ", " << options.last_frame
+                     << "] selects none of its " << count << " frames");
+    for (int index : sequence.source_indices_) sequence.names_.push_back(VideoFrameName(index));
+  }
+
+  // Read the first frame: it fixes the frame size and validates the source early.
+  std::string what;
+  const cv::Mat raw = sequence.ReadRaw(0, &what);
+  sequence.source_size_ = raw.size();
+  CheckPixelBudget(what, ResizedSize(raw.size(), options.resize_height), options.max_pixels);
+  sequence.frame_size_ = sequence.MakeFrame(raw, 0, what).gray.size();
+  return sequence;
+}
+
+std::string ImageSequence::FramePath(size_t i) const {
+  if (is_video_ || i >= names_.size()) return "";
+  return JoinPaths(folder_, names_[i]);
+}
+
+Frame ImageSequence::ReadFrame(size_t i) const {
+  COMIC_CHECK(
+      i < source_indices_.size(), kInvalidArgument,
+      path_ << ": frame " << i << " out of range (" << source_indices_.size() << " frames)");
+  std::string what;
+  const cv::Mat raw = ReadRaw(i, &what);
+  return MakeFrame(raw, i, what);
+}
+
+cv::Mat ImageSequence::ReadRaw(size_t i, std::string* what) const {
+  return is_video_ ? ReadVideoRaw(i, what) : ReadImageRaw(i, what);
+}
+
+std::vector<Frame> ImageSequence::ReadAll() const {
+  std::vector<Frame> frames;
+  frames.reserve(NumFrames());
+  for (size_t i = 0; i < NumFrames(); ++i) frames.push_back(ReadFrame(i));
+  return frames;
+}
+
+Frame ImageSequence::MakeFrame(const cv::Mat& raw, size_t i, const std::string& what) const {
+  // The size check is on the stored size, so a mismatch is reported before any resizing.
+  COMIC_CHECK(raw.size() == source_size_, kInvalidData,
+              what << ": size " << raw.cols << "x" << raw.rows << " differs from the first frame's "
+                   << source_size_.width << "x" << source_size_.height);
+  Frame frame;
+  frame.source_index = source_indices_[i];
+  frame.name = names_[i];
+  try {
+    frame.gray = ResizeToHeight(ToGray8(raw), options_.resize_height);
+    frame.color = ResizeToHeight(ToBgr8(raw), options_.resize_height);
+  } catch (const Error& e) {
+    throw Error(e.kind(), what + ": " + e.what());
+  }
+  return frame;
+}
+
+cv::Mat ImageSequence::ReadImageRaw(size_t i, std::string* what) const {
+  *what = JoinPaths(folder_, names_[i]);
+  return ReadImageUnchanged(*what);
+}
+
+cv::Mat ImageSequence::ReadVideoRaw(size_t i, std::string* what) const {
+  const int target = source_indices_[i];
+  cv::Mat raw;
+  bool decoded = false;
+  bool ended = false;
+  // Open() decoded every selected frame once; FFmpeg's messages stay off the terminal here too.
+  CaptureLibraryMessages([&] {
+    if (!video_ || video_->next_index > target) {
+      // (Re)open and read forward: seeking is unreliable across codecs, reading is exact.
+      video_ = std::make_unique<VideoState>();
+      video_->capture.open(path_, cv::CAP_FFMPEG);
+    }
+    if (!video_->capture.isOpened()) return;
+    while (video_->next_index < target) {
+      if (!video_->capture.grab()) {
+        ended = true;
+        return;
+      }
+      ++video_->next_index;
+    }
+    decoded = video_->capture.read(raw) && !raw.empty();
+  });
+  COMIC_CHECK(video_ && video_->capture.isOpened(), kInvalidData, path_ << ": cannot reopen video");
+  COMIC_CHECK(!ended, kInvalidData, path_ << ": video ended before frame " << target);
+  COMIC_CHECK(decoded, kInvalidData, path_ << ": cannot decode frame " << target);
+  ++video_->next_index;
+  *what = path_ + " frame " + std::to_string(target);
+  return raw;
+}
+
+}  // namespace comic::io
