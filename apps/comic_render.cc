@@ -1,6 +1,8 @@
 // comic_render: renders a scene file (render/scene_builder.h) with textures cut from the given
 // photographs into frames plus exact truth (render/sequence_renderer.h). Flags -> options ->
 // BuildScene -> RenderSequence into a staged output folder.
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "io/image/image_io.h"
 #include "render/scene_builder.h"
 #include "render/sequence_renderer.h"
+#include "render/stereo_pair.h"
 
 namespace {
 
@@ -46,6 +49,8 @@ int Run(int argc, char** argv) {
   int seed = 1;
   bool quiet = false;
   bool no_truth_images = false;
+  int stereo_pairs = 0;
+  render::StereoPairOptions stereo;
   render::SceneBuildOptions build;
   render::SequenceRenderOptions options;
   comic::apps::ArgParser parser(
@@ -77,16 +82,23 @@ int Run(int argc, char** argv) {
                    &options.sensor.blur_samples);
   parser.AddOption("depth-format", "F", "png (16-bit millimetres, saturates at 65.5 m) or pfm",
                    &options.depth_format);
-  parser.AddOption("boundary-band", "PX", "half-width of the occlusion-boundary band",
+  parser.AddOption("occlusion-band", "PX",
+                   "boundaries/: pixels within PX of a pixel touching a depth discontinuity",
                    &options.boundary.band_px);
-  parser.AddOption("boundary-depth-ratio", "R",
-                   "relative depth jump that makes an occlusion boundary",
+  parser.AddOption("occlusion-depth-ratio", "R",
+                   "boundaries/: relative depth jump (each plane extended) that makes one",
                    &options.boundary.depth_ratio);
   parser.AddOption("max-texture-size", "PX", "photographs are shrunk to this longer side",
                    &build.max_texture_size);
   parser.AddFlag("frames-only",
                  "write the frames and the cameras only (no depth, ids, boundaries, masks)",
                  &no_truth_images);
+  parser.AddOption("stereo-pairs", "N",
+                   "also write N rectified pairs (frames evenly spread) as Middlebury folders "
+                   "stereo/NNNNNN/ for comic_stereo_eval --middlebury",
+                   &stereo_pairs);
+  parser.AddOption("stereo-baseline", "M", "right camera this far to the left one's right",
+                   &stereo.baseline);
   comic::apps::AddQuietFlag(parser, &quiet);
   parser.AddEpilog(
       "Example (a short drive textured with the bundled KITTI frames):\n"
@@ -105,6 +117,11 @@ int Run(int argc, char** argv) {
   }
   options.Check();
   build.Check();
+  COMIC_CHECK(stereo_pairs >= 0, kInvalidArgument,
+              "--stereo-pairs must be >= 0, got " << stereo_pairs);
+  stereo.boundary = options.boundary;
+  stereo.Check();
+  io::CheckCreatableFolder(out_dir);  // before the photographs are read
 
   const render::BuiltScene built =
       render::BuildScene(scene_file, ExpandPhotos(photos), static_cast<uint64_t>(seed), build);
@@ -113,6 +130,17 @@ int Run(int argc, char** argv) {
   const render::SequenceRenderSummary summary =
       render::RenderSequence(built, static_cast<uint64_t>(seed), options, out.path(),
                              [&](int done, int total) { progress.Update(done, total); });
+  if (stereo_pairs > 0) {
+    const render::Rasterizer rasterizer(built.lens, options.raster);
+    for (int k = 0; k < stereo_pairs; ++k) {
+      // The middle frames of N equal parts of the sequence.
+      const int frame = built.num_frames * (2 * k + 1) / (2 * stereo_pairs);
+      char name[32];
+      std::snprintf(name, sizeof(name), "stereo/%06d", frame);
+      render::WriteStereoPair(built, rasterizer, static_cast<uint64_t>(seed), options.sensor, frame,
+                              stereo, io::JoinPaths(out.path(), name));
+    }
+  }
   out.Commit();
   std::cout << "comic_render: " << summary.num_frames << " frames " << built.lens.width << "x"
             << built.lens.height << " of " << built.name << " (" << built.scene.pieces.size()

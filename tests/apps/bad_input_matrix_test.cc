@@ -201,6 +201,22 @@ const std::vector<Case> kCases = {
   {"comic_inspect", "{e} --stride 0", 2, {"stride"}},
   {"comic_inspect", "{e} --resize-height 100000", 2, {"resize_height"}},
   {"comic_inspect", "{d}/truncated.png", 1, {"truncated.png", "truncated"}},
+  // comic_render ({x}/../../../scenes is the repository's scenes/)
+  {"comic_render", "{d}/missing.json --photos {d}/good.png --output {d}/out", 1,
+   {"missing.json", "no such scene file"}},
+  {"comic_render", "{d}/notes.txt --photos {d}/good.png --output {d}/out", 1,
+   {"notes.txt", "not valid JSON"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/garbage.png --output {d}/out",
+   1, {"garbage.png", "cannot decode"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/emptydir --output {d}/out", 2,
+   {"--photos", "no images"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --output {d}/out", 2, {"--photos"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --output {d}/notes.txt",
+   1, {"notes.txt", "not a folder"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --depth-format exr "
+   "--output {d}/out", 2, {"depth format", "exr"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --shutter 3 "
+   "--output {d}/out", 2, {"shutter"}},
   // comic_bench
   {"comic_bench", "{d}/missing.png", 1, {"missing.png", "no such file"}},
   {"comic_bench", "{d}/garbage.png", 1, {"garbage.png", "cannot decode"}},
