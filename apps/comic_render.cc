@@ -16,6 +16,7 @@
 #include "io/core/interrupt_cleanup.h"
 #include "io/core/staged_folder.h"
 #include "io/image/image_io.h"
+#include "render/nerf_composite.h"
 #include "render/scene_builder.h"
 #include "render/sequence_renderer.h"
 #include "render/stereo_pair.h"
@@ -50,6 +51,8 @@ int Run(int argc, char** argv) {
   bool quiet = false;
   bool no_truth_images = false;
   int stereo_pairs = 0;
+  std::string nerf;
+  double nerf_lift = 1.0;
   render::StereoPairOptions stereo;
   render::SceneBuildOptions build;
   render::SequenceRenderOptions options;
@@ -99,6 +102,11 @@ int Run(int argc, char** argv) {
                    &stereo_pairs);
   parser.AddOption("stereo-baseline", "M", "right camera this far to the left one's right",
                    &stereo.baseline);
+  parser.AddOption("nerf", "DIR",
+                   "composite the views of a NeRF synthetic set (transforms_train.json, RGBA "
+                   "views) over SCENE seen through the same cameras, instead of SCENE's path",
+                   &nerf);
+  parser.AddOption("nerf-lift", "M", "the NeRF set's origin this far above the ground", &nerf_lift);
   comic::apps::AddQuietFlag(parser, &quiet);
   parser.AddEpilog(
       "Example (a short drive textured with the bundled KITTI frames):\n"
@@ -127,9 +135,20 @@ int Run(int argc, char** argv) {
       render::BuildScene(scene_file, ExpandPhotos(photos), static_cast<uint64_t>(seed), build);
   io::StagedFolder out(out_dir);
   comic::apps::ProgressLine progress("comic_render: " + built.name, quiet);
-  const render::SequenceRenderSummary summary =
-      render::RenderSequence(built, static_cast<uint64_t>(seed), options, out.path(),
-                             [&](int done, int total) { progress.Update(done, total); });
+  const auto update = [&](int done, int total) { progress.Update(done, total); };
+  render::SequenceRenderSummary summary;
+  cv::Size size(built.lens.width, built.lens.height);
+  if (!nerf.empty()) {
+    COMIC_CHECK(stereo_pairs == 0, kInvalidArgument,
+                "--stereo-pairs and --nerf exclude each other");
+    const render::NerfSet set = render::ReadNerfSet(nerf, "train", nerf_lift);
+    size = cv::Size(set.lens.width, set.lens.height);
+    summary = render::RenderNerfComposite(set, built, static_cast<uint64_t>(seed), options,
+                                          out.path(), build.num_frames, update);
+  } else {
+    summary =
+        render::RenderSequence(built, static_cast<uint64_t>(seed), options, out.path(), update);
+  }
   if (stereo_pairs > 0) {
     const render::Rasterizer rasterizer(built.lens, options.raster);
     for (int k = 0; k < stereo_pairs; ++k) {
@@ -142,8 +161,8 @@ int Run(int argc, char** argv) {
     }
   }
   out.Commit();
-  std::cout << "comic_render: " << summary.num_frames << " frames " << built.lens.width << "x"
-            << built.lens.height << " of " << built.name << " (" << built.scene.pieces.size()
+  std::cout << "comic_render: " << summary.num_frames << " frames " << size.width << "x"
+            << size.height << " of " << built.name << " (" << built.scene.pieces.size()
             << " pieces) in " << out_dir << "; CPU " << summary.render_cpu_s << " s rendering ("
             << summary.num_frames / std::max(1e-9, summary.render_cpu_s) << " frames/s), "
             << summary.write_cpu_s << " s writing" << std::endl;

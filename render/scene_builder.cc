@@ -25,6 +25,8 @@ ElementStyle ParseStyle(const JsonFields& fields, const cv::Vec3f& default_tint)
       fields.Vector3("tint", Eigen::Vector3d(default_tint[0], default_tint[1], default_tint[2]));
   style.tint = cv::Vec3f(static_cast<float>(tint[0]), static_cast<float>(tint[1]),
                          static_cast<float>(tint[2]));
+  style.texels_per_metre = fields.Number("texels_per_metre", 0.0);
+  if (style.texels_per_metre < 0) fields.Fail("texels_per_metre", "must be >= 0");
   return style;
 }
 
@@ -69,7 +71,8 @@ void AddFacade(Scene* scene, const TexturePicker& picker, Random& random, const 
                const ElementStyle& style) {
   const int object_id = scene->AddObject("facade", false);
   const double length = a1 - a0;
-  const TexturePicker::Choice choice = picker.Pick(random, length, height, style.photos);
+  const TexturePicker::Choice choice =
+      picker.Pick(random, length, height, style.photos, style.texels_per_metre);
   const bool bends = std::abs(along.track->HeadingAt(a1) - along.track->HeadingAt(a0)) > 1.0 * kDeg;
   const int chords = bends ? std::max(1, static_cast<int>(std::ceil(length / 4.0))) : 1;
   for (int k = 0; k < chords; ++k) {
@@ -97,7 +100,7 @@ void AddFacade(Scene* scene, const TexturePicker& picker, Random& random, const 
 void AddFacades(Scene* scene, const TexturePicker& picker, Random& random, const JsonFields& f,
                 const GroundTrack* track) {
   f.CheckKnown({"type", "side", "offset", "length", "height", "gap", "depth", "start_at", "end_at",
-                "photos", "tint"});
+                "photos", "tint", "texels_per_metre"});
   const AlongTrack along = ParseAlong(f, track);
   const double offset = f.Number("offset", 9.0);
   const Range length = f.NumberRange("length", {8.0, 25.0});
@@ -122,7 +125,8 @@ void AddFacades(Scene* scene, const TexturePicker& picker, Random& random, const
 void AddAlongTrack(Scene* scene, const TexturePicker& picker, Random& random, const JsonFields& f,
                    const GroundTrack* track, const std::string& type) {
   f.CheckKnown({"type", "side", "offset", "spacing", "height", "width", "size", "length",
-                "sign_probability", "slat_spacing", "start_at", "end_at", "photos", "tint"});
+                "sign_probability", "slat_spacing", "start_at", "end_at", "photos", "tint",
+                "texels_per_metre"});
   const AlongTrack along = ParseAlong(f, track);
   const Range offset = f.NumberRange("offset", {5.0, 5.0});
   const Range spacing = f.NumberRange("spacing", {10.0, 20.0});
@@ -158,10 +162,29 @@ void AddAlongTrack(Scene* scene, const TexturePicker& picker, Random& random, co
 // Elements at given places: box, tree, pole, fence, wall, box_field, background, ground.
 void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const JsonFields& f,
                const std::string& type, const Eigen::Vector2d& scene_center) {
-  f.CheckKnown({"type",         "center",     "at",     "size",  "yaw_deg", "bottom",
-                "height",       "width",      "sign",   "from",  "to",      "top",
-                "slat_spacing", "foreground", "area",   "count", "radius",  "segments",
-                "extent",       "tile",       "photos", "tint"});
+  f.CheckKnown({"type",
+                "center",
+                "at",
+                "size",
+                "yaw_deg",
+                "bottom",
+                "height",
+                "width",
+                "sign",
+                "from",
+                "to",
+                "top",
+                "slat_spacing",
+                "foreground",
+                "area",
+                "count",
+                "radius",
+                "segments",
+                "extent",
+                "tile",
+                "photos",
+                "tint",
+                "texels_per_metre"});
   const ElementStyle style =
       ParseStyle(f, type == "tree" ? cv::Vec3f(0.55f, 0.95f, 0.6f) : cv::Vec3f(1.0f, 1.0f, 1.0f));
   const double yaw = f.Number("yaw_deg", 0.0) * kDeg;
@@ -183,7 +206,6 @@ void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const 
             f.Number("bottom", 0.0), f.Number("top", 5.0), "wall", f.Bool("foreground", false),
             style);
   } else if (type == "box_field") {
-    const JsonFields area_fields(f.At("area"), f.where());
     const nlohmann::json& area = f.At("area");
     if (!area.is_array() || area.size() != 4)
       f.Fail("area", "expected [x_min, z_min, x_max, z_max]");

@@ -26,7 +26,9 @@ TexturePicker::TexturePicker(const Scene& scene, int num_photos, double texels_p
 }
 
 TexturePicker::Choice TexturePicker::Pick(Random& random, double width_m, double height_m,
-                                          const std::vector<int>& allowed) const {
+                                          const std::vector<int>& allowed,
+                                          double texels_per_metre) const {
+  const double density = texels_per_metre > 0 ? texels_per_metre : texels_per_metre_;
   Choice choice;
   choice.texture = allowed.empty() ? random.Index(num_photos_)
                                    : allowed[random.Index(static_cast<int>(allowed.size()))];
@@ -34,8 +36,8 @@ TexturePicker::Choice TexturePicker::Pick(Random& random, double width_m, double
               "photograph index " << choice.texture << " out of range (" << num_photos_
                                   << " photographs given)");
   const Texture& photo = scene_.textures[choice.texture];
-  double w = std::max(1e-3, width_m) * texels_per_metre_;
-  double h = std::max(1e-3, height_m) * texels_per_metre_;
+  double w = std::max(1e-3, width_m) * density;
+  double h = std::max(1e-3, height_m) * density;
   const double fit = std::min({1.0, photo.width() / w, photo.height() / h});
   w *= fit;
   h *= fit;
@@ -64,7 +66,8 @@ void AddGround(Scene* scene, const TexturePicker& picker, Random& random,
                const Eigen::Vector2d& center, double extent, double tile,
                const ElementStyle& style) {
   const int object_id = scene->AddObject("ground", false);
-  const TexturePicker::Choice choice = picker.Pick(random, tile, tile, style.photos);
+  const TexturePicker::Choice choice =
+      picker.Pick(random, tile, tile, style.photos, style.texels_per_metre);
   // s along +x, t along +z: seen from above, the texture is not mirrored.
   const int p = AddQuad(scene, At(center - Eigen::Vector2d(extent, extent) / 2.0, 0.0),
                         Eigen::Vector3d(extent, 0.0, 0.0), Eigen::Vector3d(0.0, 0.0, extent),
@@ -78,7 +81,8 @@ int AddWall(Scene* scene, const TexturePicker& picker, Random& random, const Eig
             bool foreground, const ElementStyle& style, int object_id) {
   if (object_id == 0) object_id = scene->AddObject(kind, foreground);
   const double length = (to - from).norm();
-  const TexturePicker::Choice choice = picker.Pick(random, length, top - bottom, style.photos);
+  const TexturePicker::Choice choice =
+      picker.Pick(random, length, top - bottom, style.photos, style.texels_per_metre);
   AddQuad(scene, At(from, top), At(to - from, 0.0), Eigen::Vector3d(0.0, bottom - top, 0.0), choice,
           object_id, style.tint);
   return object_id;
@@ -94,7 +98,7 @@ int AddBox(Scene* scene, const TexturePicker& picker, Random& random, const Eige
   const Eigen::Vector2d corners[4] = {center - ex - ez, center + ex - ez, center + ex + ez,
                                       center - ex + ez};
   ElementStyle box_style = style;
-  box_style.photos = {picker.Pick(random, 1.0, 1.0, style.photos).texture};
+  box_style.photos = {picker.Pick(random, 1.0, 1.0, style.photos, style.texels_per_metre).texture};
   const float side_light[4] = {0.85f, 0.7f, 0.8f, 0.65f};
   const double top = bottom + height;
   for (int k = 0; k < 4; ++k) {
@@ -103,7 +107,8 @@ int AddBox(Scene* scene, const TexturePicker& picker, Random& random, const Eige
     AddWall(scene, picker, random, corners[k], corners[(k + 1) % 4], bottom, top, kind, true, side,
             object_id);
   }
-  const TexturePicker::Choice lid = picker.Pick(random, width, depth, box_style.photos);
+  const TexturePicker::Choice lid =
+      picker.Pick(random, width, depth, box_style.photos, style.texels_per_metre);
   AddQuad(scene, At(corners[0], top), At(corners[1] - corners[0], 0.0),
           At(corners[3] - corners[0], 0.0), lid, object_id, Times(style.tint, Grey(1.0f)));
   return object_id;
@@ -130,7 +135,8 @@ int AddTree(Scene* scene, const TexturePicker& picker, Random& random, const Eig
   for (double turn : {0.0, M_PI / 2.0}) {
     const Eigen::Vector2d half =
         Eigen::Vector2d(std::cos(yaw + turn), std::sin(yaw + turn)) * (width / 2.0);
-    const TexturePicker::Choice choice = picker.Pick(random, width, height, style.photos);
+    const TexturePicker::Choice choice =
+        picker.Pick(random, width, height, style.photos, style.texels_per_metre);
     AddQuad(scene, At(at - half, height), At(2.0 * half, 0.0), Eigen::Vector3d(0.0, -height, 0.0),
             choice, object_id, style.tint, alpha);
   }
@@ -144,7 +150,8 @@ int AddFence(Scene* scene, const TexturePicker& picker, Random& random, const Ei
   const double length = (to - from).norm();
   const int slats = std::max(1, static_cast<int>(std::lround(length / slat_spacing)));
   scene->alpha_masks.push_back(MakeFenceMask(slats, 0.55));
-  const TexturePicker::Choice choice = picker.Pick(random, length, height, style.photos);
+  const TexturePicker::Choice choice =
+      picker.Pick(random, length, height, style.photos, style.texels_per_metre);
   AddQuad(scene, At(from, height), At(to - from, 0.0), Eigen::Vector3d(0.0, -height, 0.0), choice,
           object_id, style.tint, static_cast<int>(scene->alpha_masks.size()) - 1);
   return object_id;

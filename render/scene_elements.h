@@ -23,9 +23,10 @@ class TexturePicker {
     int texture = 0;
     cv::Rect2d rect;
   };
-  // A region of a photograph drawn from `allowed` (indices of photographs; empty: any).
-  Choice Pick(Random& random, double width_m, double height_m,
-              const std::vector<int>& allowed) const;
+  // A region of a photograph drawn from `allowed` (indices of photographs; empty: any), at
+  // `texels_per_metre` when > 0 (else the picker's).
+  Choice Pick(Random& random, double width_m, double height_m, const std::vector<int>& allowed,
+              double texels_per_metre = 0.0) const;
   int num_photos() const { return num_photos_; }
 
  private:
@@ -37,6 +38,7 @@ class TexturePicker {
 struct ElementStyle {
   std::vector<int> photos;  // photographs to cut textures from (empty: any)
   cv::Vec3f tint{1.0f, 1.0f, 1.0f};
+  double texels_per_metre = 0.0;  // > 0: this element's texture density, not the scene's
 };
 
 // A rectangle with corners origin, origin + s_axis, origin + s_axis + t_axis, origin + t_axis,

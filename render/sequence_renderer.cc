@@ -14,13 +14,15 @@ namespace {
 
 enum SequenceStream : uint64_t { kSensorSeed = 2 };
 
-std::string FrameName(int frame, const std::string& extension) {
+}  // namespace
+
+std::string FrameFileName(int frame, const std::string& extension) {
   char name[32];
   std::snprintf(name, sizeof(name), "%06d.%s", frame, extension.c_str());
   return name;
 }
 
-nlohmann::json OptionsToJson(const SequenceRenderOptions& o) {
+nlohmann::json RenderOptionsToJson(const SequenceRenderOptions& o) {
   return {{"supersampling", o.raster.supersampling},
           {"near_plane", o.raster.near_plane},
           {"read_noise", o.sensor.read_noise},
@@ -34,7 +36,32 @@ nlohmann::json OptionsToJson(const SequenceRenderOptions& o) {
           {"depth_format", o.depth_format}};
 }
 
-}  // namespace
+void PrepareOutputFolder(const std::string& folder, const SequenceRenderOptions& options) {
+  io::EnsureWritableDirectory(folder);
+  std::vector<std::string> subfolders = {"images"};
+  if (options.write_depth) subfolders.push_back("depth");
+  if (options.write_ids) subfolders.push_back("ids");
+  if (options.write_boundaries) subfolders.push_back("boundaries");
+  if (options.write_masks) subfolders.push_back("masks");
+  for (const std::string& sub : subfolders) io::EnsureWritableDirectory(io::JoinPaths(folder, sub));
+}
+
+void WriteFrameOutputs(const std::string& folder, int frame, const FrameOutputs& outputs,
+                       const SequenceRenderOptions& options) {
+  const std::string png = FrameFileName(frame, "png");
+  io::WriteImageAtomically(io::JoinPaths(folder, "images/" + png), outputs.image);
+  if (options.write_depth) {
+    io::WriteDepthMap(io::JoinPaths(folder, "depth/" + FrameFileName(frame, options.depth_format)),
+                      outputs.depth);
+  }
+  if (options.write_ids) io::WriteImageAtomically(io::JoinPaths(folder, "ids/" + png), outputs.ids);
+  if (options.write_boundaries) {
+    io::WriteImageAtomically(io::JoinPaths(folder, "boundaries/" + png), outputs.boundaries);
+  }
+  if (options.write_masks) {
+    io::WriteImageAtomically(io::JoinPaths(folder, "masks/" + png), outputs.masks);
+  }
+}
 
 double ThreadCpuSeconds() {
   timespec t{};
@@ -76,50 +103,34 @@ SequenceRenderSummary RenderSequence(const BuiltScene& built, uint64_t seed,
                                      const std::string& folder, const RenderProgress& progress) {
   options.Check();
   const Rasterizer rasterizer(built.lens, options.raster);
-  io::EnsureWritableDirectory(folder);
-  std::vector<std::string> subfolders = {"images"};
-  if (options.write_depth) subfolders.push_back("depth");
-  if (options.write_ids) subfolders.push_back("ids");
-  if (options.write_boundaries) subfolders.push_back("boundaries");
-  if (options.write_masks) subfolders.push_back("masks");
-  for (const std::string& sub : subfolders) io::EnsureWritableDirectory(io::JoinPaths(folder, sub));
-
+  PrepareOutputFolder(folder, options);
   SequenceRenderSummary summary;
   std::vector<Pose> poses;
   std::vector<std::string> names;
   for (int frame = 0; frame < built.num_frames; ++frame) {
     const double start = ThreadCpuSeconds();
     const RenderedFrame rendered = RenderFrame(built, rasterizer, seed, options.sensor, frame);
-    cv::Mat boundaries, masks, ids;
+    FrameOutputs outputs;
+    outputs.image = rendered.image;
+    outputs.depth = rendered.view.depth;
     if (options.write_boundaries) {
-      boundaries = OcclusionBoundaryMask(built.scene, rendered.cam_from_world, rasterizer,
-                                         rendered.view, options.boundary);
+      outputs.boundaries = OcclusionBoundaryMask(built.scene, rendered.cam_from_world, rasterizer,
+                                                 rendered.view, options.boundary);
     }
-    if (options.write_masks) masks = ForegroundMask(built.scene, rendered.view);
-    if (options.write_ids) ids = ObjectIds(built.scene, rendered.view);
+    if (options.write_masks) outputs.masks = ForegroundMask(built.scene, rendered.view);
+    if (options.write_ids) outputs.ids = ObjectIds(built.scene, rendered.view);
     const double rendered_at = ThreadCpuSeconds();
     summary.render_cpu_s += rendered_at - start;
-
-    const std::string png = FrameName(frame, "png");
-    io::WriteImageAtomically(io::JoinPaths(folder, "images/" + png), rendered.image);
-    if (options.write_depth) {
-      io::WriteDepthMap(io::JoinPaths(folder, "depth/" + FrameName(frame, options.depth_format)),
-                        rendered.view.depth);
-    }
-    if (options.write_ids) io::WriteImageAtomically(io::JoinPaths(folder, "ids/" + png), ids);
-    if (options.write_boundaries) {
-      io::WriteImageAtomically(io::JoinPaths(folder, "boundaries/" + png), boundaries);
-    }
-    if (options.write_masks) io::WriteImageAtomically(io::JoinPaths(folder, "masks/" + png), masks);
+    WriteFrameOutputs(folder, frame, outputs, options);
     summary.write_cpu_s += ThreadCpuSeconds() - rendered_at;
     poses.push_back(rendered.cam_from_world);
-    names.push_back(png);
+    names.push_back(FrameFileName(frame, "png"));
     ++summary.num_frames;
     if (progress) progress(summary.num_frames, built.num_frames);
   }
   WriteTrueCameras(folder, built.lens, poses, names);
   nlohmann::json scene = built.resolved;
-  scene["render_options"] = OptionsToJson(options);
+  scene["render_options"] = RenderOptionsToJson(options);
   scene["camera"] = {{"model", built.lens.ColmapModelName()},
                      {"width", built.lens.width},
                      {"height", built.lens.height},

@@ -55,6 +55,24 @@ struct RenderedFrame {
 RenderedFrame RenderFrame(const BuiltScene& built, const Rasterizer& rasterizer, uint64_t seed,
                           const SensorOptions& sensor, int frame);
 
+// The per-frame files of one frame: images/NAME.png always; the others when `options` asks for
+// them (depth in options.depth_format). The subfolders must exist (PrepareOutputFolder).
+struct FrameOutputs {
+  cv::Mat image;       // CV_8UC3
+  cv::Mat depth;       // CV_32F metres
+  cv::Mat ids;         // CV_16UC1
+  cv::Mat boundaries;  // CV_8UC1
+  cv::Mat masks;       // CV_8UC1
+};
+void WriteFrameOutputs(const std::string& folder, int frame, const FrameOutputs& outputs,
+                       const SequenceRenderOptions& options);
+// Creates `folder` and the subfolders `options` writes into.
+void PrepareOutputFolder(const std::string& folder, const SequenceRenderOptions& options);
+// The options as scene.json records them.
+nlohmann::json RenderOptionsToJson(const SequenceRenderOptions& options);
+// "000042.png" (or another extension): the name of frame 42's files.
+std::string FrameFileName(int frame, const std::string& extension);
+
 // Renders every frame of `built` into `folder` (created if missing). Throws comic::Error for bad
 // options (kInvalidArgument) or a failed write (kIo).
 SequenceRenderSummary RenderSequence(const BuiltScene& built, uint64_t seed,
