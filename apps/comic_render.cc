@@ -127,7 +127,7 @@ int Run(int argc, char** argv) {
   build.Check();
   COMIC_CHECK(stereo_pairs >= 0, kInvalidArgument,
               "--stereo-pairs must be >= 0, got " << stereo_pairs);
-  stereo.boundary = options.boundary;
+  stereo.boundary.depth_ratio = options.boundary.depth_ratio;
   stereo.Check();
   io::CheckCreatableFolder(out_dir);  // before the photographs are read
 

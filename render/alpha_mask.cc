@@ -6,9 +6,8 @@
 
 namespace comic::render {
 
-constexpr int kBlock = 8;
-
 void AlphaMask::Finish() {
+  constexpr int kBlock = 1 << kBlockShift;
   const int bw = (coverage.cols + kBlock - 1) / kBlock;
   const int bh = (coverage.rows + kBlock - 1) / kBlock;
   blocks.create(bh, bw, CV_8UC1);
@@ -20,27 +19,21 @@ void AlphaMask::Finish() {
       double low = 0.0;
       double high = 0.0;
       cv::minMaxLoc(coverage(rect), &low, &high);
-      blocks.at<uint8_t>(by, bx) = low == 255 ? 255 : (high == 0 ? 0 : 128);
+      blocks.at<uint8_t>(by, bx) = low == 255 ? 255 : (high == 0 ? 0 : kMixed);
     }
   }
 }
 
-bool AlphaMask::Covers(double s, double t) const {
-  const double x = std::clamp(s * coverage.cols - 0.5, 0.0, coverage.cols - 1.0);
-  const double y = std::clamp(t * coverage.rows - 0.5, 0.0, coverage.rows - 1.0);
-  const int x0 = static_cast<int>(x);
-  const int y0 = static_cast<int>(y);
-  const uint8_t block = blocks.at<uint8_t>(y0 / kBlock, x0 / kBlock);
-  if (block != 128) return block == 255;
+bool AlphaMask::Interpolate(float x, float y, int x0, int y0) const {
   const int x1 = std::min(x0 + 1, coverage.cols - 1);
   const int y1 = std::min(y0 + 1, coverage.rows - 1);
-  const double wx = x - x0;
-  const double wy = y - y0;
+  const float wx = x - x0;
+  const float wy = y - y0;
   const uint8_t* row0 = coverage.ptr<uint8_t>(y0);
   const uint8_t* row1 = coverage.ptr<uint8_t>(y1);
-  const double top = row0[x0] + wx * (row0[x1] - row0[x0]);
-  const double bottom = row1[x0] + wx * (row1[x1] - row1[x0]);
-  return top + wy * (bottom - top) >= 127.5;
+  const float top = row0[x0] + wx * (row0[x1] - row0[x0]);
+  const float bottom = row1[x0] + wx * (row1[x1] - row1[x0]);
+  return top + wy * (bottom - top) >= 127.5f;
 }
 
 AlphaMask MakeTreeMask(Random& random, int size, double trunk_fraction) {

@@ -3,6 +3,7 @@
 // outline is a smooth curve at any distance (anti-aliased by the rasteriser's supersampling).
 #pragma once
 
+#include <algorithm>
 #include <opencv2/core.hpp>
 
 #include "render/random.h"
@@ -18,7 +19,23 @@ struct AlphaMask {
   // Call once `coverage` is drawn.
   void Finish();
   // True where the interpolated coverage at (s, t) is at least one half.
-  bool Covers(double s, double t) const;
+  bool Covers(double s, double t) const {
+    const float x =
+        std::clamp(static_cast<float>(s) * coverage.cols - 0.5f, 0.0f, coverage.cols - 1.0f);
+    const float y =
+        std::clamp(static_cast<float>(t) * coverage.rows - 0.5f, 0.0f, coverage.rows - 1.0f);
+    const int x0 = static_cast<int>(x);
+    const int y0 = static_cast<int>(y);
+    const uint8_t block = blocks.ptr<uint8_t>(y0 >> kBlockShift)[x0 >> kBlockShift];
+    if (block != kMixed) return block != 0;
+    return Interpolate(x, y, x0, y0);
+  }
+
+  static constexpr int kBlockShift = 3;  // blocks of 8 x 8 texels
+  static constexpr uint8_t kMixed = 128;
+
+ private:
+  bool Interpolate(float x, float y, int x0, int y0) const;
 };
 
 // A tree seen from the side: a trunk (the bottom `trunk_fraction` of the height, a tenth of the

@@ -217,8 +217,18 @@ void Rasterizer::RasterizeRows(const Scene& scene, const std::vector<PieceView>&
           DepthTestSpan(static_cast<float>(a.z()), static_cast<float>(d.z()), pi,
                         static_cast<int>(lo), i1, depth_row, piece_row);
         } else {
+          // The depth test first (cheap), the mask only for nearer samples.
+          const float q0 = static_cast<float>(a.z());
+          const float dq = static_cast<float>(d.z());
           for (int i = static_cast<int>(lo); i <= i1; ++i) {
-            draw(pi, mask, j, i, a.x() + i * d.x(), a.y() + i * d.y(), a.z() + i * d.z());
+            const float q = q0 + static_cast<float>(i) * dq;
+            if (!(q > depth_row[i])) continue;
+            const double inverse = 1.0 / (a.z() + i * d.z());
+            if (!mask->Covers((a.x() + i * d.x()) * inverse, (a.y() + i * d.y()) * inverse)) {
+              continue;
+            }
+            depth_row[i] = q;
+            piece_row[i] = pi;
           }
         }
       }

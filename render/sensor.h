@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <vector>
 
 namespace comic::render {
 
@@ -33,5 +34,10 @@ double ExposureGain(const SensorOptions& options, uint64_t seed, double time);
 // The 8-bit frame (CV_8UC3) of a rendered colour image (CV_32FC3, 0..255): gain, noise,
 // rounding and clipping.
 cv::Mat ExposeFrame(const cv::Mat& color, const SensorOptions& options, uint64_t seed, int frame);
+
+// The standard normal quantile function (Acklam's approximation, relative error < 1.2e-9).
+double InverseNormal(double p);
+// Its 4096 midpoint quantiles, Phi^-1((k + 1/2) / 4096): the sensor noise's values.
+std::vector<float> NormalQuantiles();
 
 }  // namespace comic::render

@@ -24,7 +24,9 @@ struct StereoPairOptions {
   double baseline = 0.2;  // metres, right camera to the right of the left one
   // Relative depth difference within which the right camera sees the same surface (nonocc).
   double depth_tolerance = 0.01;
-  BoundaryOptions boundary;
+  // disc.png's band: Middlebury's discontinuity regions are the discontinuities dilated by a 9x9
+  // window (Scharstein & Szeliski 2002), so 4 px either side.
+  BoundaryOptions boundary = {0.03, 4.0};
 
   void Check() const;
 };

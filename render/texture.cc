@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/core/error.h"
@@ -24,9 +25,9 @@ Texture Texture::FromImage(const cv::Mat& image, const std::string& name) {
   } else {
     bgr = image.clone();
   }
-  texture.levels_.push_back(bgr);
-  while (texture.levels_.back().cols > 1 || texture.levels_.back().rows > 1) {
-    const cv::Mat& last = texture.levels_.back();
+  std::vector<cv::Mat> pyramid = {bgr};
+  while (pyramid.back().cols > 1 || pyramid.back().rows > 1) {
+    const cv::Mat& last = pyramid.back();
     cv::Mat next;
     if (last.cols >= 2 && last.rows >= 2) {
       cv::pyrDown(last, next);
@@ -34,9 +35,16 @@ Texture Texture::FromImage(const cv::Mat& image, const std::string& name) {
       cv::resize(last, next, cv::Size((last.cols + 1) / 2, (last.rows + 1) / 2), 0, 0,
                  cv::INTER_AREA);
     }
-    texture.levels_.push_back(next);
+    pyramid.push_back(next);
   }
-  for (const cv::Mat& level : texture.levels_) {
+  for (const cv::Mat& level : pyramid) {
+    cv::Mat padded;
+    cv::copyMakeBorder(level, padded, 0, 0, 0, 1, cv::BORDER_REPLICATE);
+    cv::Mat bgrx;
+    cv::cvtColor(padded, bgrx, cv::COLOR_BGR2BGRA);
+    bgrx.forEach<cv::Vec4b>([](cv::Vec4b& p, const int*) { p[3] = 0; });
+    texture.levels_.push_back(bgrx);
+    texture.sizes_.push_back(level.size());
     texture.level_scales_.emplace_back(static_cast<float>(level.cols) / bgr.cols,
                                        static_cast<float>(level.rows) / bgr.rows);
   }
@@ -53,29 +61,44 @@ Texture Texture::Solid(const cv::Vec3f& bgr, const std::string& name) {
 
 cv::Vec3f Texture::SampleLevel(int level, double x, double y) const {
   const cv::Mat& image = levels_[level];
+  const cv::Size& size = sizes_[level];
   // Level k's texel (i, j) covers level 0's [i, i + 1) / level_scales_[k].
   const float fx =
-      std::clamp(static_cast<float>(x) * level_scales_[level][0] - 0.5f, 0.0f, image.cols - 1.0f);
+      std::clamp(static_cast<float>(x) * level_scales_[level][0] - 0.5f, 0.0f, size.width - 1.0f);
   const float fy =
-      std::clamp(static_cast<float>(y) * level_scales_[level][1] - 0.5f, 0.0f, image.rows - 1.0f);
+      std::clamp(static_cast<float>(y) * level_scales_[level][1] - 0.5f, 0.0f, size.height - 1.0f);
   const int x0 = static_cast<int>(fx);
   const int y0 = static_cast<int>(fy);
-  const int x1 = std::min(x0 + 1, image.cols - 1);
-  const int y1 = std::min(y0 + 1, image.rows - 1);
-  // Weights in 1/256 of a texel, in integers: exact and the same everywhere.
-  const int wx = static_cast<int>((fx - x0) * 256.0f);
-  const int wy = static_cast<int>((fy - y0) * 256.0f);
-  const uint8_t* row0 = image.ptr<uint8_t>(y0);
-  const uint8_t* row1 = image.ptr<uint8_t>(y1);
-  const int a = 3 * x0;
-  const int b = 3 * x1;
-  cv::Vec3f out;
-  for (int c = 0; c < 3; ++c) {
-    const int top = row0[a + c] * (256 - wx) + row0[b + c] * wx;
-    const int bottom = row1[a + c] * (256 - wx) + row1[b + c] * wx;
-    out[c] = static_cast<float>(top * (256 - wy) + bottom * wy) * (1.0f / 65536.0f);
+  const int y1 = std::min(y0 + 1, size.height - 1);
+  // Weights in 1/256 of a texel, in integers: exact, and the same in the vector and the scalar
+  // code. Texel x0 + 1 exists (the repeated column) even at the right edge, where its weight is 0.
+  const uint32_t wx = static_cast<uint32_t>((fx - x0) * 256.0f);
+  const uint32_t wy = static_cast<uint32_t>((fy - y0) * 256.0f);
+  const uint8_t* top = image.ptr<uint8_t>(y0) + 4 * x0;
+  const uint8_t* bottom = image.ptr<uint8_t>(y1) + 4 * x0;
+  float channels[4];
+#if CV_SIMD128
+  const uint16_t w[8] = {static_cast<uint16_t>(256 - wx), static_cast<uint16_t>(256 - wx),
+                         static_cast<uint16_t>(256 - wx), static_cast<uint16_t>(256 - wx),
+                         static_cast<uint16_t>(wx),       static_cast<uint16_t>(wx),
+                         static_cast<uint16_t>(wx),       static_cast<uint16_t>(wx)};
+  const cv::v_uint16x8 weights = cv::v_load(w);
+  cv::v_uint32x4 left, right;
+  cv::v_expand(cv::v_mul_wrap(cv::v_load_expand(top), weights), left, right);
+  const cv::v_uint32x4 upper = left + right;
+  cv::v_expand(cv::v_mul_wrap(cv::v_load_expand(bottom), weights), left, right);
+  const cv::v_uint32x4 lower = left + right;
+  const cv::v_uint32x4 blended = upper * cv::v_setall_u32(256 - wy) + lower * cv::v_setall_u32(wy);
+  cv::v_store(channels,
+              cv::v_cvt_f32(cv::v_reinterpret_as_s32(blended)) * cv::v_setall_f32(1.0f / 65536.0f));
+#else
+  for (int c = 0; c < 4; ++c) {
+    const uint32_t upper = top[c] * (256 - wx) + top[4 + c] * wx;
+    const uint32_t lower = bottom[c] * (256 - wx) + bottom[4 + c] * wx;
+    channels[c] = static_cast<float>(upper * (256 - wy) + lower * wy) * (1.0f / 65536.0f);
   }
-  return out;
+#endif
+  return cv::Vec3f(channels[0], channels[1], channels[2]);
 }
 
 namespace {

@@ -17,8 +17,8 @@ class Texture {
   // A 1x1 texture of one BGR colour (0..255).
   static Texture Solid(const cv::Vec3f& bgr, const std::string& name);
 
-  int width() const { return levels_.front().cols; }
-  int height() const { return levels_.front().rows; }
+  int width() const { return sizes_.front().width; }
+  int height() const { return sizes_.front().height; }
   const std::string& name() const { return name_; }
   int NumLevels() const { return static_cast<int>(levels_.size()); }
 
@@ -31,7 +31,10 @@ class Texture {
 
  private:
   std::string name_;
-  std::vector<cv::Mat> levels_;          // CV_8UC3; level k is level k-1 halved (cv::pyrDown)
+  // Level k is level k-1 halved (cv::pyrDown), stored as CV_8UC4 (BGR and a zero) with the last
+  // column repeated once more, so that two neighbouring texels are always one 8-byte load.
+  std::vector<cv::Mat> levels_;
+  std::vector<cv::Size> sizes_;          // each level's size without the repeated column
   std::vector<cv::Vec2f> level_scales_;  // level k's texels per level-0 texel (x, y)
 };
 
