@@ -1,6 +1,7 @@
 #include "render/nerf_composite.h"
 
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "io/core/error.h"
@@ -127,8 +128,9 @@ SequenceRenderSummary RenderNerfComposite(const NerfSet& set, const BuiltScene& 
     }
     FrameOutputs outputs;
     outputs.image = ExposeFrame(color, options.sensor, MixSeed(seed, kCompositeSensor), k);
+    // Unknown on the object: NaN (a PFM keeps it; a 16-bit PNG has no such value and stores 0).
     outputs.depth = seen.depth.clone();
-    outputs.depth.setTo(0.0f, object);
+    outputs.depth.setTo(std::numeric_limits<float>::quiet_NaN(), object);
     outputs.ids = ObjectIds(background.scene, seen);
     outputs.ids.setTo(object_id, object);
     outputs.masks = object;
@@ -152,7 +154,7 @@ SequenceRenderSummary RenderNerfComposite(const NerfSet& set, const BuiltScene& 
   scene["composite"] = {{"views", num_views},
                         {"object_id", object_id},
                         {"first_view", set.views.front().image_path},
-                        {"depth_on_object", "unknown (0)"}};
+                        {"depth_on_object", "unknown (NaN in PFM, 0 in PNG)"}};
   io::WriteFileAtomically(io::JoinPaths(folder, "scene.json"), scene.dump(1) + "\n");
   return summary;
 }

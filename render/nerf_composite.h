@@ -7,7 +7,7 @@
 //   masks/        the object (alpha >= 0.5)
 //   boundaries/   the object's silhouette band, and the background's own occlusion boundaries
 //                 where the object does not hide them
-//   depth/        the background's depth; 0 on the object (its depth is not given)
+//   depth/        the background's depth; unknown on the object (NaN in PFM, 0 in a PNG)
 //   ids/          the background's object ids; the object gets the next id
 //   poses.txt, calib.txt, colmap/, scene.json as render/sequence_renderer.h writes them
 #pragma once

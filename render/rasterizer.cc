@@ -399,14 +399,19 @@ RenderedView Rasterizer::Geometry(const std::vector<PieceView>& views,
   RenderedView view;
   view.piece = centre.piece;
   view.depth = cv::Mat::zeros(lens_.height, lens_.width, CV_32F);
+  const bool pinhole = !lens_.HasDistortion();
   for (int y = 0; y < lens_.height; ++y) {
+    const int* pieces = centre.piece.ptr<int>(y);
+    float* depth = view.depth.ptr<float>(y);
+    const double v = (y - lens_.cy) / lens_.fy;
     for (int x = 0; x < lens_.width; ++x) {
-      const int p = centre.piece.at<int>(y, x);
+      const int p = pieces[x];
       if (p < 0) continue;
       // The depth again in double from the plane, not the float z-buffer.
-      const Eigen::Vector2d uv = RayOfPixel(x, y);
-      view.depth.at<float>(y, x) =
-          static_cast<float>(1.0 / (views[p].g.row(2) * Eigen::Vector3d(uv.x(), uv.y(), 1.0)));
+      const Eigen::Vector2d uv =
+          pinhole ? Eigen::Vector2d((x - lens_.cx) / lens_.fx, v) : RayOfPixel(x, y);
+      const Eigen::Matrix3d& g = views[p].g;
+      depth[x] = static_cast<float>(1.0 / (g(2, 0) * uv.x() + g(2, 1) * uv.y() + g(2, 2)));
     }
   }
   return view;

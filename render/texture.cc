@@ -45,8 +45,8 @@ Texture Texture::FromImage(const cv::Mat& image, const std::string& name) {
     bgrx.forEach<cv::Vec4b>([](cv::Vec4b& p, const int*) { p[3] = 0; });
     texture.levels_.push_back(bgrx);
     texture.sizes_.push_back(level.size());
-    texture.level_scales_.emplace_back(static_cast<float>(level.cols) / bgr.cols,
-                                       static_cast<float>(level.rows) / bgr.rows);
+    const float scale = 1.0f / static_cast<float>(1 << texture.level_scales_.size());
+    texture.level_scales_.emplace_back(scale, scale);
   }
   return texture;
 }
@@ -62,11 +62,12 @@ Texture Texture::Solid(const cv::Vec3f& bgr, const std::string& name) {
 cv::Vec3f Texture::SampleLevel(int level, double x, double y) const {
   const cv::Mat& image = levels_[level];
   const cv::Size& size = sizes_[level];
-  // Level k's texel (i, j) covers level 0's [i, i + 1) / level_scales_[k].
-  const float fx =
-      std::clamp(static_cast<float>(x) * level_scales_[level][0] - 0.5f, 0.0f, size.width - 1.0f);
-  const float fy =
-      std::clamp(static_cast<float>(y) * level_scales_[level][1] - 0.5f, 0.0f, size.height - 1.0f);
+  // cv::pyrDown centres level k's texel i on level k-1's texel 2i, so on level 0's texel 2^k i,
+  // whose centre is at 2^k i + 1/2: every level is centred where level 0 is, and a texture does
+  // not shift on its surface as the level changes with distance.
+  const float scale = level_scales_[level][0];  // 2^-k
+  const float fx = std::clamp((static_cast<float>(x) - 0.5f) * scale, 0.0f, size.width - 1.0f);
+  const float fy = std::clamp((static_cast<float>(y) - 0.5f) * scale, 0.0f, size.height - 1.0f);
   const int x0 = static_cast<int>(fx);
   const int y0 = static_cast<int>(fy);
   const int y1 = std::min(y0 + 1, size.height - 1);

@@ -35,7 +35,7 @@ class Texture {
   // column repeated once more, so that two neighbouring texels are always one 8-byte load.
   std::vector<cv::Mat> levels_;
   std::vector<cv::Size> sizes_;          // each level's size without the repeated column
-  std::vector<cv::Vec2f> level_scales_;  // level k's texels per level-0 texel (x, y)
+  std::vector<cv::Vec2f> level_scales_;  // level k's texels per level-0 texel: 2^-k (x, y)
 };
 
 }  // namespace comic::render

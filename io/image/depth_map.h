@@ -2,8 +2,8 @@
 //   .png  16-bit grey, millimetres (value = round(1000 z)); 0 = no surface; 65535 = at least
 //         65.535 m (saturated) — compact, what ICL-NUIM/TUM-style tools read
 //   .pfm  Portable Float Map (one channel, little-endian, bottom row first): metres, exact to
-//         float precision; 0 = no surface
-// Depth is z, the distance along the optical axis, not along the ray.
+//         float precision; 0 = no surface, NaN = unknown (a composited object's depth)
+// Depth is z, the distance along the optical axis, not along the ray. A PNG stores NaN as 0.
 #pragma once
 
 #include <opencv2/core.hpp>

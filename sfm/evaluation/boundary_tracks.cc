@@ -11,21 +11,27 @@ namespace comic::sfm {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Metres along a ray that stand for infinity (the paths are a few kilometres at most).
+constexpr double kFarAway = 1e7;
 
-// The largest distance between an observation of `track` and the projection of `point`
-// (infinite when the point is behind one of the cameras).
-double WorstReprojection(const frontend::Track& track, const frontend::FeatureTracks& tracks,
-                         const Camera& camera, const std::vector<Rigid3d>& cams_from_world,
-                         const Eigen::Vector3d& point) {
+// The RMS and largest distances between the observations of `track` and the projections of
+// `point` (infinite when the point is behind one of the cameras).
+std::pair<double, double> Reprojection(const frontend::Track& track,
+                                       const frontend::FeatureTracks& tracks, const Camera& camera,
+                                       const std::vector<Rigid3d>& cams_from_world,
+                                       const Eigen::Vector3d& point) {
+  double squares = 0.0;
   double worst = 0.0;
   for (const frontend::TrackObservation& obs : track.observations) {
     const Eigen::Vector3d c = cams_from_world[obs.frame] * point;
-    if (!(c.z() > 0.0)) return kInfinity;
+    if (!(c.z() > 0.0)) return {kInfinity, kInfinity};
     const Eigen::Vector2d projected = camera.ImageFromCam({c.x() / c.z(), c.y() / c.z()});
     const frontend::Feature& f = tracks.FeatureOf(obs);
-    worst = std::max(worst, (projected - Eigen::Vector2d(f.x, f.y)).norm());
+    const double error = (projected - Eigen::Vector2d(f.x, f.y)).norm();
+    squares += error * error;
+    worst = std::max(worst, error);
   }
-  return worst;
+  return {std::sqrt(squares / track.observations.size()), worst};
 }
 
 double Median(std::vector<double> values) {
@@ -42,7 +48,7 @@ bool Known(float z) { return std::isfinite(z) && z > 0.0f; }
 // on a plane, so interpolating it bilinearly is exact there), and each nearby pixel's own depth
 // (the candidates on either side of a discontinuity).
 std::vector<Eigen::Vector3d> SurfaceCandidates(const cv::Mat& depth, const Camera& camera, double x,
-                                               double y, int radius) {
+                                               double y, int radius, bool* unknown) {
   const Eigen::Vector2d uv = camera.CamFromImage({x, y});
   const Eigen::Vector3d ray(uv.x(), uv.y(), 1.0);
   std::vector<Eigen::Vector3d> points;
@@ -61,6 +67,7 @@ std::vector<Eigen::Vector3d> SurfaceCandidates(const cv::Mat& depth, const Camer
   }
   const int cx = static_cast<int>(std::lround(x));
   const int cy = static_cast<int>(std::lround(y));
+  bool sky = false;
   for (int dy = -radius; dy <= radius; ++dy) {
     for (int dx = -radius; dx <= radius; ++dx) {
       const int px = cx + dx;
@@ -68,8 +75,13 @@ std::vector<Eigen::Vector3d> SurfaceCandidates(const cv::Mat& depth, const Camer
       if (px < 0 || py < 0 || px >= depth.cols || py >= depth.rows) continue;
       const float z = depth.at<float>(py, px);
       if (Known(z)) points.push_back(ray * z);
+      sky |= z == 0.0f || z == std::numeric_limits<float>::infinity();
+      *unknown |= std::isnan(z);
     }
   }
+  // Nothing drawn there (0), or beyond what a PNG depth holds (+inf): a point as good as at
+  // infinity, which only the cameras' rotations move. Unknown depth (NaN) gives no candidate.
+  if (sky) points.push_back(ray * kFarAway);
   return points;
 }
 
@@ -116,14 +128,20 @@ BoundaryTrackEvaluation EvaluateBoundaryTracks(const frontend::FeatureTracks& tr
                                   << " frames");
   BoundaryTrackEvaluation result;
   result.tracks.resize(tracks.tracks.size());
-  std::vector<std::vector<size_t>> starting(num_frames);
+  // The anchors of each long enough track (its first, middle and last observations), by frame.
+  std::vector<std::vector<std::pair<size_t, size_t>>> anchors(num_frames);
   for (size_t t = 0; t < tracks.tracks.size(); ++t) {
-    if (tracks.tracks[t].Length() > 0) starting[tracks.tracks[t].FirstFrame()].push_back(t);
+    const frontend::Track& track = tracks.tracks[t];
+    if (static_cast<int>(track.Length()) < options.min_track_length) continue;
+    for (size_t k : {size_t{0}, track.Length() / 2, track.Length() - 1}) {
+      anchors[track.observations[k].frame].emplace_back(t, k);
+    }
   }
   // One pass over the frames: label every feature, and gather the candidate points of the
-  // tracks that start in each frame (the frame's depth is read once).
+  // tracks anchored in each frame (the frame's depth is read once).
   std::vector<std::vector<uint8_t>> on_band(num_frames);
   std::vector<std::vector<Eigen::Vector3d>> candidates(tracks.tracks.size());
+  std::vector<uint8_t> unknown_depth(tracks.tracks.size(), 0);
   for (int f = 0; f < num_frames; ++f) {
     const FrameTruth frame = truth(f);
     COMIC_CHECK(frame.band.type() == CV_8UC1 && frame.depth.type() == CV_32FC1 &&
@@ -141,14 +159,14 @@ BoundaryTrackEvaluation EvaluateBoundaryTracks(const frontend::FeatureTracks& tr
       result.num_boundary_features += in;
     }
     const Rigid3d world_from_cam = cams_from_world[f].Inverse();
-    for (size_t t : starting[f]) {
-      const frontend::Track& track = tracks.tracks[t];
-      if (static_cast<int>(track.Length()) < options.min_track_length) continue;
-      const frontend::Feature& first = tracks.FeatureOf(track.observations.front());
-      for (const Eigen::Vector3d& point :
-           SurfaceCandidates(frame.depth, camera, first.x, first.y, options.neighbourhood_px)) {
+    for (const auto& [t, k] : anchors[f]) {
+      const frontend::Feature& anchor = tracks.FeatureOf(tracks.tracks[t].observations[k]);
+      bool unknown = false;
+      for (const Eigen::Vector3d& point : SurfaceCandidates(frame.depth, camera, anchor.x, anchor.y,
+                                                            options.neighbourhood_px, &unknown)) {
         candidates[t].push_back(world_from_cam * point);
       }
+      unknown_depth[t] |= unknown;
     }
   }
   for (size_t t = 0; t < tracks.tracks.size(); ++t) {
@@ -160,8 +178,9 @@ BoundaryTrackEvaluation EvaluateBoundaryTracks(const frontend::FeatureTracks& tr
     }
     truth_t.boundary = track.Length() > 0 && 2 * in_band >= track.Length();
     if (static_cast<int>(track.Length()) < options.min_track_length) continue;
-    if (candidates[t].empty()) {
-      // No depth where it starts (a composited object): the point its observations triangulate.
+    if (candidates[t].empty() || unknown_depth[t]) {
+      // Depth unknown at an anchor (a composited object): also the point its observations
+      // triangulate.
       std::vector<Rigid3d> poses;
       std::vector<Eigen::Vector2d> normalized;
       for (const frontend::TrackObservation& obs : track.observations) {
@@ -174,10 +193,13 @@ BoundaryTrackEvaluation EvaluateBoundaryTracks(const frontend::FeatureTracks& tr
     }
     if (candidates[t].empty()) continue;
     truth_t.classified = true;
-    truth_t.drift_px = kInfinity;
+    truth_t.drift_px = truth_t.worst_px = kInfinity;
     for (const Eigen::Vector3d& point : candidates[t]) {
-      truth_t.drift_px = std::min(truth_t.drift_px,
-                                  WorstReprojection(track, tracks, camera, cams_from_world, point));
+      const auto [rms, worst] = Reprojection(track, tracks, camera, cams_from_world, point);
+      if (rms < truth_t.drift_px) {
+        truth_t.drift_px = rms;
+        truth_t.worst_px = worst;
+      }
     }
     truth_t.follows = truth_t.drift_px <= options.follow_tolerance_px;
   }

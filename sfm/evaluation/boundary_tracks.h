@@ -4,12 +4,14 @@
 // CoMIC's side-aware matching helps at object boundaries (§4), asked of the tracks SfM consumes.
 //
 // A track is a *boundary track* when at least half of its observations lie in the occlusion-
-// boundary band. It *follows a surface point* when one 3-D point explains every observation
-// within `follow_tolerance_px` through the true cameras: the candidates are the surfaces seen
-// around its first observation (the true depths within `neighbourhood_px`, back-projected through
-// the observed position), or, where no depth is known (a composited object), the point
-// triangulated from all its observations. Otherwise it *slides*: the feature stayed on an image
-// structure (a T-junction of a silhouette with the background, say) that no surface point makes.
+// boundary band. It *follows a surface point* when one 3-D point explains its observations through
+// the true cameras to an RMS of `follow_tolerance_px`: the candidates are the surfaces seen around
+// its first, middle and last observations (the true depths within `neighbourhood_px`, back-
+// projected through the observed position; three anchors, so that one noisy detection does not
+// decide), or, where no depth is known (a composited object), the point triangulated from all its
+// observations. Otherwise it *slides*: the feature stayed on an image structure (a T-junction of a
+// silhouette with the background, say) that no surface point makes. RMS rather than the largest
+// error: a detector's jitter of a pixel in one frame is not a slide, a slide grows over the track.
 #pragma once
 
 #include <functional>
@@ -23,8 +25,8 @@
 namespace comic::sfm {
 
 struct BoundaryTrackOptions {
-  // A track follows a surface point if one point reprojects within this in every frame (pixels).
-  double follow_tolerance_px = 2.0;
+  // A track follows a surface point if one point reprojects to an RMS within this (pixels).
+  double follow_tolerance_px = 1.5;
   // Tracks with fewer observations are counted but neither following nor sliding.
   int min_track_length = 3;
   // Depth candidates come from the (2n+1)^2 pixels around the first observation.
@@ -37,7 +39,8 @@ struct TrackTruth {
   bool boundary = false;    // at least half of the observations in the band
   bool classified = false;  // long enough and with a candidate point
   bool follows = false;     // one 3-D point explains every observation
-  double drift_px = 0.0;    // the best candidate's largest reprojection error
+  double drift_px = 0.0;    // the best candidate's RMS reprojection error
+  double worst_px = 0.0;    // and its largest
 };
 
 // Summary of a set of tracks (the boundary ones, or the others).
@@ -63,8 +66,9 @@ struct BoundaryTrackEvaluation {
   TrackSetSummary other;
 };
 
-// The truth of frame k: its band (CV_8UC1, non-zero = boundary) and depth (CV_32F metres; 0 or
-// non-finite where unknown). Called once per frame, in order.
+// The truth of frame k: its band (CV_8UC1, non-zero = boundary) and depth (CV_32F metres; 0 where
+// nothing is drawn (sky: a point at infinity), +inf beyond a PNG's range (taken as infinity too),
+// NaN where unknown). Called once per frame, in order.
 struct FrameTruth {
   cv::Mat band;
   cv::Mat depth;

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "io/core/error.h"
 
 namespace comic::sfm {
@@ -41,7 +44,7 @@ struct Fixture {
 };
 
 // Track 0 follows the wall point (0.3, 0.1, 5); track 1 stays at pixel (10, 10); track 2 follows
-// a point 2.5 away where the depth map says nothing (depth 0 there); track 3 has two observations.
+// a point 2.5 away where the depth is unknown (NaN there); track 3 has two observations.
 Fixture MakeTracks() {
   Fixture f;
   f.tracks.image_size = cv::Size(64, 48);
@@ -65,12 +68,13 @@ Fixture MakeTracks() {
   return f;
 }
 
-FrameTruthFn Truth(const std::vector<int>& band_frames) {
-  return [band_frames](int frame) {
+FrameTruthFn Truth(const std::vector<int>& band_frames, bool sky_at_track1 = false) {
+  return [band_frames, sky_at_track1](int frame) {
     FrameTruth truth;
     truth.depth = cv::Mat(48, 64, CV_32F, cv::Scalar(kWall));
-    // No depth known around the near point's first observation (a composited object).
-    truth.depth(cv::Rect(0, 20, 30, 28)).setTo(0.0f);
+    // No depth known where the near point is first seen (a composited object), left of x = 30.
+    truth.depth(cv::Rect(0, 20, 30, 28)).setTo(std::numeric_limits<float>::quiet_NaN());
+    if (sky_at_track1) truth.depth(cv::Rect(5, 5, 10, 10)).setTo(0.0f);
     truth.band = cv::Mat::zeros(48, 64, CV_8UC1);
     // The pixel (10, 10) is in the band in the frames listed.
     if (std::find(band_frames.begin(), band_frames.end(), frame) != band_frames.end()) {
@@ -88,12 +92,15 @@ TEST(BoundaryTracks, FollowingSlidingAndTriangulatedTracks) {
   EXPECT_TRUE(e.tracks[0].classified);
   EXPECT_TRUE(e.tracks[0].follows);
   EXPECT_LT(e.tracks[0].drift_px, 1e-3);
-  // Staying at (10, 10) while the camera moves 1 m sideways: the wall point behind it moves
-  // 50 px * 1 m / 5 m = 10 px, so no surface point explains it.
+  // Staying at (10, 10) while the camera moves 1 m sideways: a wall point moves 50 px * 0.2 m /
+  // 5 m = 2 px a frame, so the best candidate (the one seen there in the middle frame, 3) is off
+  // by 6, 4, 2, 0, 2, 4 px: RMS 3.56, largest 6.
   EXPECT_TRUE(e.tracks[1].classified);
   EXPECT_FALSE(e.tracks[1].follows);
-  EXPECT_GT(e.tracks[1].drift_px, 4.0);
-  // No depth where it starts: judged by the point its observations triangulate.
+  EXPECT_NEAR(e.tracks[1].drift_px, std::sqrt(76.0 / 6.0), 1e-6);
+  EXPECT_NEAR(e.tracks[1].worst_px, 6.0, 1e-6);
+  // Unknown depth where it starts (its later anchors see the wall behind it): judged by the point
+  // its observations triangulate.
   EXPECT_TRUE(e.tracks[2].classified);
   EXPECT_TRUE(e.tracks[2].follows);
   EXPECT_FALSE(e.tracks[3].classified);  // two observations only
@@ -109,6 +116,17 @@ TEST(BoundaryTracks, FollowingSlidingAndTriangulatedTracks) {
   EXPECT_EQ(e.other.num_following, 2u);
   EXPECT_DOUBLE_EQ(e.other.mean_length, (6 + 6 + 2) / 3.0);
   EXPECT_NEAR(e.boundary_area_fraction, 0.5 / (64 * 48), 1e-12);
+}
+
+TEST(BoundaryTracks, AFeatureThatStaysPutFollowsTheSkyUnderTranslation) {
+  // Nothing drawn around (10, 10): the sky, a point at infinity, which a camera that only
+  // translates sees at the same pixel. Staying put is then following it.
+  const Fixture f = MakeTracks();
+  const BoundaryTrackEvaluation e = EvaluateBoundaryTracks(
+      f.tracks, f.camera, f.poses, Truth({}, /*sky_at_track1=*/true), BoundaryTrackOptions());
+  EXPECT_TRUE(e.tracks[1].classified);
+  EXPECT_TRUE(e.tracks[1].follows);
+  EXPECT_LT(e.tracks[1].drift_px, 1e-3);
 }
 
 TEST(BoundaryTracks, FewerBandFramesThanHalfIsNotABoundaryTrack) {
