@@ -1,7 +1,7 @@
 // The tracker options of a run (paper §4: frame-to-frame SSD patch matching within a radius, with
 // the motion prediction real driving video needs), by comic_sfm's and comic_export_colmap's flag
-// names, and the frame pairs matched (--matching, issue 16). A field left unset takes the default
-// of video SfM (SequenceReconstructionOptions' tracker: 2000 features, constant-velocity
+// names, and the frame pairs matched (--matching, docs/sfm.md). A field left unset takes the
+// default of video SfM (SequenceReconstructionOptions' tracker: 2000 features, constant-velocity
 // prediction, 60 px where nothing predicts) as set up for the chosen pairing; a field given is
 // kept as given, so an explicit --match-window or --search-radius wins over the pairing's.
 //
