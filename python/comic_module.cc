@@ -11,7 +11,6 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
-#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -19,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "frontend/detector_factory.h"
@@ -59,8 +59,11 @@ Setter Field(T* field) {
     // swapped argument is an error rather than a silent 1 or true.
     if constexpr (std::is_same_v<T, bool>) {
       if (!py::isinstance<py::bool_>(value)) throw py::type_error("expects a bool");
-    } else {
+    } else if constexpr (std::is_arithmetic_v<T>) {
       if (py::isinstance<py::bool_>(value)) throw py::type_error("expects a number, not a bool");
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      // A path or a name: str (os.PathLike is turned into str by comic/__init__.py).
+      if (!py::isinstance<py::str>(value)) throw py::type_error("expects a str");
     }
     *field = py::cast<T>(value);
   };

@@ -78,6 +78,17 @@ void RunDetectors(const ReconstructionRunOptions& options, const RunOutputFolder
   }
 }
 
+// --compare: one table of the runs.
+void CompareDetectors(const ReconstructionRunOptions& options, const RunOutputFolders& folders,
+                      ReconstructionRunResult* result) {
+  if (!options.compare) return;
+  result->comparison = ComparisonTable(result->runs);
+  if (folders.writes()) {
+    WriteComparisonOutputs(*result->comparison, result->runs, options, result->inputs,
+                           folders.out().path());
+  }
+}
+
 void WriteFrames(const RunOutputFolders& folders, const RunCallbacks& callbacks,
                  ReconstructionRunResult* result) {
   if (folders.frames_staging().empty()) return;
@@ -133,13 +144,7 @@ ReconstructionRunResult RunReconstruction(const ReconstructionRunOptions& option
   if (callbacks.inputs_resolved) callbacks.inputs_resolved(result.inputs);
   RunOutputFolders folders(options, result.inputs);
   RunDetectors(options, folders, callbacks, &result);
-  if (options.compare) {
-    result.comparison = ComparisonTable(result.runs);
-    if (folders.writes()) {
-      WriteComparisonOutputs(*result.comparison, result.runs, options, result.inputs,
-                             folders.out().path());
-    }
-  }
+  CompareDetectors(options, folders, &result);
   WriteFrames(folders, callbacks, &result);
   HandToColmap(options, folders, &result);
   // A failed reconstruction commits its report.json (the documented exception): it says why.
