@@ -21,6 +21,7 @@
 #include "io/datasets/rendered_truth.h"
 #include "io/image/image_sequence.h"
 #include "sfm/evaluation/rendered_benchmark.h"
+#include "sfm/run/tracker_settings.h"
 
 namespace {
 
@@ -80,7 +81,8 @@ int Run(int argc, char** argv) {
   options.without_boundary_tracks = options.without_sliding_tracks = !no_remap;
   comic::apps::CheckThreadCount("--threads", options.num_threads);
   options.sequence.Check();
-  comic::apps::ToTrackerOptions(tracker);  // bad flags fail before any work
+  const sfm::TrackerSettings tracker_settings = comic::apps::ToTrackerSettings(tracker, parser);
+  tracker_settings.ToTrackerOptions();  // bad flags fail before any work
   options.Check();
   io::CheckCreatableFolder(out_dir);
 
@@ -90,9 +92,9 @@ int Run(int argc, char** argv) {
   const io::ImageSequence sequence =
       io::ImageSequence::Open(truth.ImagesFolder(), options.sequence);
   const comic::frontend::PairingChoice pairing =
-      comic::apps::ChooseRunPairing(matching, parser, sequence);
-  options.reconstruction.tracker = comic::apps::TrackerOptionsForRun(
-      parser, tracker, pairing, static_cast<int>(sequence.NumFrames()));
+      sfm::ChooseRunPairing(matching, tracker_settings, sequence);
+  options.reconstruction.tracker =
+      sfm::TrackerOptionsForRun(tracker_settings, pairing, static_cast<int>(sequence.NumFrames()));
   options.reconstruction.mapper.mapper.ignore_two_view_tracks =
       options.reconstruction.tracker.match_window <= 1;
   options.Check();
