@@ -53,7 +53,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddMatchingFlag(parser, &matching);
   comic::apps::AddTrackerFlags(parser, &tracker);
   parser.AddOption("follow-tolerance", "PX",
-                   "a track follows a surface point if one reprojects within PX in every frame",
+                   "a track follows a surface point if one reprojects to an RMS within PX",
                    &options.tracks.follow_tolerance_px);
   // The shared meaning of --boundary-band: here the region is the occlusion boundary's (the
   // rendered band widened to PX).

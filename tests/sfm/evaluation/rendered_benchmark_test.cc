@@ -35,7 +35,7 @@ TEST(RenderedBenchmark, OneDetectorOnTheTestStreet) {
   EXPECT_GT(d.boundary_area_fraction, 0.01);
   EXPECT_LT(d.boundary_area_fraction, 0.3);
   EXPECT_GT(d.boundary_tracks.num_tracks, 0u);
-  // Away from boundaries most tracks follow a surface point to 2 px over their whole life (on
+  // Away from boundaries most tracks follow a surface point to an RMS of 1.5 px (on
   // this drive ~60 %: forward motion zooms the textures, and a corner detected at a fixed scale
   // creeps over a zoomed texture; docs/rendered_benchmark.md).
   EXPECT_GT(d.other_tracks.num_classified, 500u);
