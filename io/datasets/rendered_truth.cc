@@ -1,5 +1,6 @@
 #include "io/datasets/rendered_truth.h"
 
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "io/core/error.h"
@@ -21,8 +22,10 @@ std::string RenderedTruth::ImagesFolder() const { return JoinPaths(folder, "imag
 
 cv::Mat RenderedTruth::Depth(size_t frame) const {
   COMIC_CHECK(frame < frame_names.size(), kInvalidArgument, "frame " << frame << " out of range");
-  return ReadDepthMap(
-      JoinPaths(folder, "depth/" + Stem(frame_names[frame]) + "." + depth_extension));
+  cv::Mat depth =
+      ReadDepthMap(JoinPaths(folder, "depth/" + Stem(frame_names[frame]) + "." + depth_extension));
+  if (composite) depth.setTo(std::numeric_limits<float>::quiet_NaN(), Foreground(frame));
+  return depth;
 }
 
 cv::Mat RenderedTruth::ReadMask(const std::string& subfolder, size_t frame) const {
@@ -69,6 +72,7 @@ RenderedTruth OpenRenderedTruth(const std::string& folder) {
     try {
       const nlohmann::json json = nlohmann::json::parse(ReadFileToString(scene));
       truth.band_px = json.at("render_options").at("boundary_band_px").get<double>();
+      truth.composite = json.contains("composite");
     } catch (const nlohmann::json::exception& e) {
       throw Error(ErrorKind::kInvalidData,
                   scene + ": no render_options.boundary_band_px (" + e.what() + ")");

@@ -28,11 +28,16 @@ struct RenderedTruth {
   // Half-width of the boundary band in boundaries/ (scene.json render_options.boundary_band_px;
   // 0 when scene.json does not say).
   double band_px = 0.0;
+  // scene.json has "composite" (a NeRF set laid over a rendered background): masks/ is the
+  // object, whose depth is not given.
+  bool composite = false;
 
   size_t NumFrames() const { return frame_names.size(); }
   std::string ImagesFolder() const;
   // Per frame; throw comic::Error (kNotFound, kInvalidData) naming the file.
-  cv::Mat Depth(size_t frame) const;       // CV_32F metres, 0 = no surface, +inf beyond a PNG
+  // CV_32F metres, 0 = no surface, +inf beyond a PNG, NaN = unknown: a composite's object, also
+  // from a 16-bit PNG (which stores it as 0, no surface, and would make it sky).
+  cv::Mat Depth(size_t frame) const;
   cv::Mat Boundaries(size_t frame) const;  // CV_8UC1, 255 = occlusion-boundary band
   cv::Mat Foreground(size_t frame) const;  // CV_8UC1, 255 = foreground object
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/core/error.h"
@@ -57,6 +58,35 @@ TEST(RenderedTruth, ReadsCamerasDepthAndMasksPerFrame) {
     EXPECT_EQ(truth.Foreground(2).at<uint8_t>(7, 3), 255);
     EXPECT_THROW(truth.Depth(3), Error);
   }
+}
+
+TEST(RenderedTruth, ACompositesObjectHasUnknownDepthInEitherFormat) {
+  // A NeRF composite: masks/ is the object, whose depth is not given. A 16-bit PNG cannot say
+  // "unknown" and would say "no surface" (sky); read back, it is NaN as in a PFM.
+  for (const std::string extension : {"pfm", "png"}) {
+    test::ScopedTempDir dir;
+    MakeFolder(dir.path(), 2, extension);
+    const std::string depth_path = JoinPaths(dir.path(), "depth/000001." + extension);
+    cv::Mat depth(30, 40, CV_32F, cv::Scalar(3.0));
+    depth.colRange(0, 1).setTo(0.0f);  // the object (masks/ is all but column 1), depth not given
+    depth.colRange(2, 40).setTo(0.0f);
+    WriteDepthMap(depth_path, depth);
+    WriteFileAtomically(JoinPaths(dir.path(), "scene.json"),
+                        R"({"render_options": {"boundary_band_px": 2}, "composite": {}})");
+    const RenderedTruth truth = OpenRenderedTruth(dir.path());
+    EXPECT_TRUE(truth.composite);
+    const cv::Mat read = truth.Depth(1);
+    EXPECT_TRUE(std::isnan(read.at<float>(5, 0))) << extension;
+    EXPECT_TRUE(std::isnan(read.at<float>(5, 20))) << extension;
+    EXPECT_FLOAT_EQ(read.at<float>(5, 1), 3.0f) << extension;  // the background, known
+  }
+  // Not a composite: 0 stays "no surface".
+  test::ScopedTempDir dir;
+  MakeFolder(dir.path(), 1, "png");
+  WriteDepthMap(JoinPaths(dir.path(), "depth/000000.png"), cv::Mat(30, 40, CV_32F, cv::Scalar(0)));
+  const RenderedTruth truth = OpenRenderedTruth(dir.path());
+  EXPECT_FALSE(truth.composite);
+  EXPECT_EQ(truth.Depth(0).at<float>(5, 5), 0.0f);
 }
 
 TEST(RenderedTruth, MissingOrDisagreeingPartsAreNamed) {
