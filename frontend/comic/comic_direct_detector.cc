@@ -9,8 +9,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "frontend/comic/component_tree.h"
 #include "frontend/comic/curve_cornerness.h"
+#include "frontend/comic/image_component_tree.h"
 #include "frontend/comic/iso_curve.h"
 #include "frontend/comic/iso_curve_stability.h"
 #include "frontend/comic/side_mask.h"
@@ -81,45 +81,30 @@ struct CurveJob {
   int tree;
   int node;
   int level;
+  // The node's canonical pixel: jobs are ordered as the nodes of ComponentTree, whose ids these
+  // pixels are (the order decides which of two equal κ maxima is kept, LinkAcrossLevels).
+  int key;
   bool operator<(const CurveJob& o) const {
     if (tree != o.tree) return tree < o.tree;
-    if (node != o.node) return node < o.node;
+    if (key != o.key) return key < o.key;
     return level < o.level;
   }
   bool operator==(const CurveJob& o) const {
-    return tree == o.tree && node == o.node && level == o.level;
+    return tree == o.tree && key == o.key && level == o.level;
   }
 };
 
-// The component tree of one polarity and, per node, its first pixel in raster order (the
-// topmost, then leftmost): the pixel above it (or, on the first row, to its left) is outside the
-// component and not in one of its holes, so the edge between them lies on the outer boundary.
+// The component tree of one polarity, its stable lineage maxima and the curves they ask for.
 struct PolarityTree {
-  ComponentTree tree;
-  std::vector<int> first_pixel;
+  ImageComponentTree tree;
   std::vector<int> stable_level;
   std::vector<CurveJob> jobs;
 };
 
 void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDetectorOptions& o,
                        PolarityTree* out) {
-  ComponentTree& tree = out->tree;
+  ImageComponentTree& tree = out->tree;
   tree.Build(image, tree_index == 1);
-  const int padded = tree.Stride() * (tree.height() + 2);
-  out->first_pixel.assign(padded, INT_MAX);
-  for (int y = 0; y < tree.height(); ++y) {
-    for (int x = 0; x < tree.width(); ++x) {
-      const int p = tree.PixelIndex(x, y);
-      int& first = out->first_pixel[tree.NodeOfPixel(p)];
-      first = std::min(first, p);
-    }
-  }
-  for (int node : tree.Nodes()) {  // descendants first
-    const int parent = tree.Parent(node);
-    if (parent >= 0) {
-      out->first_pixel[parent] = std::min(out->first_pixel[parent], out->first_pixel[node]);
-    }
-  }
   // Stable lineage maxima (the unweighted ρ of §3 on the tree): the iso-curves that can hold a
   // feature. Their segment must be complete, so the boundary needs 2k + 1 edges at least.
   const int k = o.half_length;
@@ -130,7 +115,7 @@ void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDe
   // between two stable maxima of one lineage are traced too when they are close: a corner's run
   // must not break at a level no maximum happened to be near.
   std::vector<int>& stable_level = out->stable_level;
-  stable_level.assign(padded, -1);
+  stable_level.assign(tree.NumNodes(), -1);
   for (const StableComponent& component : stable) stable_level[component.node] = component.level;
   {
     const std::vector<int>& nodes = tree.Nodes();
@@ -146,7 +131,7 @@ void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDe
     const int node = level >= tree.Level(from_node) ? tree.AncestorAtLevel(from_node, level)
                                                     : tree.MainDescendantAtLevel(from_node, level);
     if (node < 0 || node == root || tree.Perimeter(node) < 2 * k + 1) return;
-    out->jobs.push_back({tree_index, node, level});
+    out->jobs.push_back({tree_index, node, level, tree.CanonicalPixel(node)});
   };
   for (const StableComponent& component : stable) {
     const int parent = tree.Parent(component.node);
@@ -178,11 +163,11 @@ struct CurveWorkspace {
 void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const CurveJob& job,
                     const ComicDirectDetectorOptions& o, const CurveCornerOptions& corner_options,
                     CurveWorkspace* ws, std::vector<LevelCorner>* corners) {
-  const ComponentTree& tree = tree_data.tree;
+  const ImageComponentTree& tree = tree_data.tree;
   const bool upper = job.tree == 1;
-  const int first = tree_data.first_pixel[job.node];
-  const int x = tree.PixelX(first);
-  const int y = tree.PixelY(first);
+  const int first = tree.FirstPixel(job.node);
+  const int x = first % tree.width();
+  const int y = first / tree.width();
   cv::Point in_pixel(x, y);
   cv::Point out_pixel;
   if (y > 0) {
@@ -192,7 +177,9 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
   } else {
     // The component holds the top-left pixel: walk the first row to its first outside pixel.
     int end = 0;
-    while (end < tree.width() && tree.Value(tree.PixelIndex(end, 0)) <= job.level) ++end;
+    const uint8_t* row = image.ptr<uint8_t>(0);
+    const uint8_t flip = upper ? 255 : 0;
+    while (end < tree.width() && (row[end] ^ flip) <= job.level) ++end;
     if (end == tree.width()) return;
     in_pixel = cv::Point(end - 1, 0);
     out_pixel = cv::Point(end, 0);
