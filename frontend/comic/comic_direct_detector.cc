@@ -13,6 +13,7 @@
 #include "frontend/comic/image_component_tree.h"
 #include "frontend/comic/iso_curve.h"
 #include "frontend/comic/iso_curve_stability.h"
+#include "frontend/comic/segment_stability.h"
 #include "frontend/comic/side_mask.h"
 #include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
@@ -156,7 +157,6 @@ struct CurveWorkspace {
   std::vector<double> arc_lengths;
   std::vector<double> kappa;
   CornernessWorkspace cornerness;
-  WeightedStabilityEvaluator evaluator;
 };
 
 // Traces the outer boundary of `job` and appends its κ maxima to `corners`.
@@ -464,25 +464,14 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   run_begin.push_back(static_cast<int>(run_members.size()));
 
   // ---- ρ_w of every member of a run (Eq. 1, §2.1 weights), on its own segment. ----
-  WeightedStabilityOptions stability_options;
+  SegmentStabilityOptions stability_options;
   stability_options.half_length = k;
   stability_options.sigma = o.scale / kSqrt2;
   stability_options.delta = o.delta;
-  ParallelFor(static_cast<int>(run_members.size()), o.num_threads, [&](int i, int worker) {
+  const SegmentStabilityEvaluator evaluator(stability_options);
+  ParallelFor(static_cast<int>(run_members.size()), o.num_threads, [&](int i, int) {
     LevelCorner& c = corners[run_members[i]];
-    WeightedStabilityEvaluator& evaluator = workspaces[worker].evaluator;
-    c.stability = 0.0;
-    if (c.segment_centre < 1 || c.segment_centre + 1 >= static_cast<int>(c.segment.size())) return;
-    // One level per maximum: neither the middle level nor the neighbouring levels' crossings
-    // that Algorithm 1's level choice reads are needed (same ρ_w, bit for bit).
-    if (!evaluator.PrepareWithoutMiddleLevel(image, c.segment, c.segment_centre,
-                                             stability_options)) {
-      return;
-    }
-    const int l = c.level - evaluator.first_level();
-    if (l >= 0 && l < evaluator.NumLevels()) {
-      c.stability = std::max(0.0, evaluator.SingleLevelStability(l));
-    }
+    c.stability = evaluator.Evaluate(image, c.segment, c.segment_centre, c.level + 0.5);
   });
 
   // ---- One feature per run. ----
