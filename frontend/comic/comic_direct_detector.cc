@@ -190,7 +190,7 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
   const double threshold = upper ? 254.5 - job.level : job.level + 0.5;
   const IsoCurveTracer tracer(image, cv::Rect(0, 0, image.cols, image.rows), threshold);
   const CurveEdge seed = upper ? CurveEdge{out_pixel, in_pixel} : CurveEdge{in_pixel, out_pixel};
-  tracer.Trace(seed, 4 * (image.cols + image.rows) + tree.Perimeter(job.node), &ws->curve);
+  tracer.TracePoints(seed, 4 * (image.cols + image.rows) + tree.Perimeter(job.node), &ws->curve);
   const IsoCurve& curve = ws->curve;
   const int k = o.half_length;
   if (static_cast<int>(curve.points.size()) < 2 * k + 1) return;
