@@ -206,7 +206,7 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
   const int n = static_cast<int>(samples.size());
   if (n < 2 * k + 1) return;
   const double sigma = o.scale / kSqrt2;
-  CurveCornerness(samples, curve.closed, sigma, k, &ws->cornerness, &ws->kappa);
+  CurveCornernessCumulative(samples, curve.closed, sigma, k, &ws->cornerness, &ws->kappa);
   const int nms_radius = std::max(1, static_cast<int>(std::lround(sigma)));
   for (int index : CornernessMaxima(ws->kappa, curve.closed, nms_radius, o.min_cornerness)) {
     const CurveCorner refined =
