@@ -250,25 +250,33 @@ void CurveCornernessCumulative(const std::vector<cv::Point2f>& points, bool clos
     const int s0 = b0 - 3 * r;
     const int m = (b1 - b0) + 6 * r + 3;
     const double ox = points[b0 % n].x, oy = points[b0 % n].y;
-    auto moments = [&](int j) {
-      Moments out{};
-      if (!closed && (j < 0 || j >= n)) return out;
-      const cv::Point2f& p = points[j < 0 ? j + n * ((-j + n - 1) / n) : j % n];
+    // The samples of the block, wrapped on a closed curve: j -> points[j mod n], without a
+    // division per sample.
+    int wrapped = s0 % n;
+    if (wrapped < 0) wrapped += n;
+    auto moments = [&](int j, Moments* out) {
+      const int index = wrapped;
+      if (++wrapped == n) wrapped = 0;
+      if (!closed && (j < 0 || j >= n)) {
+        *out = Moments{};
+        return;
+      }
+      const cv::Point2f& p = points[index];
       const double x = p.x - ox, y = p.y - oy;
-      out.v[0] = 1.0;
-      out.v[1] = x;
-      out.v[2] = y;
-      out.v[3] = x * x;
-      out.v[4] = x * y;
-      out.v[5] = y * y;
-      return out;
+      out->v[0] = 1.0;
+      out->v[1] = x;
+      out->v[2] = y;
+      out->v[3] = x * x;
+      out->v[4] = x * y;
+      out->v[5] = y * y;
     };
+    Moments u;
 #if defined(__SSE2__)
     __m128d a1[3], a2[3], a3[3];
     for (int c = 0; c < 3; ++c) a1[c] = a2[c] = a3[c] = _mm_setzero_pd();
     for (int c = 0; c < 3; ++c) _mm_storeu_pd(s3 + 2 * c, a3[c]);
     for (int j = 0; j < m; ++j) {
-      const Moments u = moments(s0 + j);
+      moments(s0 + j, &u);
       double* out = s3 + static_cast<size_t>(j + 1) * 6;
       for (int c = 0; c < 3; ++c) {
         // S³[j + 1] = S³[j] + S²[j], S²[j + 1] = S²[j] + S¹[j], S¹[j + 1] = S¹[j] + u[j].
@@ -282,7 +290,7 @@ void CurveCornernessCumulative(const std::vector<cv::Point2f>& points, bool clos
     double a1[6] = {}, a2[6] = {}, a3[6] = {};
     for (int c = 0; c < 6; ++c) s3[c] = 0.0;
     for (int j = 0; j < m; ++j) {
-      const Moments u = moments(s0 + j);
+      moments(s0 + j, &u);
       double* out = s3 + static_cast<size_t>(j + 1) * 6;
       for (int c = 0; c < 6; ++c) {
         a3[c] += a2[c];
@@ -299,7 +307,16 @@ void CurveCornernessCumulative(const std::vector<cv::Point2f>& points, bool clos
       const double* p2 = s3 + static_cast<size_t>(local - r + 1) * 6;
       const double* p3 = s3 + static_cast<size_t>(local - 3 * r) * 6;
       double box[6];
+#if defined(__SSE2__)
+      const __m128d three = _mm_set1_pd(3.0);
+      for (int c = 0; c < 6; c += 2) {
+        const __m128d outer = _mm_sub_pd(_mm_loadu_pd(p0 + c), _mm_loadu_pd(p3 + c));
+        const __m128d inner = _mm_sub_pd(_mm_loadu_pd(p2 + c), _mm_loadu_pd(p1 + c));
+        _mm_storeu_pd(box + c, _mm_add_pd(outer, _mm_mul_pd(three, inner)));
+      }
+#else
       for (int c = 0; c < 6; ++c) box[c] = (p0[c] - p3[c]) + 3.0 * (p2[c] - p1[c]);
+#endif
       const double inverse_weight = 1.0 / box[0];
       const double mx = box[1] * inverse_weight;
       const double my = box[2] * inverse_weight;
