@@ -165,7 +165,8 @@ LossSplit SplitLosses(const comic::frontend::FeatureSet& base,
 // the same number of features, by one response cut chosen on the frame and applied unchanged to
 // the changed frames: its `count` strongest (0: as many as CoMIC finds). Repeatability falls with
 // the count for every detector, so it is comparable only at equal counts.
-void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
+void PrintPerturbations(const cv::Mat& gray, int threads, int count,
+                        const std::vector<std::string>& detectors) {
   cv::Mat noise(gray.size(), CV_32F);
   cv::RNG rng(7);
   rng.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
@@ -186,7 +187,7 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
       {"comic: lost to", "noise 1 grey level, points", "0.5 px shift, points"});
   losses.SetPrecision("noise 1 grey level, points", 1);
   losses.SetPrecision("0.5 px shift, points", 1);
-  for (const std::string name : {"comic", "comic-paper", "harris", "hessian", "fast"}) {
+  for (const std::string& name : detectors) {
     comic::frontend::DetectorOptions options;
     options.name = name;
     options.comic.num_threads = threads;
@@ -237,8 +238,10 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
   std::cout << "\nRepeatability on the same frame (features kept: "
             << (count > 0 ? "the " + std::to_string(count) + " strongest" : "CoMIC's count")
             << "):\n\n"
-            << table.ToMarkdown() << "\nWhere comic's losses go (points of repeatability):\n\n"
-            << losses.ToMarkdown();
+            << table.ToMarkdown();
+  if (std::find(detectors.begin(), detectors.end(), "comic") != detectors.end()) {
+    std::cout << "\nWhere comic's losses go (points of repeatability):\n\n" << losses.ToMarkdown();
+  }
 }
 
 // Matcher speed (issue 15): ms per frame pair for the patch matcher with the radius gate
@@ -331,6 +334,7 @@ int Run(int argc, char** argv) {
   int threads = 0;
   bool perturbations = false;
   std::string counts_list;
+  std::string detector_list;
   std::string match_pair;
   int match_features = 2000;
   bool match_only = false;
@@ -352,8 +356,8 @@ int Run(int argc, char** argv) {
   comic::apps::AddJsonFlag(parser, &json_path);
   parser.AddFlag(
       "perturbations",
-      "also report, for comic, comic-paper, Harris, Hessian and FAST at CoMIC's\n"
-      "                              count (or --keep), the\n"
+      "also report, for comic, comic-paper, Harris, Hessian and FAST (or --detectors)\n"
+      "                              at CoMIC's count (or --keep), the\n"
       "                              share of features found again within 1 px after noise\n"
       "                              of 1 grey level and after a 0.5 px shift",
       &perturbations);
@@ -365,6 +369,7 @@ int Run(int argc, char** argv) {
       "                              table per N of the comma-separated LIST (default: "
       "CoMIC's count)",
       &counts_list);
+  comic::apps::AddDetectorListFlag(parser, &detector_list);
   parser.AddOption("match-pair", "IMAGE2",
                    "also time the patch matcher between IMAGE and IMAGE2 (same size) for every "
                    "cost",
@@ -401,6 +406,13 @@ int Run(int argc, char** argv) {
   }
   COMIC_CHECK(!match_only || !match_pair.empty(), kInvalidArgument,
               "--match-only needs --match-pair");
+  // --detectors: the detectors of the --perturbations tables (comic's losses need comic).
+  const std::vector<std::string> perturbation_detectors =
+      detector_list.empty()
+          ? std::vector<std::string>{"comic", "comic-paper", "harris", "hessian", "fast"}
+          : comic::frontend::ParseDetectorList(detector_list);
+  COMIC_CHECK(detector_list.empty() || perturbations, kInvalidArgument,
+              "--detectors needs --perturbations");
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 
   const cv::Mat gray = comic::io::LoadImage(input, resize_height).gray;
@@ -525,7 +537,7 @@ int Run(int argc, char** argv) {
   }
   if (perturbations) {
     if (counts.empty()) counts.push_back(0);
-    for (int count : counts) PrintPerturbations(gray, many, count);
+    for (int count : counts) PrintPerturbations(gray, many, count, perturbation_detectors);
   }
   if (!gray2.empty()) PrintMatcherTimes(gray, gray2, match_features, runs);
   return 0;
