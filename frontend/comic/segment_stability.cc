@@ -31,19 +31,24 @@ SegmentStabilityEvaluator::SegmentStabilityEvaluator(const SegmentStabilityOptio
 
 namespace {
 
-// Bilinear interpolation of an 8-bit image at (x, y), pixel-centre coordinates, border
-// replicated.
+// Bilinear interpolation of an 8-bit image at (x, y) in [0, cols - 1) x [0, rows - 1),
+// pixel-centre coordinates.
+inline float BilinearInside(const cv::Mat& gray, float x, float y) {
+  const int x0 = static_cast<int>(x);
+  const int y0 = static_cast<int>(y);
+  const float tx = x - x0;
+  const float ty = y - y0;
+  const uint8_t* r0 = gray.data + y0 * gray.step[0] + x0;
+  const uint8_t* r1 = r0 + gray.step[0];
+  const float top = r0[0] + tx * (r0[1] - r0[0]);
+  const float bottom = r1[0] + tx * (r1[1] - r1[0]);
+  return top + ty * (bottom - top);
+}
+
+// The same anywhere, border replicated.
 inline float Bilinear(const cv::Mat& gray, float x, float y) {
   if (x >= 0.0f && y >= 0.0f && x < gray.cols - 1.0f && y < gray.rows - 1.0f) {
-    const int x0 = static_cast<int>(x);
-    const int y0 = static_cast<int>(y);
-    const float tx = x - x0;
-    const float ty = y - y0;
-    const uint8_t* r0 = gray.ptr<uint8_t>(y0) + x0;
-    const uint8_t* r1 = r0 + gray.step[0];
-    const float top = r0[0] + tx * (r0[1] - r0[0]);
-    const float bottom = r1[0] + tx * (r1[1] - r1[0]);
-    return top + ty * (bottom - top);
+    return BilinearInside(gray, x, y);
   }
   x = std::clamp(x, 0.0f, gray.cols - 1.0f);
   y = std::clamp(y, 0.0f, gray.rows - 1.0f);
@@ -93,7 +98,12 @@ double SegmentStabilityEvaluator::Evaluate(const cv::Mat& gray,
     const float px = segment[i].x, py = segment[i].y;
     // Up: the first sample at or above T + δ on the bright side; Down: the first below T - δ on
     // the dark side; each interpolated linearly from the sample before (the curve's own point,
-    // at T, starts both walks).
+    // at T, starts both walks). A normal whose whole reach lies inside the image is sampled
+    // without the border clamps (the same values).
+    const float reach = max_steps_ * ds;
+    const bool inside = std::min(px - reach * std::abs(nx), py - reach * std::abs(ny)) >= 0.0f &&
+                        px + reach * std::abs(nx) < gray.cols - 1.0f &&
+                        py + reach * std::abs(ny) < gray.rows - 1.0f;
     double width = 0.0;
     for (const int side : {1, -1}) {
       const float target = side > 0 ? up : down;
@@ -101,7 +111,8 @@ double SegmentStabilityEvaluator::Evaluate(const cv::Mat& gray,
       double u = clip;
       for (int s = 1; s <= max_steps_; ++s) {
         const float offset = side * s * ds;
-        const float value = Bilinear(gray, px + offset * nx, py + offset * ny);
+        const float x = px + offset * nx, y = py + offset * ny;
+        const float value = inside ? BilinearInside(gray, x, y) : Bilinear(gray, x, y);
         if (side > 0 ? value >= target : value < target) {
           u = (s - 1 + (target - previous) / (value - previous)) * options_.sample_step;
           break;
