@@ -375,46 +375,30 @@ struct RunFeature {
   int record = -1;  // index in ComicDirectDetectionStats::runs (when recorded)
 };
 
-}  // namespace
+// The runs of linked κ maxima that span min_run_levels grey levels: their members concatenated,
+// run r in members[begin[r], begin[r + 1]), runs in the order of their first member.
+struct RunList {
+  std::vector<int> members;
+  std::vector<int> begin;
+};
 
-FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
-                                       ComicDirectDetectionStats* stats) const {
-  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
-              "comic: expected a non-empty 8-bit single-channel image");
-  const ComicDirectDetectorOptions& o = options_;
-  ComicDirectDetectionStats local_stats;
-  if (stats == nullptr) stats = &local_stats;
-  const bool record_runs = stats->record_runs;
-  *stats = ComicDirectDetectionStats();
-  stats->record_runs = record_runs;
-  using Fate = ComicDirectRunRecord::Fate;
-  const int k = o.half_length;
-  if (gray.cols < 2 * k + 1 || gray.rows < 2 * k + 1) return {};
-  auto stage_start = std::chrono::steady_clock::now();
-  auto lap = [&stage_start] {
-    const auto now = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
-    stage_start = now;
-    return ms;
-  };
-
-  // ---- Trees of both polarities and their stable lineage maxima. ----
-  // A new buffer: `gray` is the caller's and must not be written.
+// Stage 1: the image every later stage reads (a new buffer: `gray` is the caller's and must not
+// be written).
+cv::Mat PresmoothedImage(const cv::Mat& gray, const ComicDirectDetectorOptions& o) {
+  if (!(o.presmoothing_sigma > 0)) return gray;
+  // 8-bit Gaussian filtering is bit-exact in OpenCV (fixed point), whatever the threads.
   cv::Mat image;
-  if (o.presmoothing_sigma > 0) {
-    // 8-bit Gaussian filtering is bit-exact in OpenCV (fixed point), whatever the threads.
-    cv::GaussianBlur(gray, image, cv::Size(0, 0), o.presmoothing_sigma, o.presmoothing_sigma,
-                     cv::BORDER_REPLICATE);
-  } else {
-    image = gray;
-  }
-  PolarityTree trees[2];
-  ParallelFor(2, o.num_threads, [&](int t, int) { BuildPolarityTree(image, t, o, &trees[t]); });
-  std::vector<CurveJob> jobs = trees[0].jobs;
-  jobs.insert(jobs.end(), trees[1].jobs.begin(), trees[1].jobs.end());
-  stats->trees_ms = lap();
+  cv::GaussianBlur(gray, image, cv::Size(0, 0), o.presmoothing_sigma, o.presmoothing_sigma,
+                   cv::BORDER_REPLICATE);
+  return image;
+}
 
-  // ---- κ maxima on every curve to trace (Algorithm 1's segment and corner at scale s). ----
+// Stage 3: κ maxima on every curve to trace (Algorithm 1's segment and corner at scale s), in job
+// order whatever the threads.
+std::vector<LevelCorner> CornersOfCurves(const cv::Mat& image, const PolarityTree (&trees)[2],
+                                         const std::vector<CurveJob>& jobs,
+                                         const ComicDirectDetectorOptions& o) {
+  const int k = o.half_length;
   CurveCornerOptions corner_options;
   corner_options.arm_end = k;
   corner_options.arm_begin = std::min(4.0, 0.5 * k);
@@ -431,12 +415,14 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   for (auto& list : per_job) {
     for (LevelCorner& c : list) corners.push_back(std::move(c));
   }
-  per_job.clear();
-  stats->num_curves = static_cast<int>(jobs.size());
-  stats->num_maxima = static_cast<int>(corners.size());
-  stats->curves_ms = lap();
+  return corners;
+}
 
-  // ---- Runs: one corner seen at consecutive levels. ----
+// Stage 4: one corner seen at consecutive levels is a run. A run must span min_run_levels grey
+// levels: a κ maximum seen at a few levels only is a wiggle of a curve (noise, texture), not a
+// corner of the level lines, and one grey level of noise removes it.
+RunList LinkRuns(const std::vector<LevelCorner>& corners, const ComicDirectDetectorOptions& o,
+                 int* num_runs) {
   std::vector<uint8_t> duplicate;
   const std::vector<int> next =
       LinkAcrossLevels(corners, o.link_radius, o.level_step, o.max_level_gap, &duplicate);
@@ -444,43 +430,49 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   for (int j : next) {
     if (j >= 0) has_previous[j] = 1;
   }
-  // Members of each run, runs in the order of their first member. A run must span
-  // min_run_levels grey levels: a κ maximum seen at a few levels only is a wiggle of a curve
-  // (noise, texture), not a corner of the level lines, and one grey level of noise removes it.
-  std::vector<int> run_members;  // concatenated
-  std::vector<int> run_begin;    // run r is run_members[run_begin[r], run_begin[r + 1])
+  RunList runs;
   for (int start = 0; start < static_cast<int>(corners.size()); ++start) {
     if (has_previous[start]) continue;
-    ++stats->num_runs;
-    const size_t first = run_members.size();
-    for (int i = start; i >= 0; i = next[i]) run_members.push_back(i);
-    const int span = std::abs(corners[run_members.back()].level - corners[start].level) + 1;
+    ++*num_runs;
+    const size_t first = runs.members.size();
+    for (int i = start; i >= 0; i = next[i]) runs.members.push_back(i);
+    const int span = std::abs(corners[runs.members.back()].level - corners[start].level) + 1;
     if (span < o.min_run_levels) {
-      run_members.resize(first);
+      runs.members.resize(first);
       continue;
     }
-    run_begin.push_back(static_cast<int>(first));
+    runs.begin.push_back(static_cast<int>(first));
   }
-  run_begin.push_back(static_cast<int>(run_members.size()));
+  runs.begin.push_back(static_cast<int>(runs.members.size()));
+  return runs;
+}
 
-  // ---- ρ_w of every member of a run (Eq. 1, §2.1 weights), on its own segment. ----
+// Stage 5: ρ_w of every member of a run (Eq. 1, §2.1 weights), on its own segment.
+void EvaluateRunStability(const cv::Mat& image, const RunList& runs,
+                          const ComicDirectDetectorOptions& o, std::vector<LevelCorner>* corners) {
   SegmentStabilityOptions stability_options;
-  stability_options.half_length = k;
+  stability_options.half_length = o.half_length;
   stability_options.sigma = o.scale / kSqrt2;
   stability_options.delta = o.delta;
   const SegmentStabilityEvaluator evaluator(stability_options);
-  ParallelFor(static_cast<int>(run_members.size()), o.num_threads, [&](int i, int) {
-    LevelCorner& c = corners[run_members[i]];
+  ParallelFor(static_cast<int>(runs.members.size()), o.num_threads, [&](int i, int) {
+    LevelCorner& c = (*corners)[runs.members[i]];
     c.stability = evaluator.Evaluate(image, c.segment, c.segment_centre, c.level + 0.5);
   });
+}
 
-  // ---- One feature per run. ----
+// Stage 6: one feature per run (its smoothed ρ_w peak, at the consensus window's mean vertex);
+// with stats->record_runs, one record per run.
+std::vector<RunFeature> FeaturesOfRuns(const std::vector<LevelCorner>& corners, const RunList& runs,
+                                       const ComicDirectDetectorOptions& o,
+                                       ComicDirectDetectionStats* stats) {
+  using Fate = ComicDirectRunRecord::Fate;
   std::vector<RunFeature> features_of_runs;
   std::vector<int> run;
   std::vector<double> smoothed;
-  for (size_t r_index = 0; r_index + 1 < run_begin.size(); ++r_index) {
-    run.assign(run_members.begin() + run_begin[r_index],
-               run_members.begin() + run_begin[r_index + 1]);
+  for (size_t r_index = 0; r_index + 1 < runs.begin.size(); ++r_index) {
+    run.assign(runs.members.begin() + runs.begin[r_index],
+               runs.members.begin() + runs.begin[r_index + 1]);
     const int m = static_cast<int>(run.size());
     // ρ_w smoothed across levels ([1 2 1] / 4, ends replicated): one grey level of noise moves a
     // single level's ρ_w, not the run's peak.
@@ -495,7 +487,7 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
       if (smoothed[r] > smoothed[peak]) peak = r;
     }
     ComicDirectRunRecord* record = nullptr;
-    if (record_runs) {
+    if (stats->record_runs) {
       stats->runs.emplace_back();
       record = &stats->runs.back();
       record->tree = corners[run[0]].tree;
@@ -544,9 +536,17 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     if (static_cast<float>(f.stability) < o.min_stability) continue;
     features_of_runs.push_back(f);
   }
-  stats->stability_ms = lap();
+  return features_of_runs;
+}
 
-  // ---- Merge duplicates (both polarities, neighbouring runs), side masks, order. ----
+// Stage 7: duplicates merged (both polarities, neighbouring runs), side masks, features outside
+// the image or with a thin side dropped, ordered by response.
+FeatureSet OutputFeatures(const cv::Mat& gray, const cv::Mat& image,
+                          const std::vector<LevelCorner>& corners,
+                          std::vector<RunFeature> features_of_runs,
+                          const ComicDirectDetectorOptions& o, ComicDirectDetectionStats* stats) {
+  using Fate = ComicDirectRunRecord::Fate;
+  const bool record_runs = stats->record_runs;
   std::sort(features_of_runs.begin(), features_of_runs.end(),
             [&](const RunFeature& a, const RunFeature& b) {
               if (a.stability != b.stability) return a.stability > b.stability;
@@ -605,6 +605,50 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
                                 [&](const Feature& f) { return outside(f) || thin_side(f); }),
                  features.end());
   SortByResponse(&features);
+  return features;
+}
+
+}  // namespace
+
+FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
+                                       ComicDirectDetectionStats* stats) const {
+  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
+              "comic: expected a non-empty 8-bit single-channel image");
+  const ComicDirectDetectorOptions& o = options_;
+  ComicDirectDetectionStats local_stats;
+  if (stats == nullptr) stats = &local_stats;
+  const bool record_runs = stats->record_runs;
+  *stats = ComicDirectDetectionStats();
+  stats->record_runs = record_runs;
+  const int k = o.half_length;
+  if (gray.cols < 2 * k + 1 || gray.rows < 2 * k + 1) return {};
+  auto stage_start = std::chrono::steady_clock::now();
+  auto lap = [&stage_start] {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
+    stage_start = now;
+    return ms;
+  };
+
+  // Stages 1-2: trees of both polarities and their stable lineage maxima.
+  const cv::Mat image = PresmoothedImage(gray, o);
+  PolarityTree trees[2];
+  ParallelFor(2, o.num_threads, [&](int t, int) { BuildPolarityTree(image, t, o, &trees[t]); });
+  std::vector<CurveJob> jobs = trees[0].jobs;
+  jobs.insert(jobs.end(), trees[1].jobs.begin(), trees[1].jobs.end());
+  stats->trees_ms = lap();
+
+  std::vector<LevelCorner> corners = CornersOfCurves(image, trees, jobs, o);
+  stats->num_curves = static_cast<int>(jobs.size());
+  stats->num_maxima = static_cast<int>(corners.size());
+  stats->curves_ms = lap();
+
+  const RunList runs = LinkRuns(corners, o, &stats->num_runs);
+  EvaluateRunStability(image, runs, o, &corners);
+  std::vector<RunFeature> features_of_runs = FeaturesOfRuns(corners, runs, o, stats);
+  stats->stability_ms = lap();
+
+  FeatureSet features = OutputFeatures(gray, image, corners, std::move(features_of_runs), o, stats);
   stats->output_ms = lap();
   return features;
 }
