@@ -57,21 +57,14 @@ void ImageComponentTree::RaiseTo(int level) {
   }
 }
 
-void ImageComponentTree::Build(const cv::Mat& image, bool upper_sets) {
-  COMIC_CHECK(!image.empty() && image.type() == CV_8UC1, kInvalidArgument,
-              "ImageComponentTree: expected a non-empty 8-bit single-channel image");
-  width_ = image.cols;
-  height_ = image.rows;
-  upper_sets_ = upper_sets;
+void ImageComponentTree::PadImage(const cv::Mat& image, std::array<int, 257>* start) {
   const int stride = width_ + 2;
   const int padded_size = stride * (height_ + 2);
-
-  // The padded grid of (possibly inverted) values and the frame's flags; a histogram sizes the
-  // boundary stack of every grey level (a pixel is on at most one stack at a time, once).
+  // A histogram sizes the boundary stack of every grey level (a pixel is on at most one stack at
+  // a time, once).
   values_.resize(padded_size);
   flags_.assign(padded_size, kQueued | kPadding);
-  std::array<int, 257> start{};
-  const uint8_t flip = upper_sets ? 255 : 0;
+  const uint8_t flip = upper_sets_ ? 255 : 0;
   for (int y = 0; y < height_; ++y) {
     const uint8_t* row = image.ptr<uint8_t>(y);
     uint8_t* values = values_.data() + (y + 1) * stride + 1;
@@ -80,10 +73,22 @@ void ImageComponentTree::Build(const cv::Mat& image, bool upper_sets) {
       const uint8_t value = row[x] ^ flip;  // 255 - v for 8-bit values
       values[x] = value;
       flags[x] = 0;
-      ++start[value + 1];
+      ++(*start)[value + 1];
     }
   }
-  for (int v = 0; v < 256; ++v) start[v + 1] += start[v];
+  for (int v = 0; v < 256; ++v) (*start)[v + 1] += (*start)[v];
+}
+
+void ImageComponentTree::Build(const cv::Mat& image, bool upper_sets) {
+  COMIC_CHECK(!image.empty() && image.type() == CV_8UC1, kInvalidArgument,
+              "ImageComponentTree: expected a non-empty 8-bit single-channel image");
+  width_ = image.cols;
+  height_ = image.rows;
+  upper_sets_ = upper_sets;
+  const int stride = width_ + 2;
+
+  std::array<int, 257> start{};
+  PadImage(image, &start);
   boundary_.resize(static_cast<size_t>(width_) * height_);
   std::array<uint32_t*, 256> top;
   for (int v = 0; v < 256; ++v) top[v] = boundary_.data() + start[v];
@@ -178,8 +183,11 @@ void ImageComponentTree::Build(const cv::Mat& image, bool upper_sets) {
     }
   }
   CloseTop(-1);  // the root: the whole image
+  FinishNodes();
+}
 
-  // Padded indices to raster ones; main children with ComponentTree's tie rule.
+void ImageComponentTree::FinishNodes() {
+  const int stride = width_ + 2;
   for (Node& node : nodes_) {
     node.first_pixel = (node.first_pixel / stride - 1) * width_ + node.first_pixel % stride - 1;
     node.canonical_pixel =

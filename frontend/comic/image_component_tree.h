@@ -17,6 +17,7 @@
 //   for (int node : tree.Nodes()) { ... tree.Level(node), tree.Area(node), tree.Perimeter(node) }
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -86,6 +87,11 @@ class ImageComponentTree {
     int32_t canonical_pixel;  // padded index, -1 while it holds no pixel of its level
   };
 
+  // Stage 1 of Build: the padded grid of (possibly inverted) values, the frame's flags, and
+  // `start`, where each grey level's boundary stack begins.
+  void PadImage(const cv::Mat& image, std::array<int, 257>* start);
+  // Stage 3 of Build: padded indices to raster ones; main children with ComponentTree's tie rule.
+  void FinishNodes();
   int NewNode();
   // The top component's level becomes `level` (> its level): it is closed as a node, and merged
   // into the components below it that it reaches at `level`, or continued at `level`.
