@@ -21,6 +21,8 @@ struct BarChartSeries {
 
 struct BarChart {
   std::string title;
+  std::string
+      y_label;  // what the bars measure, with the unit (e.g. "ATE (m)"), drawn on the y axis
   std::vector<std::string> groups;  // x-axis categories
   std::vector<BarChartSeries> series;
 };

@@ -10,6 +10,7 @@
 #include "io/report/ply.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/run/colmap_outputs.h"
+#include "sfm/run/run_page.h"
 #include "sfm/run/run_report.h"
 
 namespace comic::sfm {
@@ -78,6 +79,7 @@ std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
         files.push_back(std::string("rotation_only/") + name);
     }
   }
+  files.push_back("report.html");  // every run, failed ones too
   return files;
 }
 
@@ -91,6 +93,8 @@ void WriteDetectorOutputs(const DetectorRun& run, const ReconstructionRunOptions
   } else if (run.keeps_tracks) {
     WriteWhatWasFound(run, options, inputs, folder);
   }
+  io::WriteHtmlPage(io::JoinPaths(folder, "report.html"), RunPage(run, options, inputs),
+                    options.report_page.html);
   io::WriteFileAtomically(io::JoinPaths(folder, "report.json"), run.report_json.dump(2) + "\n");
 }
 
@@ -109,6 +113,8 @@ void WriteComparisonOutputs(const io::ReportTable& table, const std::vector<Dete
   for (const DetectorRun& run : runs) json["runs"].push_back(RunReportToJson(run.report));
   json["options"] = RunOptionsToJson(options, inputs);
   io::WriteFileAtomically(io::JoinPaths(folder, "compare.json"), json.dump(2) + "\n");
+  io::WriteHtmlPage(io::JoinPaths(folder, "report.html"),
+                    ComparisonPage(table, runs, options, inputs), options.report_page.html);
 }
 
 cv::Mat RenderRunPlot(const RunInputs& inputs, const Reconstruction& reconstruction,
