@@ -1,11 +1,13 @@
 #include "sfm/run/run_outputs.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "io/colmap/colmap_binary_model.h"
 #include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/datasets/ground_truth_cameras.h"
 #include "io/image/image_io.h"
 #include "io/report/ply.h"
 #include "sfm/colmap/colmap_model_conversion.h"
@@ -142,6 +144,20 @@ cv::Mat RenderRunPlot(const RunInputs& inputs, const Reconstruction& reconstruct
       inputs.plot_plane_from_estimate ? PlotPlaneFromCenters(all_estimated) : inputs.plot_plane;
   TrajectoryPlotOptions plot_options;
   plot_options.title = title;
+  plot_options.unit = "model units";
+  const size_t registered = all_estimated.size();
+  char note[200];
+  if (evaluation) {
+    const std::string unit = io::GroundTruthLengthUnit(inputs.gt_format);
+    plot_options.unit = unit.empty() ? "ground-truth units" : unit;
+    std::snprintf(note, sizeof(note), "ATE RMSE %.4g %s (%.3g %% of the %.4g %s path); ",
+                  evaluation->ate_rmse, plot_options.unit.c_str(),
+                  100.0 * evaluation->ate_fraction_of_path, evaluation->path_length,
+                  plot_options.unit.c_str());
+    plot_options.note = note;
+  }
+  plot_options.note +=
+      std::to_string(registered) + " of " + std::to_string(estimated.size()) + " frames registered";
   return RenderTrajectoryPlot(estimated_centers, true_centers, plane, plot_options);
 }
 

@@ -248,7 +248,7 @@
     var Y = function (y) { return margin.top + inner / 2 - (y - midY) * pxPerUnit; };
     var chart = chartBox(width, height);
     // One tick step on both axes (equal scale): a grid in metres (or the model's units).
-    var t = ticks(midX - extent / 2, midX + extent / 2, 6);
+    var t = ticks(midX - extent / 2, midX + extent / 2, 8);
     var step = t.step;
     var yValues = [];
     for (var v = Math.ceil((midY - extent / 2) / step) * step; v <= midY + extent / 2; v += step) {
