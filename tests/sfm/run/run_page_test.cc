@@ -211,6 +211,7 @@ TEST(RunPage, StaysUnderTwentyMegabytesForTenThousandFrames) {
   const nlohmann::json scene = Sections(page, "scene").at(0);
   EXPECT_EQ(scene["points"]["total"], (kFrames - 1) * kPointsPerFrame);
   EXPECT_LE(scene["points"]["count"].get<size_t>(), options.report_page.max_points);
+  EXPECT_GT(scene["points"]["stride"].get<int>(), 1);  // scene.js: "showing … of … (every k-th)"
   EXPECT_EQ(scene["cameras"][0]["count"], kFrames);
   EXPECT_EQ(Sections(page, "images").back()["images"].size(), 40u);
   const size_t bytes = io::RenderHtmlPage(page, options.report_page.html).size();
