@@ -19,6 +19,7 @@ struct TrackerFlags {
   frontend::TrackerOptions options;  // the numeric and boolean fields are bound directly
   std::string prediction;            // MotionPredictionName
   std::string track_conflicts;       // TrackConflictRuleName
+  int align_patches;                 // options.align_patches as 1 or 0 (a default-on switch)
 };
 
 void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags);
