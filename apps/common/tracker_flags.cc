@@ -3,12 +3,12 @@
 #include "apps/common/shared_flags.h"
 #include "frontend/matching/track_builder.h"
 #include "io/core/error.h"
-#include "sfm/sequence_reconstruction.h"
+#include "sfm/run/tracker_settings.h"
 
 namespace comic::apps {
 
 TrackerFlags::TrackerFlags()
-    : options(sfm::SequenceReconstructionOptions().tracker),
+    : options(sfm::DefaultRunTrackerOptions()),
       prediction(frontend::MotionPredictionName(options.prediction)),
       track_conflicts(frontend::TrackConflictRuleName(options.conflict_rule)),
       align_patches(options.align_patches ? 1 : 0) {}
@@ -97,6 +97,35 @@ frontend::TrackerOptions ToTrackerOptions(const TrackerFlags& flags) {
   options.align_patches = flags.align_patches == 1;
   options.Check();
   return options;
+}
+
+sfm::TrackerSettings ToTrackerSettings(const TrackerFlags& flags, const ArgParser& parser) {
+  const frontend::TrackerOptions& o = flags.options;
+  sfm::TrackerSettings settings;
+  if (parser.WasSet("max-features")) settings.max_features = o.max_features;
+  if (parser.WasSet("search-radius")) settings.search_radius = o.matcher.radius;
+  if (parser.WasSet("unpredicted-radius")) settings.unpredicted_radius = o.unpredicted_radius;
+  if (parser.WasSet("prediction")) settings.prediction = flags.prediction;
+  if (parser.WasSet("coarse-radius")) settings.coarse_radius = o.coarse_radius;
+  if (parser.WasSet("match-window")) settings.match_window = o.match_window;
+  if (parser.WasSet("track-conflicts")) settings.track_conflicts = flags.track_conflicts;
+  if (parser.WasSet("verify-min-gap")) settings.verify_min_gap = o.verify_min_gap;
+  if (parser.WasSet("match-turned")) settings.match_turned = o.match_turned_180;
+  if (parser.WasSet("max-cost")) settings.max_cost = o.matcher.max_cost;
+  if (parser.WasSet("align-patches")) {
+    COMIC_CHECK(flags.align_patches == 0 || flags.align_patches == 1, kInvalidArgument,
+                "--align-patches must be 1 or 0, got " << flags.align_patches);
+    settings.align_patches = flags.align_patches == 1;
+  }
+  if (parser.WasSet("min-window-eigenvalue")) {
+    settings.min_window_eigenvalue = o.min_window_eigenvalue;
+  }
+  for (const char* name : {"max-continued-frames", "max-alignment-residual", "aligned-radius",
+                           "min-alignment-correlation", "alignment-min-eigenvalue", "bridge-frames",
+                           "alignment-max-fb", "alignment-iterations", "alignment-levels"}) {
+    if (parser.WasSet(name)) settings.continuation = o.continuation;
+  }
+  return settings;
 }
 
 }  // namespace comic::apps

@@ -8,6 +8,7 @@
 
 #include "apps/common/arg_parser.h"
 #include "frontend/matching/tracker.h"
+#include "sfm/run/tracker_settings.h"
 
 namespace comic::apps {
 
@@ -24,8 +25,12 @@ struct TrackerFlags {
 
 void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags);
 
-// flags.options with the names parsed, Check()ed. Throws comic::Error(kInvalidArgument) naming
-// the bad flag.
+// The tracker flags given on the command line (parser.WasSet), as the run's settings: the others
+// keep the run's defaults, set up for the pairing --matching chooses (sfm/run/tracker_settings.h).
+sfm::TrackerSettings ToTrackerSettings(const TrackerFlags& flags, const ArgParser& parser);
+
+// Every tracker flag as given or defaulted, parsed and Check()ed (comic_track_survival, which
+// tracks without a pairing choice).
 frontend::TrackerOptions ToTrackerOptions(const TrackerFlags& flags);
 
 }  // namespace comic::apps
