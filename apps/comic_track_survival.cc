@@ -242,11 +242,12 @@ int Run(int argc, char** argv) {
   parser.AddFlag("no-loss-split", "skip where the features go (saves an LK pass per frame)",
                  &flags.no_loss_split);
   parser.AddFlag("no-lk", "skip the LK survival reference", &flags.no_lk);
-  parser.AddOption("gt", "FILE",
-                   "KITTI poses.txt of the frames (with --calib): triangulate the tracks with the "
-                   "true cameras and report their reprojection errors",
+  // With both, the tracks are triangulated with the true cameras and their reprojection errors
+  // reported (the same flags as comic_track_eval's).
+  parser.AddOption("poses", "FILE", "KITTI poses.txt (camera-to-world per frame) for precision",
                    &flags.gt);
-  parser.AddOption("calib", "FILE", "KITTI calib.txt (P0) for --gt", &flags.calib);
+  parser.AddOption("calib", "FILE", "KITTI calib.txt (P0 gives the intrinsics) for precision",
+                   &flags.calib);
   parser.AddOption("lk-window", "PX", "LK reference: window side", &flags.lk.window);
   parser.AddOption("lk-levels", "N", "LK reference: pyramid levels above the frame",
                    &flags.lk.levels);
@@ -273,7 +274,7 @@ int Run(int argc, char** argv) {
 
   GroundTruth truth;
   COMIC_CHECK(flags.gt.empty() == flags.calib.empty(), kInvalidArgument,
-              "--gt and --calib go together");
+              "--poses and --calib go together");
   if (!flags.gt.empty()) {
     truth.known = true;
     truth.K = fe::ScaleIntrinsics(io::ReadKittiIntrinsics(flags.calib, 0),
