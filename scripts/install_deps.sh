@@ -11,7 +11,7 @@ PACKAGES=(
   make
   cmake
   pkg-config
-  libopencv-dev  # core, imgproc, imgcodecs, videoio, features2d, calib3d
+  libopencv-dev  # core, imgproc, imgcodecs, videoio, video, features2d, calib3d
   libceres-dev   # bundle adjustment
   libeigen3-dev
   libsqlite3-dev # COLMAP database
