@@ -24,8 +24,10 @@
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
 #include "io/core/pixel_budget.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/image/frame_export.h"
+#include "io/image/image_io.h"
 #include "io/image/image_sequence.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_runner.h"
@@ -95,7 +97,8 @@ int Run(int argc, char** argv) {
                    "are relative to it",
                    &image_path);
   parser.AddOption("sparse", "DIR",
-                   "output folder in the printed mapper command (default: DB's folder/sparse)",
+                   "output folder in the printed mapper command (default: colmap/sparse in DB's "
+                   "folder)",
                    &sparse_path);
   comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   comic::apps::AddResizeHeightFlag(parser, &sequence_options.resize_height);
@@ -111,8 +114,8 @@ int Run(int argc, char** argv) {
       "  comic_export_colmap examples/data/kitti06_000-011/image_l --colmap-db kitti.db \\\n"
       "      --intrinsics examples/data/kitti06_000-011/calib.txt\n"
       "prints, among its report, the command to run, e.g.\n"
-      "  mkdir -p sparse && colmap mapper --database_path kitti.db --image_path ... \\\n"
-      "      --output_path sparse --Mapper.init_max_forward_motion 1 ...\n"
+      "  mkdir -p colmap/sparse && colmap mapper --database_path kitti.db --image_path ... \\\n"
+      "      --output_path colmap/sparse --Mapper.init_max_forward_motion 1 ...\n"
       "For forward motion COLMAP's default --Mapper.init_max_forward_motion 0.95 and\n"
       "--Mapper.init_min_tri_angle 16 reject every initial pair; the printed values let it start.\n"
       "Known intrinsics are held fixed (--Mapper.ba_refine_* 0).\n");
@@ -124,6 +127,7 @@ int Run(int argc, char** argv) {
   comic::apps::CheckThreadCount("--threads", threads);
   comic::io::CheckMaxPixels(max_pixels);
   sequence_options.max_pixels = max_pixels;
+  comic::io::CheckResizeHeight(sequence_options.resize_height);  // by its flag's name
   sequence_options.Check();
   comic::sfm::ColmapExportOptions export_options = colmap.export_options;
   export_options.num_threads = threads;
@@ -138,7 +142,11 @@ int Run(int argc, char** argv) {
   detector_options.Check();
   comic::frontend::ParsePairing(matching);
   comic::apps::ToTrackerOptions(tracker_flags);  // validated before any work
-  comic::io::CheckWritableFile(output, colmap.overwrite);
+  comic::io::CheckOutputsAvoidInputs(
+      {{"--colmap-db", output},
+       {"--write-frames", write_frames == kFramesBesideDatabase ? "" : write_frames}},
+      {{"FRAMES", frames}, {"--intrinsics", intrinsics_path}});
+  comic::sfm::CheckColmapDatabaseOutput(output, colmap.overwrite);
   COMIC_CHECK(comic::io::PathExists(frames), kNotFound, frames << ": no such file or folder");
   const bool video = !comic::io::IsDirectory(frames);
   COMIC_CHECK(video || write_frames.empty(), kInvalidArgument,
@@ -162,8 +170,7 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(comic::io::IsDirectory(image_path) || image_path == frames_folder, kNotFound,
               image_path << ": --image-path is not a folder");
   export_options.image_name_prefix = ImageNamePrefix(frames_folder, image_path);
-  if (sparse_path.empty())
-    sparse_path = comic::io::JoinPaths(comic::io::ParentPath(output), "sparse");
+  if (sparse_path.empty()) sparse_path = comic::sfm::ColmapMapperOutputBeside(output);
 
   const auto sequence = comic::io::ImageSequence::Open(frames, sequence_options);
   COMIC_CHECK(sequence.IsVideo() == video, kInvalidArgument,
@@ -171,6 +178,7 @@ int Run(int argc, char** argv) {
                         "needs at least two frames)");
   COMIC_CHECK(sequence.NumFrames() >= 2, kInvalidArgument,
               frames << ": COLMAP export needs at least two frames, got " << sequence.NumFrames());
+  comic::apps::PrintWarning("comic_export_colmap", sequence.warning());
   std::optional<comic::sfm::Camera> camera;
   if (!intrinsics_path.empty()) {
     camera = comic::apps::LoadCameraIntrinsics(intrinsics_path, sequence.SourceFrameSize(),
@@ -192,7 +200,8 @@ int Run(int argc, char** argv) {
   const comic::frontend::FeatureTracks& tracks = tracking.tracks;
   if (frames_out) {
     comic::apps::ProgressLine progress("comic_export_colmap: writing frames", quiet);
-    comic::io::WriteSequenceFrames(sequence, frames_out->path(), progress.Callback());
+    frames_out->NamingTarget(
+        [&] { comic::io::WriteSequenceFrames(sequence, frames_out->path(), progress.Callback()); });
   }
   const comic::sfm::ColmapExportSummary summary = comic::sfm::ExportTracksToColmapDatabase(
       tracks, camera, export_options, output, colmap.overwrite);

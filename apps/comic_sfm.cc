@@ -7,6 +7,7 @@
 // (sfm/sequence_reconstruction.h, sfm/evaluation/sfm_report.h, ...); this file only wires flags to
 // them.
 #include <algorithm>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -36,12 +37,15 @@
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
 #include "io/core/pixel_budget.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/datasets/ground_truth_cameras.h"
 #include "io/datasets/region_annotations.h"
 #include "io/image/frame_export.h"
+#include "io/image/image_io.h"
 #include "io/image/image_sequence.h"
 #include "io/image/mask_folder.h"
+#include "io/report/json_text.h"
 #include "io/report/ply.h"
 #include "io/report/report_table.h"
 #include "sfm/bundle_adjuster.h"
@@ -526,7 +530,7 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
       }
     }
   }
-  io::WriteFileAtomically(io::JoinPaths(out_dir, "report.json"), json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(out_dir, "report.json"), io::JsonText(json, 2));
   return result;
 }
 
@@ -584,7 +588,7 @@ void CheckColmapFlags(const Flags& flags) {
               "--compare-colmap needs FRAMES to be a folder of images (for a video use "
               "--colmap-db, which writes the frames, and run COLMAP on it)");
   if (!flags.colmap.database.empty()) {
-    io::CheckWritableFile(flags.colmap.database, flags.colmap.overwrite);
+    sfm::CheckColmapDatabaseOutput(flags.colmap.database, flags.colmap.overwrite);
   }
   if (flags.compare_colmap) {
     COMIC_CHECK(sfm::IsColmapAvailable(), kNotFound,
@@ -623,8 +627,8 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
   std::cout << "wrote " << database << " (" << summary.num_images << " images, "
             << summary.num_verified_pairs << " of " << summary.num_matched_pairs
             << " pairs verified); run COLMAP on it with:\n  "
-            << sfm::ColmapMapperCommandLine(
-                   database, image_path, io::JoinPaths(io::ParentPath(database), "sparse"), mapper)
+            << sfm::ColmapMapperCommandLine(database, image_path,
+                                            sfm::ColmapMapperOutputBeside(database), mapper)
             << std::endl;
 }
 
@@ -659,7 +663,7 @@ void CompareWithColmap(const Flags& flags, const Inputs& inputs,
         {"matches", comparison.export_summary.num_matches},
         {"inlier_matches", comparison.export_summary.num_inlier_matches},
         {"known_intrinsics", comparison.export_summary.known_intrinsics}}}};
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.json"), json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.json"), io::JsonText(json, 2));
   std::cout << out.ToTargetPaths(table.ToMarkdown())
             << "COLMAP ran: " << out.ToTargetPaths(comparison.colmap_mapper_command)
             << "\n(log: " << out.ToTargetPaths(comparison.log_path) << ")" << std::endl;
@@ -804,6 +808,7 @@ int Run(int argc, char** argv) {
   comic::apps::CheckThreadCount("--threads", flags.threads);
   io::CheckMaxPixels(flags.max_pixels);
   flags.sequence.max_pixels = flags.max_pixels;
+  io::CheckResizeHeight(flags.sequence.resize_height);  // by its flag's name
   flags.sequence.Check();
   frontend::ParsePairing(flags.matching);                            // before any work
   MakeOptions(flags, comic::apps::ToTrackerOptions(flags.tracker));  // the numeric options too
@@ -814,17 +819,28 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(
       flags.ply_format == "binary" || flags.ply_format == "ascii", kInvalidArgument,
       "--ply-format: unknown format '" << flags.ply_format << "' (expected binary or ascii)");
+  // Inputs are sacred (issue 29): `-o FRAMES` left trajectory.png among the frames.
+  io::CheckOutputsAvoidInputs(
+      {{"--output", flags.out},
+       {"--colmap-db", flags.colmap.database},
+       {"--write-frames", flags.write_frames == kFramesInOutput ? "" : flags.write_frames}},
+      {{"FRAMES", flags.frames},
+       {"--gt", flags.gt},
+       {"--intrinsics", flags.intrinsics},
+       {"--regions", flags.region.regions},
+       {"--masks", flags.region.masks}});
   CheckColmapFlags(flags);
   // Validate, then write, all or nothing: --out is checked but not created; the outputs go to a
   // staging folder beside it and move into place when the run has succeeded (issue 19).
   io::CheckCreatableFolder(flags.out);
   Inputs inputs = ResolveInputs(flags);
+  for (const std::string& name : inputs.sequence->FrameNames()) {
+    io::CheckColmapImageName(name, flags.frames);
+  }
   inputs.pairing = comic::apps::ChooseRunPairing(flags.matching, parser, *inputs.sequence);
   inputs.tracker = comic::apps::TrackerOptionsForRun(
       parser, flags.tracker, inputs.pairing, static_cast<int>(inputs.sequence->NumFrames()));
-  if (!inputs.sequence->warning().empty()) {
-    std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
-  }
+  comic::apps::PrintWarning("comic_sfm", inputs.sequence->warning());
   const bool video = inputs.sequence->IsVideo();
   COMIC_CHECK(flags.write_frames.empty() || video, kInvalidArgument,
               "--write-frames: " << flags.frames
@@ -860,6 +876,10 @@ int Run(int argc, char** argv) {
     out.Commit();
     if (frames_out) frames_out->Commit();
   };
+  // Writing into the staging folders: an error (a full disk) names the user's paths (issue 29).
+  auto staged = [&](const std::function<void()>& body) {
+    out.NamingTarget([&] { frames_out ? frames_out->NamingTarget(body) : body(); });
+  };
   // The line saying where the intrinsics came from is printed even with --quiet (issue 17).
   {
     std::cout << "comic_sfm: " << inputs.sequence->NumFrames() << " frames "
@@ -876,14 +896,17 @@ int Run(int argc, char** argv) {
   }
 
   if (!flags.compare) {
-    const DetectorRun result = RunDetector(flags.detector, flags, inputs, out.path());
+    DetectorRun result;
+    staged([&] { result = RunDetector(flags.detector, flags, inputs, out.path()); });
     PrintSummary(result.report, result.run);
     const bool success = result.run.mapping.status == sfm::ReconstructionStatus::kSuccess;
-    write_frames();
+    staged(write_frames);
     if (success && !flags.colmap.database.empty()) {
       WriteColmapDatabase(flags, inputs, result.run, video ? frames_target : flags.frames);
     }
-    if (success && flags.compare_colmap) CompareWithColmap(flags, inputs, result.run, out);
+    if (success && flags.compare_colmap) {
+      staged([&] { CompareWithColmap(flags, inputs, result.run, out); });
+    }
     // A failed reconstruction commits its report.json (the documented exception): it says why.
     commit();
     // The error line says which check failed, by how much, and what to try (issue 17).
@@ -906,19 +929,22 @@ int Run(int argc, char** argv) {
 
   std::vector<sfm::SfmRunReport> reports;
   for (const std::string& name : detectors) {
-    const DetectorRun result = RunDetector(name, flags, inputs, io::JoinPaths(out.path(), name));
+    DetectorRun result;
+    staged([&] { result = RunDetector(name, flags, inputs, io::JoinPaths(out.path(), name)); });
     PrintSummary(result.report, result.run);
     reports.push_back(result.report);
   }
   const io::ReportTable table = sfm::MakeComparisonTable(reports);
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.md"), table.ToMarkdown());
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.csv"), table.ToCsv());
   nlohmann::json json = {{"table", table.ToJson()}, {"runs", nlohmann::json::array()}};
   for (const sfm::SfmRunReport& report : reports)
     json["runs"].push_back(sfm::RunReportToJson(report));
   json["options"] = OptionsToJson(flags, inputs);
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.json"), json.dump(2) + "\n");
-  write_frames();
+  staged([&] {
+    io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.md"), table.ToMarkdown());
+    io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.csv"), table.ToCsv());
+    io::WriteFileAtomically(io::JoinPaths(out.path(), "compare.json"), io::JsonText(json, 2));
+    write_frames();
+  });
   commit();
   std::cout << table.ToMarkdown();
   return 0;

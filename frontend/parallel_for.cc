@@ -4,10 +4,22 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
+#include "io/core/error.h"
+
 namespace comic::frontend {
+
+int HardwareThreads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
+
+void CheckThreadCount(const std::string& what, int threads) {
+  const int hardware = HardwareThreads();
+  COMIC_CHECK(threads >= 0 && threads <= hardware, kInvalidArgument,
+              what << " must be >= 0 and <= " << hardware << " (the hardware threads of this "
+                   << "machine; 0 = all), got " << threads);
+}
 
 int ResolveNumThreads(int requested, int num_items) {
   int threads = requested;
@@ -49,7 +61,16 @@ void ParallelFor(int num_items, int num_threads, const std::function<void(int, i
   };
   std::vector<std::thread> threads;
   threads.reserve(workers - 1);
-  for (int worker = 1; worker < workers; ++worker) threads.emplace_back(run, worker);
+  for (int worker = 1; worker < workers; ++worker) {
+    // A thread the system refuses (std::system_error: too many threads) is not an abort: the
+    // workers already started, and this one, take every item (issue 29: a joinable thread
+    // destroyed while the exception unwound called std::terminate).
+    try {
+      threads.emplace_back(run, worker);
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
   run(0);
   for (std::thread& thread : threads) thread.join();
   if (error) std::rethrow_exception(error);

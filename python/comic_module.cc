@@ -22,21 +22,28 @@
 #include "frontend/detector_factory.h"
 #include "frontend/matching/patch_matcher.h"
 #include "frontend/matching/tracker.h"
+#include "frontend/parallel_for.h"
 #include "io/colmap/colmap_binary_model.h"
 #include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/pixel_budget.h"
+#include "io/core/printable_text.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/version.h"
 #include "io/datasets/ground_truth_cameras.h"
 #include "io/image/image_io.h"
 #include "io/image/image_sequence.h"
+#include "io/report/json_text.h"
 #include "io/report/ply.h"
+#include "sfm/camera.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/colmap/colmap_runner.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/evaluation/sfm_report.h"
+#include "sfm/option_vocabulary.h"
 #include "sfm/sequence_reconstruction.h"
 #include "sfm/trajectory_evaluation.h"
 
@@ -161,10 +168,12 @@ OptionTable DetectorOptionTable(frontend::DetectorOptions* o) {
 frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py::dict& options) {
   frontend::DetectorOptions detector_options;
   detector_options.name = name;
-  COMIC_CHECK(frontend::IsDetectorName(name), kInvalidArgument,
-              "unknown detector '" << name << "' (expected one of comic.detector_names)");
+  frontend::CheckDetectorName(name);  // the apps' message, listing the names
   ApplyOptions(options, DetectorOptionTable(&detector_options), "detector '" + name + "'");
   detector_options.Check();
+  // The apps' bound on threads (issue 29: threads=10**6 aborted the interpreter).
+  frontend::CheckThreadCount("threads", detector_options.comic.num_threads);
+  frontend::CheckThreadCount("threads", detector_options.comic_paper.num_threads);
   return detector_options;
 }
 
@@ -206,14 +215,22 @@ void AddSequenceOptions(io::ImageSequenceOptions* s, OptionTable* table) {
   table->insert({{"resize_height", Field(&s->resize_height)},
                  {"first", Field(&s->first_frame)},
                  {"last", Field(&s->last_frame)},
-                 {"stride", Field(&s->stride)}});
+                 {"stride", Field(&s->stride)},
+                 {"max_pixels", Field(&s->max_pixels)}});
+}
+
+// The sequence options as the apps check them, by the keywords' names.
+void CheckSequenceOptions(const io::ImageSequenceOptions& options) {
+  io::CheckResizeHeight(options.resize_height, "resize_height");
+  io::CheckMaxPixels(options.max_pixels);
+  options.Check();
 }
 
 // ---- images and features ----------------------------------------------------------------------
 
 // An 8-bit numpy image, H x W (grey) or H x W x 3 (BGR, as cv2 reads it), copied into a grey
-// cv::Mat.
-cv::Mat GrayFromArray(const py::array& image, const std::string& what) {
+// cv::Mat; more than `max_pixels` pixels are refused before the copy (the apps' budget).
+cv::Mat GrayFromArray(const py::array& image, const std::string& what, int64_t max_pixels) {
   COMIC_CHECK(image.dtype().is(py::dtype::of<uint8_t>()), kInvalidArgument,
               what << ": expected a uint8 image, got dtype "
                    << py::cast<std::string>(py::str(image.dtype())));
@@ -221,6 +238,7 @@ cv::Mat GrayFromArray(const py::array& image, const std::string& what) {
               what << ": expected an H x W (grey) or H x W x 3 (BGR) image, got " << image.ndim()
                    << " dimensions");
   COMIC_CHECK(image.shape(0) > 0 && image.shape(1) > 0, kInvalidArgument, what << ": empty image");
+  io::CheckPixelBudget(what, image.shape(1), image.shape(0), max_pixels);
   const auto contiguous =
       py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image);
   const int rows = static_cast<int>(image.shape(0));
@@ -412,8 +430,11 @@ sfm::MapperProgressCallback MapperCallback(const py::object& callback) {
 
 // ---- the functions ----------------------------------------------------------------------------
 
-py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool color) {
-  const io::LoadedImage image = io::LoadImage(path, resize_height);
+py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool color,
+                            int64_t max_pixels) {
+  io::CheckResizeHeight(resize_height, "resize_height");
+  io::CheckMaxPixels(max_pixels);
+  const io::LoadedImage image = io::LoadImage(path, resize_height, max_pixels);
   const cv::Mat& mat = color ? image.color : image.gray;
   std::vector<py::ssize_t> shape = {mat.rows, mat.cols};
   if (color) shape.push_back(3);
@@ -425,9 +446,11 @@ py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool col
   return array;
 }
 
-py::dict Detect(const py::array& image, const std::string& detector_name, const py::dict& options) {
+py::dict Detect(const py::array& image, const std::string& detector_name, const py::dict& options,
+                int64_t max_pixels) {
   const frontend::DetectorOptions detector_options = MakeDetectorOptions(detector_name, options);
-  const cv::Mat gray = GrayFromArray(image, "detect");
+  io::CheckMaxPixels(max_pixels);
+  const cv::Mat gray = GrayFromArray(image, "detect", max_pixels);
   FeatureSet features;
   {
     py::gil_scoped_release release;
@@ -444,8 +467,8 @@ py::dict Match(const py::array& image1, const py::dict& features1, const py::obj
   AddMatcherOptions(&matcher, &table);
   ApplyOptions(options, table, "match");
   matcher.Check();
-  const cv::Mat gray1 = GrayFromArray(image1, "match: image1");
-  const cv::Mat gray2 = GrayFromArray(image2, "match: image2");
+  const cv::Mat gray1 = GrayFromArray(image1, "match: image1", io::kDefaultMaxPixels);
+  const cv::Mat gray2 = GrayFromArray(image2, "match: image2", io::kDefaultMaxPixels);
   const FeatureSet set1 = FeaturesFromColumns(features1, masks1, "match: features1");
   const FeatureSet set2 = FeaturesFromColumns(features2, masks2, "match: features2");
   std::vector<frontend::PatchMatch> matches;
@@ -465,10 +488,14 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
   OptionTable table;
   AddTrackerOptions(&tracker, &table);
   const bool from_path = py::isinstance<py::str>(frames);
-  if (from_path) AddSequenceOptions(&sequence_options, &table);
+  if (from_path) {
+    AddSequenceOptions(&sequence_options, &table);
+  } else {
+    table["max_pixels"] = Field(&sequence_options.max_pixels);
+  }
   ApplyOptions(options, table, "track");
   tracker.Check();
-  sequence_options.Check();
+  CheckSequenceOptions(sequence_options);
   const frontend::TrackingProgress progress = TrackingCallback(callback);
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
   frontend::TrackingResult result;
@@ -483,7 +510,8 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
       COMIC_CHECK(py::isinstance<py::array>(frame), kInvalidArgument,
                   "track: frames must be a path or a sequence of uint8 numpy images");
       grays.push_back(GrayFromArray(py::reinterpret_borrow<py::array>(frame),
-                                    "track: frame " + std::to_string(grays.size())));
+                                    "track: frame " + std::to_string(grays.size()),
+                                    sequence_options.max_pixels));
       COMIC_CHECK(grays.back().size() == grays.front().size(), kInvalidArgument,
                   "track: frame " << grays.size() - 1 << " differs in size from frame 0");
     }
@@ -609,6 +637,11 @@ sfm::Camera ResolveCamera(const io::ImageSequence& sequence, const std::string& 
   if (!intrinsics.empty()) {
     const sfm::Camera source_camera =
         sfm::CameraFromK(io::ReadIntrinsicsFile(intrinsics), source_size.width, source_size.height);
+    try {
+      sfm::CheckCameraValuesPlausible(source_camera);
+    } catch (const Error& e) {
+      throw Error(ErrorKind::kInvalidData, intrinsics + ": " + e.what());
+    }
     camera = scale == 1.0 ? source_camera : source_camera.Scaled(scale);
   } else if (truth && truth->camera) {
     camera = *truth->camera;
@@ -643,9 +676,9 @@ PyReconstruction Reconstruct(const std::string& path, const std::string& detecto
   table["threads"] = Field(&threads);
   AddSequenceOptions(&sequence_options, &table);
   ApplyOptions(options, table, "reconstruct");
-  COMIC_CHECK(threads >= 0, kInvalidArgument, "reconstruct: threads must be >= 0, got " << threads);
+  frontend::CheckThreadCount("threads", threads);
   sfm_options.Check();
-  sequence_options.Check();
+  CheckSequenceOptions(sequence_options);
 
   if (!detector_options.contains("threads")) {
     made.comic.num_threads = threads;
@@ -680,7 +713,7 @@ PyReconstruction Reconstruct(const std::string& path, const std::string& detecto
     }
     const sfm::SfmRunReport report =
         sfm::MakeRunReport(run, sfm::ComputeReconstructionStats(reconstruction), evaluation);
-    result.report_json = sfm::RunReportToJson(report).dump();
+    result.report_json = io::JsonText(sfm::RunReportToJson(report), -1);
     result.status = sfm::ReconstructionStatusName(run.mapping.status);
     if (run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
       result.model = sfm::ToColmapTextModel(reconstruction);
@@ -718,17 +751,18 @@ py::dict ExportColmap(const std::string& frames, const std::string& database,
   AddSfmTrackerOptions(&tracker, &table);
   AddSequenceOptions(&sequence_options, &table);
   ApplyOptions(options, table, "export_colmap");
-  COMIC_CHECK(threads >= 0, kInvalidArgument,
-              "export_colmap: threads must be >= 0, got " << threads);
+  frontend::CheckThreadCount("threads", threads);
   export_options.num_threads = threads;
   if (!detector_options.contains("threads")) {
     made.comic.num_threads = threads;
     made.comic_paper.num_threads = threads;
   }
-  sequence_options.Check();
+  CheckSequenceOptions(sequence_options);
   export_options.Check();
   tracker.Check();
-  io::CheckWritableFile(database, overwrite);
+  io::CheckOutputsAvoidInputs({{"database", database}},
+                              {{"frames", frames}, {"intrinsics", intrinsics}});
+  sfm::CheckColmapDatabaseOutput(database, overwrite);
   COMIC_CHECK(io::PathExists(frames), kNotFound, frames << ": no such file or folder");
   COMIC_CHECK(io::IsDirectory(frames), kInvalidArgument,
               frames << ": not a folder (COLMAP needs the frames as image files in a folder)");
@@ -748,7 +782,11 @@ py::dict ExportColmap(const std::string& frames, const std::string& database,
     known.fy = k(1, 1);
     known.cx = k(0, 2);
     known.cy = k(1, 2);
-    known.Check();
+    try {
+      sfm::CheckCameraValuesPlausible(known);
+    } catch (const Error& e) {
+      throw Error(ErrorKind::kInvalidData, intrinsics + ": " + e.what());
+    }
     camera = known;
   }
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
@@ -759,7 +797,7 @@ py::dict ExportColmap(const std::string& frames, const std::string& database,
     summary = sfm::ExportTracksToColmapDatabase(tracking.tracks, camera, export_options, database,
                                                 overwrite);
   }
-  const std::string sparse = io::JoinPaths(io::ParentPath(database), "sparse");
+  const std::string sparse = sfm::ColmapMapperOutputBeside(database);
   py::dict result;
   result["num_images"] = summary.num_images;
   result["num_keypoints"] = summary.num_keypoints;
@@ -783,20 +821,33 @@ PYBIND11_MODULE(_core, m) {
   m.attr("detector_names") = comic::frontend::DetectorNames();
   m.attr("patch_size") = comic::frontend::kPatchSize;
 
+  // Every C++ error is a Python exception with the apps' one-line text (RunMain's): never an
+  // abort, never a raw multi-line library message.
   py::register_exception_translator([](std::exception_ptr pointer) {
     try {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const comic::Error& e) {
+      const std::string message = comic::io::PrintableOneLine(
+          comic::sfm::WithUserOptionNames(e.what(), comic::sfm::OptionStyle::kKeyword));
       if (e.kind() == comic::ErrorKind::kInvalidArgument) {
-        PyErr_SetString(PyExc_ValueError, e.what());
+        PyErr_SetString(PyExc_ValueError, message.c_str());
       } else {
-        PyErr_SetString(PyExc_RuntimeError, e.what());
+        PyErr_SetString(PyExc_RuntimeError, message.c_str());
       }
+    } catch (const cv::Exception& e) {
+      PyErr_SetString(
+          PyExc_RuntimeError,
+          ("OpenCV: " + comic::io::PrintableOneLine(e.err) + " (" + e.func + ")").c_str());
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(PyExc_MemoryError, "out of memory");
     }
   });
 
-  m.def("imread", &ImRead, py::arg("path"), py::arg("resize_height"), py::arg("color"));
-  m.def("detect", &Detect, py::arg("image"), py::arg("detector"), py::arg("options"));
+  m.attr("default_max_pixels") = comic::io::kDefaultMaxPixels;
+  m.def("imread", &ImRead, py::arg("path"), py::arg("resize_height"), py::arg("color"),
+        py::arg("max_pixels"));
+  m.def("detect", &Detect, py::arg("image"), py::arg("detector"), py::arg("options"),
+        py::arg("max_pixels"));
   m.def("match", &Match, py::arg("image1"), py::arg("features1"), py::arg("side_masks1"),
         py::arg("image2"), py::arg("features2"), py::arg("side_masks2"), py::arg("options"));
   m.def("track", &Track, py::arg("frames"), py::arg("detector"), py::arg("detector_options"),

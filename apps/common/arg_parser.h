@@ -94,4 +94,8 @@ class ArgParser {
 // an exception escape main().
 int RunMain(const std::string& program, const std::function<int()>& body);
 
+// "PROGRAM: warning: TEXT" on stderr as one printable line (io/core/printable_text.h); nothing
+// for an empty text.
+void PrintWarning(const std::string& program, const std::string& text);
+
 }  // namespace comic::apps

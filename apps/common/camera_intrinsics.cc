@@ -44,6 +44,7 @@ sfm::Camera LoadCameraIntrinsics(const std::string& path, const cv::Size& source
   try {
     source_camera = sfm::Camera::FromParams(*file_model, source_size.width, source_size.height,
                                             calibration.params);
+    sfm::CheckCameraValuesPlausible(source_camera);
   } catch (const Error& error) {
     throw Error(ErrorKind::kInvalidData, path + ": " + error.what());
   }

@@ -1,19 +1,14 @@
 #include "apps/common/thread_count.h"
 
-#include <algorithm>
-#include <thread>
-
-#include "io/core/error.h"
+#include "frontend/parallel_for.h"
 
 namespace comic::apps {
 
-int HardwareThreads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
+// The library's bound (frontend/parallel_for.h), which the Python module holds to as well.
+int HardwareThreads() { return frontend::HardwareThreads(); }
 
 void CheckThreadCount(const std::string& flag, int threads) {
-  const int hardware = HardwareThreads();
-  COMIC_CHECK(threads >= 0 && threads <= hardware, kInvalidArgument,
-              flag << " must be >= 0 and <= " << hardware << " (the hardware threads of this "
-                   << "machine; 0 = all), got " << threads);
+  frontend::CheckThreadCount(flag, threads);
 }
 
 }  // namespace comic::apps

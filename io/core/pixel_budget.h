@@ -21,5 +21,7 @@ void CheckMaxPixels(int64_t max_pixels);
 // Throws comic::Error(kInvalidData) naming `what` when size.area() > max_pixels, saying how to
 // raise the budget (--max-pixels) or lower the work (--resize-height).
 void CheckPixelBudget(const std::string& what, cv::Size size, int64_t max_pixels);
+// The same for a size declared by a file's header, which may exceed int's range.
+void CheckPixelBudget(const std::string& what, int64_t width, int64_t height, int64_t max_pixels);
 
 }  // namespace comic::io
