@@ -220,6 +220,7 @@ int Run(int argc, char** argv) {
   // Both outputs are checked now and renamed into place together at the end (all or nothing).
   comic::io::StagedFiles outputs;
   if (!overlay_path.empty()) outputs.Stage(overlay_path);
+  if (!overlay_path.empty()) comic::io::CheckImageOutputFormat(overlay_path, "--overlay");
   if (!json_path.empty()) outputs.Stage(json_path);
 
   const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height, max_pixels);

@@ -38,6 +38,7 @@ int Run(int argc, char** argv) {
               "--sheet-frames must be >= 1 and <= 100, got " << sheet_frames);
   comic::io::CheckOutputsAvoidInputs({{"--contact-sheet", sheet_path}}, {{"FRAMES", input}});
   if (!sheet_path.empty()) comic::io::CheckWritableFile(sheet_path);
+  if (!sheet_path.empty()) comic::io::CheckImageOutputFormat(sheet_path, "--contact-sheet");
 
   const auto sequence = comic::io::ImageSequence::Open(input, options);
   comic::apps::PrintWarning("comic_inspect", sequence.warning());

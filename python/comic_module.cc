@@ -685,6 +685,8 @@ PyReconstruction Reconstruct(const std::string& path, const std::string& detecto
     made.comic_paper.num_threads = threads;
   }
   const io::ImageSequence sequence = io::ImageSequence::Open(path, sequence_options);
+  // As comic_sfm: a frame name no COLMAP model can hold is refused before any work.
+  for (const std::string& name : sequence.FrameNames()) io::CheckColmapImageName(name, path);
   std::optional<sfm::FrameGroundTruth> truth;
   if (!gt.empty()) {
     std::vector<int> source_indices;

@@ -99,14 +99,13 @@ std::vector<std::string> ListFiles(const std::string& folder, std::vector<Skippe
   return names;
 }
 
-std::string DescribeSkippedEntries(const std::vector<SkippedEntry>& skipped,
-                                   const std::string& what) {
+std::string DescribeSkippedEntries(const std::vector<SkippedEntry>& skipped) {
   if (skipped.empty()) return "";
   const bool one = skipped.size() == 1;
-  return "skipped " + std::to_string(skipped.size()) + (one ? " entry" : " entries") +
-         " named as " + what + " that " + (one ? "is" : "are") + " not a regular file" +
-         (one ? "" : "s") + (one ? ": '" : ", the first '") + skipped.front().name + "' (" +
-         skipped.front().kind + ")";
+  return "skipped " + std::to_string(skipped.size()) +
+         (one ? " entry that is not a regular file: '"
+              : " entries that are not regular files, the first '") +
+         skipped.front().name + "' (" + skipped.front().kind + ")";
 }
 
 void EnsureWritableDirectory(const std::string& folder) {
@@ -225,6 +224,19 @@ void WriteFileAtomically(const std::string& path, const std::string& contents, b
       path,
       [&](const std::string& temp) { WriteBytes(temp, contents.data(), contents.size(), path); },
       overwrite);
+}
+
+void CheckImageOutputFormat(const std::string& path, const std::string& what) {
+  bool writable = false;
+  try {
+    writable = !FileExtension(path).empty() && cv::haveImageWriter(path);
+  } catch (const cv::Exception&) {
+  }
+  COMIC_CHECK(writable, kInvalidArgument,
+              path << ": " << what
+                   << " needs an image file name OpenCV can write (.png, .jpg, .bmp, .tif, .ppm, "
+                      "...), got the extension '"
+                   << FileExtension(path) << "'");
 }
 
 void WriteImageAtomically(const std::string& path, const cv::Mat& image) {

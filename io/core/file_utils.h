@@ -36,10 +36,9 @@ struct SkippedEntry {
 std::vector<std::string> ListFiles(const std::string& folder,
                                    std::vector<SkippedEntry>* skipped = nullptr);
 
-// One line for entries a reader skipped (empty if none), `what` naming what they looked like:
-// "skipped 3 entries named as images that are not regular files, the first 'a.png' (a FIFO)".
-std::string DescribeSkippedEntries(const std::vector<SkippedEntry>& skipped,
-                                   const std::string& what);
+// One line for entries a reader skipped (empty if none): "skipped 3 entries that are not regular
+// files, the first 'a.png' (a FIFO)".
+std::string DescribeSkippedEntries(const std::vector<SkippedEntry>& skipped);
 
 // Creates `folder` and its parents if needed and checks that a file can be created in it.
 // Throws comic::Error(kIo) naming the folder otherwise.
@@ -74,6 +73,12 @@ void WriteAtomically(const std::string& path, const std::function<void(const std
 // Atomic write of bytes to `path` (see WriteAtomically).
 void WriteFileAtomically(const std::string& path, const std::string& contents,
                          bool overwrite = true);
+
+// Throws comic::Error(kInvalidArgument) naming `what` (the option) and `path` unless OpenCV can
+// encode an image in the format `path`'s extension names (cv::haveImageWriter); apps call it
+// before any work, so "--overlay out.xyz" fails in a second with our words, not after the work
+// with OpenCV's "could not find a writer for the specified extension".
+void CheckImageOutputFormat(const std::string& path, const std::string& what);
 
 // Atomic cv::imwrite; the format follows the extension of `path`. Throws comic::Error(kIo)
 // naming `path`, with what the codec library printed (libpng's "Write Error" on a full disk)

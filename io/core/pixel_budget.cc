@@ -19,7 +19,7 @@ void CheckPixelBudget(const std::string& what, int64_t width, int64_t height, in
   COMIC_CHECK(pixels <= max_pixels, kInvalidData,
               what << ": " << width << "x" << height << " = " << pixels
                    << " pixels exceeds the budget of " << max_pixels
-                   << " (about 200 bytes each); raise it with --max-pixels " << pixels
+                   << " (docs/robustness.md); raise it with --max-pixels " << pixels
                    << " or work smaller with --resize-height");
 }
 

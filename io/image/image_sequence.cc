@@ -72,13 +72,12 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
       if (IsImageExtension(FileExtension(entry.name))) skipped_images.push_back(entry);
     }
     if (!skipped_images.empty()) {
-      sequence.warning_ = path + ": " + DescribeSkippedEntries(skipped_images, "images");
+      sequence.warning_ = path + ": " + DescribeSkippedEntries(skipped_images);
     }
     COMIC_CHECK(
         !images.empty(), kInvalidArgument,
         path << ": folder holds no images (png/jpg/jpeg/ppm/pgm/pnm/pbm/tif/tiff/bmp)"
-             << (skipped_images.empty() ? ""
-                                        : "; " + DescribeSkippedEntries(skipped_images, "images")));
+             << (skipped_images.empty() ? "" : "; " + DescribeSkippedEntries(skipped_images)));
     sequence.folder_ = path;
     sequence.source_indices_ = SelectIndices(static_cast<int>(images.size()), options);
     COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,

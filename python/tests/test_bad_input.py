@@ -138,3 +138,11 @@ def test_messages_are_one_printable_line():
         comic.imread("/nonexistent/stra\u00dfe\n.png")
     message = str(info.value)
     assert "\n" not in message and "stra\u00dfe" in message
+
+
+def test_frame_names_no_model_can_hold_are_refused_before_any_work(tmp_path):
+    for k in range(2):
+        name = "img %06d.png" % k
+        (tmp_path / name).write_bytes(open(EXAMPLE + "/image_l/%06d.png" % k, "rb").read())
+    with pytest.raises(RuntimeError, match="frame name 'img 000000.png' is empty or holds whitespace"):
+        comic.reconstruct(str(tmp_path))

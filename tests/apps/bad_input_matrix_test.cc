@@ -76,6 +76,9 @@ const std::vector<Case> kCases = {
   {"comic_detect", "", 2, {"IMAGE"}},
   // Issue 29: outputs that are inputs (by device and inode, not by name) destroyed the image.
   {"comic_detect", "{d}/good.png --json {d}/good.png", 2, {"good.png", "--json is the input IMAGE"}},
+  // Issue 29: an unknown overlay format failed after the work, in OpenCV's words.
+  {"comic_detect", "{d}/good.png --overlay {d}/o.xyz", 2, {"o.xyz", "--overlay", "'xyz'"}},
+  {"comic_inspect", "{e} --contact-sheet {d}/sheet.txt", 2, {"sheet.txt", "--contact-sheet"}},
   {"comic_detect", "{d}/good.png --overlay {d}/frames/../good.png", 2,
    {"--overlay is the input IMAGE"}},
   {"comic_detect", "{d}/good.png --overlay {d}/link.png", 2, {"link.png", "is the input IMAGE"}},

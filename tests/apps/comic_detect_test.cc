@@ -125,7 +125,7 @@ TEST(ComicDetect, BadInputGivesOneLineErrorAndNoOutput) {
       {image + " --overlay " + out + " --scale x", 2, "expected a number"},
       {image + " --overlay " + out + " --delta 0", 2, "delta must be >= 1"},
       {image + " --overlay " + out + " --block-size 3", 2, "--block-size must be >= 8"},
-      {image + " --overlay " + out + " --min-cornerness 0.5", 2, "min_cornerness"},
+      {image + " --overlay " + out + " --min-cornerness 0.5", 2, "--min-cornerness"},
       {image + " --overlay " + out + " --threads -1", 2, "--threads must be >= 0"},
       {image + " --overlay " + out + " --resize-height -2", 2,
        "--resize-height must be 0 (original size) or in [8, 16384]"},

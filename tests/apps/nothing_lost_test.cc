@@ -192,7 +192,8 @@ bool RunOnSmallDisk(const std::string& mount, int kib, const std::string& comman
 }
 
 // Issue 29: disk-full errors named the hidden staging path, and libpng's "Write Error" leaked as
-// a second line.
+// a second line. comic_detect stages files beside the target, comic_export_colmap writes an
+// SQLite database, comic_sfm and comic_stereo_eval stage folders.
 TEST(NothingLost, AFullDiskIsOneLineNamingTheUsersPath) {
   ScopedTempDir dir;
   const std::string disk = dir.File("disk");
@@ -208,6 +209,9 @@ TEST(NothingLost, AFullDiskIsOneLineNamingTheUsersPath) {
        image + " --detector comic-paper --overlay " + disk + "/o.png --json " + disk + "/f.json",
        disk + "/o.png"},
       {"comic_export_colmap", ExportArgs(disk + "/a.db"), disk + "/a.db"},
+      {"comic_sfm",
+       ExampleDir() + "/image_l --last 5 --detector fast --threads 1 -q --output " + disk + "/out",
+       disk + "/out/"},
       {"comic_stereo_eval",
        image + " " + image + " --disparity " + image + " --disparity-scale 4 --methods harris -q " +
            "--output " + disk + "/stereo",
