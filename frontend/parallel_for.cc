@@ -8,18 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "io/core/error.h"
-
 namespace comic::frontend {
-
-int HardwareThreads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
-
-void CheckThreadCount(const std::string& what, int threads) {
-  const int hardware = HardwareThreads();
-  COMIC_CHECK(threads >= 0 && threads <= hardware, kInvalidArgument,
-              what << " must be >= 0 and <= " << hardware << " (the hardware threads of this "
-                   << "machine; 0 = all), got " << threads);
-}
 
 int ResolveNumThreads(int requested, int num_items) {
   int threads = requested;

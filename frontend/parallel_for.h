@@ -11,17 +11,8 @@
 #pragma once
 
 #include <functional>
-#include <string>
 
 namespace comic::frontend {
-
-// The machine's hardware threads (at least 1).
-int HardwareThreads();
-
-// Throws comic::Error(kInvalidArgument) naming `what` ("--threads", "threads") unless
-// 0 <= threads <= HardwareThreads(): the bound the apps and the Python module hold every thread
-// count to (0 = all).
-void CheckThreadCount(const std::string& what, int threads);
 
 // Number of workers ParallelFor will use for `requested` threads (0 = all hardware threads)
 // and `num_items` items: at least 1, at most num_items.

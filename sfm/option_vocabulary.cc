@@ -1,6 +1,5 @@
 #include "sfm/option_vocabulary.h"
 
-#include <algorithm>
 #include <vector>
 
 namespace comic::sfm {
@@ -49,13 +48,6 @@ const Entry kDetectorEntries[] = {
     {"stop_tolerance", "stop-tolerance"},
 };
 
-std::string Styled(const std::string& option, OptionStyle style) {
-  if (style == OptionStyle::kFlag) return "--" + option;
-  std::string keyword = option;
-  std::replace(keyword.begin(), keyword.end(), '-', '_');
-  return keyword;
-}
-
 // `message` starts with `phrase` followed by " must".
 bool StartsWithField(const std::string& message, const std::string& phrase) {
   return message.compare(0, phrase.size(), phrase) == 0 &&
@@ -64,17 +56,17 @@ bool StartsWithField(const std::string& message, const std::string& phrase) {
 
 }  // namespace
 
-std::string WithUserOptionNames(const std::string& message, OptionStyle style) {
+std::string WithUserOptionNames(const std::string& message) {
   for (const Entry& entry : kEntries) {
     if (StartsWithField(message, entry.phrase)) {
-      return Styled(entry.option, style) + message.substr(std::string(entry.phrase).size());
+      return "--" + std::string(entry.option) + message.substr(std::string(entry.phrase).size());
     }
   }
   for (const char* detector : {"comic: ", "comic-paper: "}) {
     for (const Entry& entry : kDetectorEntries) {
       const std::string phrase = detector + std::string(entry.phrase);
       if (StartsWithField(message, phrase)) {
-        return Styled(entry.option, style) + message.substr(phrase.size());
+        return "--" + std::string(entry.option) + message.substr(phrase.size());
       }
     }
   }

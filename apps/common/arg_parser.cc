@@ -230,8 +230,7 @@ int RunMain(const std::string& program, const std::function<int()>& body) {
     return body();
   } catch (const Error& e) {
     // Options by the flags' names, not the library fields' (sfm/option_vocabulary.h).
-    std::cerr << program << ": error: "
-              << io::PrintableOneLine(sfm::WithUserOptionNames(e.what(), sfm::OptionStyle::kFlag))
+    std::cerr << program << ": error: " << io::PrintableOneLine(sfm::WithUserOptionNames(e.what()))
               << "\n";
     return e.kind() == ErrorKind::kInvalidArgument ? 2 : 1;
   } catch (const cv::Exception& e) {

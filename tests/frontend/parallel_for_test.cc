@@ -11,8 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "io/core/error.h"
-
 namespace comic::frontend {
 namespace {
 
@@ -88,24 +86,6 @@ TEST(ParallelFor, ThreadsTheSystemRefusesAreNotAnAbort) {
   ASSERT_EQ(::waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 0);
-}
-
-TEST(ParallelFor, ThreadCountsAreBoundedByTheMachine) {
-  EXPECT_GE(HardwareThreads(), 1);
-  EXPECT_NO_THROW(CheckThreadCount("threads", 0));
-  EXPECT_NO_THROW(CheckThreadCount("threads", HardwareThreads()));
-  for (const int bad : {-1, HardwareThreads() + 1, 1000000}) {
-    try {
-      CheckThreadCount("threads", bad);
-      FAIL() << bad << " accepted";
-    } catch (const Error& e) {
-      EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
-      EXPECT_NE(std::string(e.what()).find("threads must be >= 0 and <= " +
-                                           std::to_string(HardwareThreads())),
-                std::string::npos)
-          << e.what();
-    }
-  }
 }
 
 }  // namespace

@@ -12,11 +12,11 @@ namespace comic::sfm {
 namespace {
 
 // The message a Check() gives, as each door shows it.
-std::string Shown(const std::function<void()>& check, OptionStyle style) {
+std::string Shown(const std::function<void()>& check) {
   try {
     check();
   } catch (const Error& e) {
-    return WithUserOptionNames(e.what(), style);
+    return WithUserOptionNames(e.what());
   }
   return "";
 }
@@ -25,25 +25,20 @@ std::string Shown(const std::function<void()>& check, OptionStyle style) {
 TEST(OptionVocabulary, ChecksNameTheOptionsUsersType) {
   frontend::PatchMatcherOptions matcher;
   matcher.radius = -1;
-  EXPECT_EQ(Shown([&] { matcher.Check(); }, OptionStyle::kFlag).rfind("--search-radius must", 0),
-            0u);
-  EXPECT_EQ(Shown([&] { matcher.Check(); }, OptionStyle::kKeyword).rfind("search_radius must", 0),
-            0u);
-  EXPECT_EQ(
-      WithUserOptionNames("COLMAP export pair_window must be >= 1, got 0", OptionStyle::kFlag),
-      "--window must be >= 1, got 0");
-  EXPECT_EQ(WithUserOptionNames("comic-paper: num_threads must be >= 0", OptionStyle::kFlag),
-            "--threads must be >= 0");
-  EXPECT_EQ(WithUserOptionNames("comic: half_length must be >= 2", OptionStyle::kKeyword),
-            "half_length must be >= 2");
-  EXPECT_EQ(WithUserOptionNames("first_frame must be >= 0, got -1", OptionStyle::kFlag),
+  EXPECT_EQ(Shown([&] { matcher.Check(); }).rfind("--search-radius must", 0), 0u);
+  EXPECT_EQ(Shown([&] { matcher.Check(); }).rfind("search_radius must", 0), 0u);
+  EXPECT_EQ(WithUserOptionNames("COLMAP export pair_window must be >= 1, got 0"),
+            "--window must be >= 1, got 0");
+  EXPECT_EQ(WithUserOptionNames("comic-paper: num_threads must be >= 0"), "--threads must be >= 0");
+  EXPECT_EQ(WithUserOptionNames("comic: half_length must be >= 2"), "half_length must be >= 2");
+  EXPECT_EQ(WithUserOptionNames("first_frame must be >= 0, got -1"),
             "--first must be >= 0, got -1");
 }
 
 TEST(OptionVocabulary, LeavesOtherMessagesAlone) {
   for (const std::string message :
        {"a.png: no such file", "stride", "strides must be", "matcher: radiusx must be > 0", ""}) {
-    EXPECT_EQ(WithUserOptionNames(message, OptionStyle::kFlag), message);
+    EXPECT_EQ(WithUserOptionNames(message), message);
   }
 }
 
