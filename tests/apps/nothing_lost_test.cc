@@ -37,6 +37,14 @@ std::string ExportArgs(const std::string& database) {
   return ExampleDir() + "/image_l --last 3 --detector fast --threads 1 -q --colmap-db " + database;
 }
 
+// The arguments of `app` (comic_export_colmap or comic_sfm) writing the same frames' tracks to
+// `database`; comic_sfm also writes its model to `output`.
+std::string AppArgs(const std::string& app, const std::string& database,
+                    const std::string& output) {
+  if (app == "comic_sfm") return ExportArgs(database) + " --output " + output;
+  return ExportArgs(database);
+}
+
 ino_t Inode(const std::string& path) {
   struct stat info;
   return ::stat(path.c_str(), &info) == 0 ? info.st_ino : 0;
@@ -125,24 +133,27 @@ void MakeTable(const std::string& path) {
 // malformed"). Now the journal is rolled back first, and the new database is whole.
 TEST(NothingLost, OverwriteBesideAHotJournalLeavesAWholeDatabase) {
   ScopedTempDir dir;
-  const std::string database = dir.File("hot.db");
-  MakeTable(database);
-  {
-    OtherProcess writer(database,
-                        "PRAGMA cache_size=2; BEGIN; WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL "
-                        "SELECT i + 1 FROM n WHERE i < 300) INSERT INTO t SELECT "
-                        "printf('%03000d', i) FROM n;");
-    ASSERT_TRUE(writer.ok());
-    writer.Kill();
+  for (const std::string app : {"comic_export_colmap", "comic_sfm"}) {
+    SCOPED_TRACE(app);
+    const std::string database = dir.File(app + "_hot.db");
+    MakeTable(database);
+    {
+      OtherProcess writer(database,
+                          "PRAGMA cache_size=2; BEGIN; WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL "
+                          "SELECT i + 1 FROM n WHERE i < 300) INSERT INTO t SELECT "
+                          "printf('%03000d', i) FROM n;");
+      ASSERT_TRUE(writer.ok());
+      writer.Kill();
+    }
+    ASSERT_TRUE(fs::exists(database + "-journal"));
+    const auto result =
+        RunCommand(AppPath(app) + " " + AppArgs(app, database, dir.File(app)) + " --overwrite");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_FALSE(fs::exists(database + "-journal"));
+    comic::io::ColmapDatabase opened = comic::io::ColmapDatabase::Open(database);
+    EXPECT_EQ(opened.NumImages(), 4u);
+    EXPECT_GT(opened.NumVerifiedImagePairs(), 0u);
   }
-  ASSERT_TRUE(fs::exists(database + "-journal"));
-  const auto result =
-      RunCommand(AppPath("comic_export_colmap") + " " + ExportArgs(database) + " --overwrite");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_FALSE(fs::exists(database + "-journal"));
-  comic::io::ColmapDatabase opened = comic::io::ColmapDatabase::Open(database);
-  EXPECT_EQ(opened.NumImages(), 4u);
-  EXPECT_GT(opened.NumVerifiedImagePairs(), 0u);
 }
 
 // Issue 29: with another process in BEGIN EXCLUSIVE, `--overwrite` replaced the file (new inode)
@@ -150,24 +161,28 @@ TEST(NothingLost, OverwriteBesideAHotJournalLeavesAWholeDatabase) {
 // holder after the busy timeout, the file untouched, their commit kept.
 TEST(NothingLost, OverwriteRefusesADatabaseAnotherProcessHolds) {
   ScopedTempDir dir;
-  const std::string database = dir.File("held.db");
-  MakeTable(database);
-  const ino_t inode = Inode(database);
-  OtherProcess other(database, "BEGIN EXCLUSIVE; INSERT INTO t VALUES('theirs');");
-  ASSERT_TRUE(other.ok());
-  const auto result =
-      RunCommand(AppPath("comic_export_colmap") + " " + ExportArgs(database) + " --overwrite");
-  EXPECT_EQ(result.exit_code, 1) << result.output;
-  EXPECT_EQ(CountLines(result.output), 1) << result.output;
-  EXPECT_EQ(result.output.rfind("comic_export_colmap: error: " + database +
-                                    ": the database is held by another connection (process " +
-                                    std::to_string(other.pid()),
-                                0),
-            0u)
-      << result.output;
-  EXPECT_EQ(Inode(database), inode);
-  other.Release();
-  EXPECT_EQ(Rows(database, "t"), 51);  // their row landed in the file
+  for (const std::string app : {"comic_export_colmap", "comic_sfm"}) {
+    SCOPED_TRACE(app);
+    const std::string database = dir.File(app + "_held.db");
+    MakeTable(database);
+    const ino_t inode = Inode(database);
+    OtherProcess other(database, "BEGIN EXCLUSIVE; INSERT INTO t VALUES('theirs');");
+    ASSERT_TRUE(other.ok());
+    const auto result =
+        RunCommand(AppPath(app) + " " + AppArgs(app, database, dir.File(app)) + " --overwrite");
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_EQ(CountLines(result.output), 1) << result.output;
+    EXPECT_EQ(result.output.rfind(app + ": error: " + database +
+                                      ": the database is held by another connection (process " +
+                                      std::to_string(other.pid()),
+                                  0),
+              0u)
+        << result.output;
+    EXPECT_EQ(Inode(database), inode);
+    other.Release();
+    EXPECT_EQ(Rows(database, "t"), 51);  // their row landed in the file
+    EXPECT_FALSE(fs::exists(dir.File(app))) << "comic_sfm worked before it refused";
+  }
   for (const auto& entry : fs::directory_iterator(dir.path())) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
         << entry.path() << " left behind";
