@@ -12,6 +12,7 @@
 
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -57,6 +58,32 @@ using frontend::kPatchSize;
 using Setter = std::function<void(py::handle)>;
 using OptionTable = std::map<std::string, Setter>;
 
+// A Python int `value` holds a T exactly.
+template <typename T>
+bool FitsIn(py::handle value) {
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if constexpr (std::is_unsigned_v<T>) {
+    if (overflow > 0) {  // above long long: an unsigned long long may still hold it
+      const unsigned long long u = PyLong_AsUnsignedLongLong(value.ptr());
+      if (PyErr_Occurred()) {
+        PyErr_Clear();
+        return false;
+      }
+      return u <= std::numeric_limits<T>::max();
+    }
+  }
+  if (overflow != 0 || (v == -1 && PyErr_Occurred())) {
+    PyErr_Clear();
+    return false;
+  }
+  if constexpr (std::is_signed_v<T>) {
+    return v >= std::numeric_limits<T>::min() && v <= std::numeric_limits<T>::max();
+  } else {
+    return v >= 0 && static_cast<unsigned long long>(v) <= std::numeric_limits<T>::max();
+  }
+}
+
 template <typename T>
 Setter Field(T* field) {
   return [field](py::handle value) {
@@ -66,6 +93,14 @@ Setter Field(T* field) {
       if (!py::isinstance<py::bool_>(value)) throw py::type_error("expects a bool");
     } else if constexpr (std::is_arithmetic_v<T>) {
       if (py::isinstance<py::bool_>(value)) throw py::type_error("expects a number, not a bool");
+      // An int beyond the field's range is a bad value, not a wrong type (threads=10**20).
+      if constexpr (std::is_integral_v<T>) {
+        if (py::isinstance<py::int_>(value) && !FitsIn<T>(value)) {
+          throw py::value_error("= " + py::cast<std::string>(py::str(value)) +
+                                " is beyond the range of a " + std::to_string(8 * sizeof(T)) +
+                                "-bit integer");
+        }
+      }
     } else if constexpr (std::is_same_v<T, std::string>) {
       // A path or a name: str (os.PathLike is turned into str by comic/__init__.py).
       if (!py::isinstance<py::str>(value)) throw py::type_error("expects a str");
@@ -108,6 +143,8 @@ void ApplyOptions(const py::dict& options, const OptionTable& table, const std::
                            py::cast<std::string>(py::str(value.get_type())) + ")");
     } catch (const py::type_error& e) {
       throw py::type_error(context + ": option '" + name + "' " + e.what());
+    } catch (const py::value_error& e) {
+      throw Error(ErrorKind::kInvalidArgument, context + ": option '" + name + "' " + e.what());
     }
   }
 }
@@ -190,8 +227,8 @@ frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py:
   ApplyOptions(options, table, "detector '" + name + "'");
   detector_options.Check();
   // The apps' bound on threads (issue 29: threads=10**6 aborted the interpreter).
-  io::CheckThreadCount("threads", detector_options.comic.num_threads);
-  io::CheckThreadCount("threads", detector_options.comic_paper.num_threads);
+  io::CheckThreadCount("--threads", detector_options.comic.num_threads);
+  io::CheckThreadCount("--threads", detector_options.comic_paper.num_threads);
   return detector_options;
 }
 
@@ -465,8 +502,20 @@ sfm::RunCallbacks RunCallbacksFor(const py::object& callback, bool quiet,
 
 // ---- the functions ----------------------------------------------------------------------------
 
-py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool color,
-                            int64_t max_pixels) {
+// A keyword argument as an option of `context` (a T, an int beyond T's range a ValueError).
+template <typename T>
+T Argument(const py::object& value, const std::string& name, const std::string& context) {
+  T result{};
+  py::dict options;
+  options[py::str(name)] = value;
+  ApplyOptions(options, {{name, Field(&result)}}, context);
+  return result;
+}
+
+py::array_t<uint8_t> ImRead(const std::string& path, const py::object& resize_height_argument,
+                            bool color, const py::object& max_pixels_argument) {
+  const int resize_height = Argument<int>(resize_height_argument, "resize_height", "imread");
+  const int64_t max_pixels = Argument<int64_t>(max_pixels_argument, "max_pixels", "imread");
   io::CheckResizeHeight(resize_height, "resize_height");
   io::CheckMaxPixels(max_pixels);
   const io::LoadedImage image = io::LoadImage(path, resize_height, max_pixels);
@@ -482,8 +531,9 @@ py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool col
 }
 
 py::dict Detect(const py::array& image, const std::string& detector_name, const py::dict& options,
-                int64_t max_pixels) {
+                const py::object& max_pixels_argument) {
   const frontend::DetectorOptions detector_options = MakeDetectorOptions(detector_name, options);
+  const int64_t max_pixels = Argument<int64_t>(max_pixels_argument, "max_pixels", "detect");
   io::CheckMaxPixels(max_pixels);
   const cv::Mat gray = GrayFromArray(image, "detect", max_pixels);
   FeatureSet features;

@@ -120,7 +120,7 @@ def imread(path, resize_height=0, color=False, max_pixels=MAX_PIXELS):
     pixels after resizing is refused from its header, before it is decoded. Raises RuntimeError
     naming the file."""
     return _call(
-        "imread", _core.imread, str(path), int(resize_height), bool(color), int(max_pixels)
+        "imread", _core.imread, str(path), resize_height, bool(color), max_pixels
     )
 
 
@@ -134,7 +134,7 @@ def detect(image, detector="comic", max_pixels=MAX_PIXELS, **options):
     """
     _name(detector, "detect: detector")
     return _features(
-        _call("detect", _core.detect, _np.asarray(image), detector, options, int(max_pixels))
+        _call("detect", _core.detect, _np.asarray(image), detector, options, max_pixels)
     )
 
 

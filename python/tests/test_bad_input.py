@@ -36,7 +36,7 @@ def test_huge_thread_counts_raise_instead_of_aborting():
         [sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120
     )
     assert child.returncode == 0, child.stderr
-    assert "threads must be >= 0 and <= %d" % CORES in child.stdout
+    assert "--threads must be >= 0 and <= %d" % CORES in child.stdout
 
 
 @pytest.mark.parametrize(
@@ -52,6 +52,22 @@ def test_huge_thread_counts_raise_instead_of_aborting():
 def test_thread_counts_are_capped_at_the_cores_as_in_the_apps(call):
     with pytest.raises(ValueError, match="threads must be >= 0 and <= %d \\(the hardware" % CORES):
         call()
+
+
+@pytest.mark.parametrize(
+    "call, named",
+    [
+        (lambda: comic.detect(textured_scene(), threads=10**20), "option 'threads' = 10"),
+        (lambda: comic.detect(textured_scene(), max_pixels=10**30), "option 'max_pixels' = 10"),
+        (lambda: comic.imread(EXAMPLE + "/image_l/000000.png", resize_height=10**12), "resize_h"),
+        (lambda: comic.track([textured_scene()] * 2, max_pixels=-(10**40)), "'max_pixels' = -1"),
+    ],
+)
+def test_integers_beyond_any_range_are_bad_values_not_wrong_types(call, named):
+    # threads=10**20 was "option 'threads' has the wrong type (<class 'int'>)".
+    with pytest.raises(ValueError, match="is beyond the range of a (32|64)-bit integer") as info:
+        call()
+    assert named in str(info.value)
 
 
 def test_the_pixel_budget_holds_for_arrays_files_and_sequences(tmp_path):
