@@ -18,10 +18,12 @@
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/datasets/middlebury.h"
 #include "io/image/image_io.h"
 #include "io/report/html_page.h"
+#include "io/report/json_text.h"
 
 namespace {
 
@@ -170,11 +172,7 @@ int Run(int argc, char** argv) {
   const std::vector<fe::StereoMethod> drawn = fe::ParseStereoMethods(figure_methods);
   options.Check();
   comic::apps::CheckThreadCount("--threads", options.detectors.comic.num_threads);
-  COMIC_CHECK(options.working_height >= 0 && options.working_height <= io::kMaxResizeHeight,
-              kInvalidArgument,
-              "--resize-height must be >= 0 and <= " << io::kMaxResizeHeight
-                                                     << " (0 = original size), got "
-                                                     << options.working_height);
+  io::CheckResizeHeight(options.working_height);
 
   // Inputs next: every pair is loaded (and so checked) before any output is touched.
   const bool pair_mode = !left.empty() || !right.empty();
@@ -208,6 +206,18 @@ int Run(int argc, char** argv) {
     }
   }
 
+  std::vector<io::NamedPath> inputs = {{"LEFT", left},
+                                       {"RIGHT", right},
+                                       {"--disparity", disparity},
+                                       {"--disc", disc},
+                                       {"--nonocc", nonocc}};
+  if (!middlebury.empty()) {
+    for (const std::string& folder : comic::apps::SplitList(middlebury, "middlebury")) {
+      inputs.push_back({"--middlebury", folder});
+    }
+  }
+  io::CheckOutputsAvoidInputs({{"--output", out_dir}}, inputs);
+
   // Outputs: checked up front, written into a staging folder beside --out and moved into place
   // together at the end (all or nothing; --out itself is created only then).
   io::StagedFolder out(out_dir);
@@ -237,21 +247,24 @@ int Run(int argc, char** argv) {
   }
 
   const fe::StereoReport report = fe::BuildStereoReport(results, options);
-  io::WriteFileAtomically(outputs[0], fe::StereoReportMarkdown(report, results, options));
-  io::WriteFileAtomically(outputs[1], report.ToJson().dump(2) + "\n");
-  const io::ReportTable* csv[] = {
-      &report.protocol,          &report.pairs,         &report.detections,      &report.scores,
-      &report.matched_precision, &report.repeatability, &report.paper_comparison};
-  for (size_t t = 0; t < tables.size(); ++t)
-    io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
-  std::vector<fe::EvaluationFigure> page_figures;
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
-    page_figures.push_back({io::FileName(outputs[2 + tables.size() + p]), figures[p]});
-  }
-  io::WriteHtmlPage(
-      page, fe::StereoEvaluationPage(report, results, options, page_figures,
-                                     comic::apps::CommandLine("comic_stereo_eval", argc, argv)));
+  // Errors while writing (a full disk) name --output, not the staging folder.
+  out.NamingTarget([&] {
+    io::WriteFileAtomically(outputs[0], fe::StereoReportMarkdown(report, results, options));
+    io::WriteFileAtomically(outputs[1], io::JsonText(report.ToJson(), 2));
+    const io::ReportTable* csv[] = {
+        &report.protocol,          &report.pairs,         &report.detections,      &report.scores,
+        &report.matched_precision, &report.repeatability, &report.paper_comparison};
+    for (size_t t = 0; t < tables.size(); ++t)
+      io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
+    std::vector<fe::EvaluationFigure> page_figures;
+    for (size_t p = 0; p < pairs.size(); ++p) {
+      io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
+      page_figures.push_back({io::FileName(outputs[2 + tables.size() + p]), figures[p]});
+    }
+    io::WriteHtmlPage(
+        page, fe::StereoEvaluationPage(report, results, options, page_figures,
+                                       comic::apps::CommandLine("comic_stereo_eval", argc, argv)));
+  });
   out.Commit();
   if (!quiet) std::cout << "wrote " << outputs.size() << " files to " << out_dir << "\n";
   return 0;

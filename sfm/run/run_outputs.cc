@@ -9,6 +9,7 @@
 #include "io/core/file_utils.h"
 #include "io/datasets/ground_truth_cameras.h"
 #include "io/image/image_io.h"
+#include "io/report/json_text.h"
 #include "io/report/ply.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/run/colmap_outputs.h"
@@ -97,7 +98,7 @@ void WriteDetectorOutputs(const DetectorRun& run, const ReconstructionRunOptions
   }
   io::WriteHtmlPage(io::JoinPaths(folder, "report.html"), RunPage(run, options, inputs),
                     options.report_page.html);
-  io::WriteFileAtomically(io::JoinPaths(folder, "report.json"), run.report_json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(folder, "report.json"), io::JsonText(run.report_json, 2));
 }
 
 io::ReportTable ComparisonTable(const std::vector<DetectorRun>& runs) {
@@ -114,7 +115,7 @@ void WriteComparisonOutputs(const io::ReportTable& table, const std::vector<Dete
   nlohmann::json json = {{"table", table.ToJson()}, {"runs", nlohmann::json::array()}};
   for (const DetectorRun& run : runs) json["runs"].push_back(RunReportToJson(run.report));
   json["options"] = RunOptionsToJson(options, inputs);
-  io::WriteFileAtomically(io::JoinPaths(folder, "compare.json"), json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(folder, "compare.json"), io::JsonText(json, 2));
   io::WriteHtmlPage(io::JoinPaths(folder, "report.html"),
                     ComparisonPage(table, runs, options, inputs), options.report_page.html);
 }

@@ -173,8 +173,8 @@ TEST(ComicStereoEval, BadInputGivesOneLineErrorAndNonZeroExit) {
       {left + " " + right + disp + " --disparity-scale 4 --max-cost 0", 2,
        "max_cost (T) must be > 0"},
       {left + " " + right + disp + " --disparity-scale 4 --counts 10,x", 2, "expected a number"},
-      {left + " " + right + disp + " --disparity-scale 4 --output " + left, 1,
-       "exists and is not a folder"},
+      {left + " " + right + disp + " --disparity-scale 4 --output " + left, 2,
+       "--output is the input LEFT"},
   };
   for (const Case& c : cases) {
     // The common options first, so a case's own options (given later) override them.

@@ -271,7 +271,7 @@ TEST(ComicTrackEval, BadInputGivesOneLineErrorAndNonZeroExit) {
        "--poses and --calib go together"},
       {frames + " --detectors harris", 2, "give the feature count N"},
       {frames + ok + " --comic-matchers ncc", 2, "unknown match cost 'ncc'"},
-      {frames + ok + " --search-radius 0", 2, "radius must be > 0"},
+      {frames + ok + " --search-radius 0", 2, "--search-radius must be > 0"},
       {frames + ok + " --sweep 100,x", 2, "--sweep: expected a number or inf, got 'x'"},
       {frames + ok + " --bogus", 2, "unknown option --bogus"},
       {frames + " --detectors harris --count 10 --output /proc/none", 1, "cannot create"},
