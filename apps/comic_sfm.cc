@@ -83,6 +83,7 @@ struct Flags {
   std::string ply_format = "binary";
   io::ImageSequenceOptions sequence;
   std::string matching = "auto";      // frontend::ParsePairing
+  std::string matcher = "auto";       // frontend::ParseFeatureMatcher
   comic::apps::TrackerFlags tracker;  // sfm::SequenceReconstructionOptions' tracker defaults
   bool refine_focal = false;
   bool refine_principal_point = false;
@@ -126,17 +127,22 @@ struct Inputs {
   // --matching resolved on the frames, and the tracker options it gives with the tracker flags.
   frontend::PairingChoice pairing;
   frontend::TrackerOptions tracker;
+  // --matcher resolved: descriptor matching of the pairs, or std::nullopt (the patch tracker).
+  std::optional<frontend::ImageSetMatchingOptions> image_set;
+  bool init_max_gap_given = false;
 };
 
 // `self_calibrating`: no calibration was given, so the focal length and distortion are refined
 // (COLMAP's defaults, ba_refine_focal_length and ba_refine_extra_params) unless
 // --fixed-intrinsics; the pipeline refines them once the model constrains them
 // (sfm/incremental_pipeline.h) and keeps the prior focal where it is unobservable.
-sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags,
-                                               const frontend::TrackerOptions& tracker,
-                                               bool self_calibrating = false) {
+sfm::SequenceReconstructionOptions MakeOptions(
+    const Flags& flags, const frontend::TrackerOptions& tracker, bool self_calibrating = false,
+    const std::optional<frontend::ImageSetMatchingOptions>& image_set = std::nullopt,
+    bool init_max_gap_given = true) {
   sfm::SequenceReconstructionOptions options;
   options.tracker = tracker;
+  options.image_set = image_set;
   const bool automatic = self_calibrating && !flags.fixed_intrinsics;
   options.mapper.global_ba.refine_focal_length = flags.refine_focal || automatic;
   options.mapper.global_ba.refine_principal_point = flags.refine_principal_point;
@@ -147,11 +153,13 @@ sfm::SequenceReconstructionOptions MakeOptions(const Flags& flags,
   // track of two views is often all a sparse ring has: on the temple sparse ring leaving them out
   // took CoMIC's ATE from 0.0095 to 0.030 m (docs/sfm.md "Two-view tracks and the global loss").
   options.mapper.mapper.ignore_two_view_tracks =
-      !flags.two_view_tracks && tracker.match_window <= 1;
+      !flags.two_view_tracks && tracker.match_window <= 1 && !image_set;
   options.mapper.local_ba_num_images = flags.local_ba_images;
   options.mapper.global_ba_growth_ratio = flags.global_ba_growth;
   options.mapper.mapper.init_tri_angle_deg = flags.init_angle;
   options.mapper.mapper.init_max_frame_gap = flags.init_max_gap;
+  // An image set's frame order says nothing about which views are near: any two may start.
+  if (image_set && !init_max_gap_given) options.mapper.mapper.init_max_frame_gap = 1 << 30;
   // --threads is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no app's output may
   // depend on the thread count. They stay on one thread; detection and the export use --threads.
@@ -231,6 +239,7 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"search_radius_px", tracker.matcher.radius},
           {"unpredicted_radius_px", tracker.unpredicted_radius},
           {"matching", matching},
+          {"matcher", inputs.image_set ? "descriptors" : "patches"},
           {"prediction", frontend::MotionPredictionName(tracker.prediction)},
           {"coarse_radius_px", tracker.coarse_radius},
           {"match_window", tracker.match_window},
@@ -249,7 +258,9 @@ nlohmann::json OptionsToJson(const Flags& flags, const Inputs& inputs) {
           {"local_ba_images", flags.local_ba_images},
           {"global_ba_growth", flags.global_ba_growth},
           {"init_angle_deg", flags.init_angle},
-          {"init_max_gap", flags.init_max_gap},
+          {"init_max_gap", inputs.image_set && !inputs.init_max_gap_given
+                               ? nlohmann::json("all frames (image set)")
+                               : nlohmann::json(flags.init_max_gap)},
           {"threads", flags.threads},
           {"regions", flags.region.regions},
           {"masks", flags.region.masks},
@@ -416,11 +427,14 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
   detector_options.comic.num_threads = flags.threads;
   detector_options.comic_paper.num_threads = flags.threads;
   const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_options);
-  const sfm::SequenceReconstructionOptions options =
-      MakeOptions(flags, inputs.tracker, inputs.self_calibrating);
+  const sfm::SequenceReconstructionOptions options = MakeOptions(
+      flags, inputs.tracker, inputs.self_calibrating, inputs.image_set, inputs.init_max_gap_given);
   const std::string tag = "[" + detector_name + "] ";
   // Detection and tracking are most of a run's time (issue 17: 39.5 s of 48 s silent on KITTI).
-  comic::apps::ProgressLine tracking_progress(tag + "detection and tracking", flags.quiet);
+  comic::apps::ProgressLine tracking_progress(
+      tag + (inputs.image_set ? "description (frames), then matching (pairs)"
+                              : "detection and tracking"),
+      flags.quiet);
   DetectorRun result;
   result.run = sfm::ReconstructSequence(
       *inputs.sequence, *detector, inputs.camera, options, tracking_progress.Callback(),
@@ -687,10 +701,12 @@ int Run(int argc, char** argv) {
   comic::apps::AddIntrinsicsFlag(parser, &flags.intrinsics);
   parser.AddOption("gt", "PATH",
                    "ground-truth cameras: KITTI poses.txt (calib.txt beside it gives the "
-                   "intrinsics; matched by frame index), Middlebury *_par.txt, or a folder of "
-                   "Strecha *.camera files (matched by image name)",
+                   "intrinsics; matched by frame index), Middlebury *_par.txt, a folder of "
+                   "Strecha *.camera files, a COLMAP model (folder of cameras/images .bin or "
+                   ".txt) or a NeRF transforms.json (matched by image name)",
                    &flags.gt);
-  parser.AddOption("gt-format", "F", "format of --gt: auto, kitti, middlebury or strecha",
+  parser.AddOption("gt-format", "F",
+                   "format of --gt: auto, kitti, middlebury, strecha, colmap or nerf",
                    &flags.gt_format);
   parser.AddFlag("gt-partial",
                  "accept --gt that covers only some frames and evaluate on those (otherwise "
@@ -710,6 +726,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddResizeHeightFlag(parser, &flags.sequence.resize_height);
   comic::apps::AddFrameRangeFlags(parser, &flags.sequence);
   comic::apps::AddMatchingFlag(parser, &flags.matching);
+  comic::apps::AddMatcherFlag(parser, &flags.matcher);
   comic::apps::AddTrackerFlags(parser, &flags.tracker);
   parser.AddFlag("no-retriangulate",
                  "do not triangulate a track again from all its registered views when its point "
@@ -805,7 +822,8 @@ int Run(int argc, char** argv) {
   io::CheckMaxPixels(flags.max_pixels);
   flags.sequence.max_pixels = flags.max_pixels;
   flags.sequence.Check();
-  frontend::ParsePairing(flags.matching);                            // before any work
+  frontend::ParsePairing(flags.matching);  // before any work
+  frontend::ParseFeatureMatcher(flags.matcher);
   MakeOptions(flags, comic::apps::ToTrackerOptions(flags.tracker));  // the numeric options too
   COMIC_CHECK(
       flags.model_format == "txt" || flags.model_format == "bin" || flags.model_format == "both",
@@ -822,6 +840,9 @@ int Run(int argc, char** argv) {
   inputs.pairing = comic::apps::ChooseRunPairing(flags.matching, parser, *inputs.sequence);
   inputs.tracker = comic::apps::TrackerOptionsForRun(
       parser, flags.tracker, inputs.pairing, static_cast<int>(inputs.sequence->NumFrames()));
+  inputs.image_set = comic::apps::ImageSetMatchingForRun(flags.matcher, inputs.pairing,
+                                                         inputs.tracker, flags.threads);
+  inputs.init_max_gap_given = parser.WasSet("init-max-gap");
   if (!inputs.sequence->warning().empty()) {
     std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
   }
@@ -872,7 +893,9 @@ int Run(int argc, char** argv) {
               << std::endl;
     std::cout << "comic_sfm: matching " << frontend::PairingName(inputs.pairing.chosen) << " ("
               << (inputs.pairing.requested.mode == frontend::PairingMode::kAuto ? "auto: " : "")
-              << inputs.pairing.reason << ")" << std::endl;
+              << inputs.pairing.reason << ")"
+              << (inputs.image_set ? ", by SIFT descriptors" : ", by the patch tracker")
+              << std::endl;
   }
 
   if (!flags.compare) {

@@ -13,6 +13,24 @@ void AddMatchingFlag(ArgParser& parser, std::string* matching) {
                    matching);
 }
 
+void AddMatcherFlag(ArgParser& parser, std::string* matcher) {
+  parser.AddOption("matcher", "M",
+                   "how the pairs are matched: auto (default: SIFT descriptors of every feature "
+                   "for an image set, with ratio test, cross check and fundamental-matrix "
+                   "verification as COLMAP's exhaustive matcher; the patch tracker for a video), "
+                   "descriptors or patches",
+                   matcher);
+}
+
+std::optional<frontend::ImageSetMatchingOptions> ImageSetMatchingForRun(
+    const std::string& matcher, const frontend::PairingChoice& choice,
+    const frontend::TrackerOptions& tracker, int threads) {
+  if (!frontend::MatchesByDescriptors(frontend::ParseFeatureMatcher(matcher), choice)) {
+    return std::nullopt;
+  }
+  return frontend::ImageSetMatchingOptionsForPairing(choice.chosen, tracker, threads);
+}
+
 frontend::PairingChoice ChooseRunPairing(const std::string& matching, const ArgParser& parser,
                                          const io::ImageSequence& sequence) {
   const frontend::Pairing requested = frontend::ParsePairing(matching);

@@ -3,6 +3,7 @@
 // default) tells a video from an image set (frontend/matching/pairing.h).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "apps/common/arg_parser.h"
@@ -16,6 +17,9 @@ class ImageSequence;
 namespace comic::apps {
 
 void AddMatchingFlag(ArgParser& parser, std::string* matching);
+// --matcher: auto (descriptors for an image set, the patch tracker for a video), patches or
+// descriptors (frontend::FeatureMatcher).
+void AddMatcherFlag(ArgParser& parser, std::string* matcher);
 
 // The pairing of this run: `matching` parsed (throws comic::Error(kInvalidArgument) for a bad
 // value) and, for auto, chosen from the frames of `sequence` — unless --match-window was given:
@@ -30,5 +34,12 @@ frontend::PairingChoice ChooseRunPairing(const std::string& matching, const ArgP
 frontend::TrackerOptions TrackerOptionsForRun(const ArgParser& parser, const TrackerFlags& flags,
                                               const frontend::PairingChoice& choice,
                                               int num_frames);
+
+// The descriptor matching of this run, or std::nullopt when the patch tracker matches
+// (frontend::MatchesByDescriptors): the chosen pairs, the features `tracker` selects, `threads`.
+// Throws comic::Error(kInvalidArgument) for a bad --matcher.
+std::optional<frontend::ImageSetMatchingOptions> ImageSetMatchingForRun(
+    const std::string& matcher, const frontend::PairingChoice& choice,
+    const frontend::TrackerOptions& tracker, int threads);
 
 }  // namespace comic::apps

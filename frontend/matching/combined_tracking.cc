@@ -1,5 +1,7 @@
 #include "frontend/matching/combined_tracking.h"
 
+#include <algorithm>
+
 #include "io/core/error.h"
 #include "io/image/image_sequence.h"
 
@@ -40,6 +42,24 @@ TrackingResult MergeTrackingResults(const std::vector<TrackingResult>& parts,
     for (const TrackingResult& part : parts) {
       const FeatureSet& features = part.tracks.features[frame];
       tracks.features[frame].insert(tracks.features[frame].end(), features.begin(), features.end());
+    }
+  }
+  // Descriptors are merged when every part has them (one row per feature, in the same order).
+  const bool descriptors = std::all_of(parts.begin(), parts.end(), [](const TrackingResult& part) {
+    return part.tracks.HasDescriptors();
+  });
+  if (descriptors) {
+    tracks.descriptors.resize(first.NumFrames());
+    for (size_t frame = 0; frame < first.NumFrames(); ++frame) {
+      std::vector<cv::Mat> rows;
+      for (const TrackingResult& part : parts) {
+        if (part.tracks.descriptors[frame].rows > 0) rows.push_back(part.tracks.descriptors[frame]);
+      }
+      if (rows.empty()) {
+        tracks.descriptors[frame] = cv::Mat(0, 128, CV_8UC1);
+      } else {
+        cv::vconcat(rows, tracks.descriptors[frame]);
+      }
     }
   }
   for (size_t p = 0; p < parts.size(); ++p) {
