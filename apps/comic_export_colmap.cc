@@ -2,6 +2,7 @@
 // 3.8 database (cameras, images, keypoints, raw and verified matches) for `colmap mapper`, then
 // prints the exact mapper command the sequence needs. A video's frames are written as PNGs
 // (--write-frames), since COLMAP reads image files.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
 #include "frontend/matching/combined_tracking.h"
+#include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
 #include "io/core/error.h"
@@ -62,6 +64,7 @@ int Run(int argc, char** argv) {
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
   std::string matching = "auto";            // comic_sfm's --matching
+  std::string matcher = "auto";             // comic_sfm's --matcher
   comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
   comic::apps::ColmapDbFlags colmap;
 
@@ -69,7 +72,8 @@ int Run(int argc, char** argv) {
       "comic_export_colmap", "FRAMES --colmap-db DB [options]",
       "Detects and tracks features through FRAMES (a folder of images or a video) and writes\n"
       "them as a COLMAP 3.8 database: one camera, one image per frame with its features as\n"
-      "keypoints, and for every pair of frames at most --window apart that share tracks the raw\n"
+      "keypoints and descriptors, and for every pair of frames at most --window apart that share\n"
+      "tracks the raw\n"
       "matches and the matches verified by two-view geometry (essential matrix with --intrinsics, "
       "fundamental\n"
       "matrix without). Then prints the `colmap mapper` command to run on it, with the options\n"
@@ -86,6 +90,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddCameraModelFlag(parser, &camera_model);
   comic::apps::AddDetectorFlag(parser, &detector_name);
   comic::apps::AddMatchingFlag(parser, &matching);
+  comic::apps::AddMatcherFlag(parser, &matcher);
   comic::apps::AddTrackerFlags(parser, &tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");
   comic::apps::AddFrameRangeFlags(parser, &sequence_options);
@@ -137,6 +142,7 @@ int Run(int argc, char** argv) {
   detector_options.comic_paper.num_threads = threads;
   detector_options.Check();
   comic::frontend::ParsePairing(matching);
+  comic::frontend::ParseFeatureMatcher(matcher);
   comic::apps::ToTrackerOptions(tracker_flags);  // validated before any work
   comic::io::CheckWritableFile(output, colmap.overwrite);
   COMIC_CHECK(comic::io::PathExists(frames), kNotFound, frames << ": no such file or folder");
@@ -185,11 +191,30 @@ int Run(int argc, char** argv) {
   // Staged: the frames appear with the database or not at all.
   std::unique_ptr<comic::io::StagedFolder> frames_out;
   if (video) frames_out = std::make_unique<comic::io::StagedFolder>(frames_folder);
+  // An image set is matched by descriptors, a video tracked (--matcher); either way every feature
+  // gets a descriptor, so that COLMAP's matchers can extend the database.
+  const std::optional<comic::frontend::ImageSetMatchingOptions> image_set =
+      comic::apps::ImageSetMatchingForRun(matcher, pairing, tracker_options, threads);
+  if (image_set && !parser.WasSet("window")) {
+    export_options.pair_window = std::max(1, static_cast<int>(sequence.NumFrames()) - 1);
+  }
   comic::apps::ProgressLine tracking_progress(
-      "comic_export_colmap: [" + detector_name + "] detection and tracking", quiet);
-  const comic::frontend::TrackingResult tracking = comic::frontend::TrackSequenceWithDetector(
-      sequence, *detector, tracker_options, tracking_progress.Callback());
-  const comic::frontend::FeatureTracks& tracks = tracking.tracks;
+      "comic_export_colmap: [" + detector_name + "] " +
+          (image_set ? "description (frames), then matching (pairs)" : "detection and tracking"),
+      quiet);
+  comic::frontend::FeatureTracks tracks =
+      image_set ? comic::frontend::MatchImageSet(sequence, *detector, *image_set,
+                                                 tracking_progress.Callback())
+                      .tracks
+                : comic::frontend::TrackSequenceWithDetector(sequence, *detector, tracker_options,
+                                                             tracking_progress.Callback())
+                      .tracks;
+  if (!tracks.HasDescriptors()) {
+    comic::apps::ProgressLine progress("comic_export_colmap: describing the tracked features",
+                                       quiet);
+    comic::frontend::DescribeTrackedFeatures(sequence, &tracks, threads, std::nullopt,
+                                             progress.Callback());
+  }
   if (frames_out) {
     comic::apps::ProgressLine progress("comic_export_colmap: writing frames", quiet);
     comic::io::WriteSequenceFrames(sequence, frames_out->path(), progress.Callback());
@@ -209,7 +234,7 @@ int Run(int argc, char** argv) {
             << observations << " observations)\n"
             << "matching:   " << comic::frontend::PairingName(pairing.chosen) << " ("
             << (pairing.requested.mode == comic::frontend::PairingMode::kAuto ? "auto: " : "")
-            << pairing.reason << ")\n"
+            << pairing.reason << ")" << (image_set ? ", by SIFT descriptors" : "") << "\n"
             << "camera:     "
             << (camera ? camera->Describe() + ", known intrinsics (" + intrinsics_path + ")"
                        : comic::sfm::CameraModelName(export_options.default_camera_model) +
@@ -220,6 +245,8 @@ int Run(int argc, char** argv) {
             << " verified\n"
             << "matches:    " << summary.num_matches << " raw, " << summary.num_inlier_matches
             << " verified\n"
+            << "descriptors: " << summary.num_descriptors
+            << " (128-D uint8 RootSIFT; COLMAP's matchers can add pairs)\n"
             << "wrote:      " << output << "\n"
             << "run COLMAP on it with:\n"
             << "  "

@@ -28,6 +28,7 @@
 #include "apps/common/tracker_flags.h"
 #include "frontend/detector_factory.h"
 #include "frontend/evaluation/region_labels.h"
+#include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
 #include "io/colmap/colmap_binary_model.h"
@@ -130,6 +131,7 @@ struct Inputs {
   // --matcher resolved: descriptor matching of the pairs, or std::nullopt (the patch tracker).
   std::optional<frontend::ImageSetMatchingOptions> image_set;
   bool init_max_gap_given = false;
+  bool export_window_given = false;  // --window
 };
 
 // `self_calibrating`: no calibration was given, so the focal length and distortion are refined
@@ -411,6 +413,18 @@ cv::Mat RenderPlot(const Inputs& inputs, const sfm::Reconstruction& reconstructi
 bool IntrinsicsKnown(const Flags& flags, const Inputs& inputs);
 sfm::ColmapExportOptions ExportOptions(const Flags& flags, const Inputs& inputs);
 
+// The tracks a database is written from, with a descriptor for every feature (image sets have
+// them already; a video's tracked features are described now, reading the frames again), so that
+// COLMAP's matchers can extend the database.
+frontend::FeatureTracks TracksWithDescriptors(const frontend::FeatureTracks& tracks,
+                                              const Inputs& inputs, int threads) {
+  frontend::FeatureTracks described = tracks;
+  if (!described.HasDescriptors()) {
+    frontend::DescribeTrackedFeatures(*inputs.sequence, &described, threads);
+  }
+  return described;
+}
+
 struct DetectorRun {
   sfm::SequenceReconstruction run;
   sfm::SfmRunReport report;
@@ -515,7 +529,7 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
     // No model, but never a silent nothing (issue 17): the tracks found, as a COLMAP database
     // (`colmap mapper` or the GUI can be tried on them; docs/footage.md).
     sfm::ExportTracksToColmapDatabase(
-        result.run.tracks,
+        TracksWithDescriptors(result.run.tracks, inputs, flags.threads),
         IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
         ExportOptions(flags, inputs), io::JoinPaths(out_dir, "tracks.db"), /*overwrite=*/true);
     json["outputs"] = {"tracks.db"};
@@ -619,6 +633,10 @@ bool IntrinsicsKnown(const Flags& /*flags*/, const Inputs& inputs) {
 sfm::ColmapExportOptions ExportOptions(const Flags& flags, const Inputs& inputs) {
   sfm::ColmapExportOptions options = flags.colmap.export_options;
   options.num_threads = flags.threads;
+  // An image set's pairs are any two frames that share tracks, whatever their distance in the list.
+  if (inputs.image_set && !inputs.export_window_given) {
+    options.pair_window = std::max(1, static_cast<int>(inputs.sequence->NumFrames()) - 1);
+  }
   options.default_camera_model = inputs.camera.model;  // the model of a guessed camera
   return options;
 }
@@ -629,7 +647,7 @@ void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
                          const sfm::SequenceReconstruction& run, const std::string& image_path) {
   const std::string& database = flags.colmap.database;
   const sfm::ColmapExportSummary summary = sfm::ExportTracksToColmapDatabase(
-      run.tracks,
+      TracksWithDescriptors(run.tracks, inputs, flags.threads),
       IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
       ExportOptions(flags, inputs), database, flags.colmap.overwrite);
   sfm::ColmapMapperOptions mapper = sfm::RecommendedColmapMapperOptions(summary);
@@ -843,6 +861,7 @@ int Run(int argc, char** argv) {
   inputs.image_set = comic::apps::ImageSetMatchingForRun(flags.matcher, inputs.pairing,
                                                          inputs.tracker, flags.threads);
   inputs.init_max_gap_given = parser.WasSet("init-max-gap");
+  inputs.export_window_given = parser.WasSet("window");
   if (!inputs.sequence->warning().empty()) {
     std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
   }

@@ -64,18 +64,11 @@ FeatureSet SelectFeatures(FeatureSet detected, const ImageSetMatchingOptions& op
   return kept;
 }
 
-// Stage 1: features and descriptors of every frame, frames read in batches and described in
-// parallel.
-void DescribeFrames(const FrameSource& source, const Detector& detector,
-                    const ImageSetMatchingOptions& options, ProgressCounter* progress,
-                    ImageSetMatching* result) {
-  FeatureTracks& tracks = result->tracks;
-  tracks.features.assign(source.num_frames, {});
-  tracks.descriptors.assign(source.num_frames, cv::Mat(0, kDescriptorSize, CV_8UC1));
-  const DescriptorOptions describe =
-      options.descriptor ? *options.descriptor : DescriptorOptionsFor(detector.Name());
-  const int batch = std::max(1, 2 * ResolveNumThreads(options.num_threads, source.num_frames));
-  std::vector<double> detection_s(source.num_frames, 0.0), description_s(source.num_frames, 0.0);
+// Reads the frames in batches (one at a time: a video cannot be read in parallel) and calls
+// work(frame, gray) for the frames of a batch in parallel.
+void ForEachFrame(const FrameSource& source, int num_threads,
+                  const std::function<void(int frame, const cv::Mat& gray)>& work) {
+  const int batch = std::max(1, 2 * ResolveNumThreads(num_threads, source.num_frames));
   for (int start = 0; start < source.num_frames; start += batch) {
     const int end = std::min(source.num_frames, start + batch);
     std::vector<cv::Mat> grays;
@@ -85,17 +78,29 @@ void DescribeFrames(const FrameSource& source, const Detector& detector,
                   kInvalidArgument,
                   "image set matching: frame " << frame << " is not CV_8UC1 of the first's size");
     }
-    ParallelFor(end - start, options.num_threads, [&](int item, int) {
-      const int frame = start + item;
-      const double t0 = ThreadCpuSeconds();
-      tracks.features[frame] = SelectFeatures(detector.Detect(grays[item]), options);
-      const double t1 = ThreadCpuSeconds();
-      tracks.descriptors[frame] = DescribeFeatures(grays[item], tracks.features[frame], describe);
-      detection_s[frame] = t1 - t0;
-      description_s[frame] = ThreadCpuSeconds() - t1;
-      progress->Add();
-    });
+    ParallelFor(end - start, num_threads, [&](int item, int) { work(start + item, grays[item]); });
   }
+}
+
+// Stage 1: features and descriptors of every frame.
+void DescribeFrames(const FrameSource& source, const Detector& detector,
+                    const ImageSetMatchingOptions& options, ProgressCounter* progress,
+                    ImageSetMatching* result) {
+  FeatureTracks& tracks = result->tracks;
+  tracks.features.assign(source.num_frames, {});
+  tracks.descriptors.assign(source.num_frames, cv::Mat(0, kDescriptorSize, CV_8UC1));
+  const DescriptorOptions describe =
+      options.descriptor ? *options.descriptor : DescriptorOptionsFor(detector.Name());
+  std::vector<double> detection_s(source.num_frames, 0.0), description_s(source.num_frames, 0.0);
+  ForEachFrame(source, options.num_threads, [&](int frame, const cv::Mat& gray) {
+    const double t0 = ThreadCpuSeconds();
+    tracks.features[frame] = SelectFeatures(detector.Detect(gray), options);
+    const double t1 = ThreadCpuSeconds();
+    tracks.descriptors[frame] = DescribeFeatures(gray, tracks.features[frame], describe);
+    detection_s[frame] = t1 - t0;
+    description_s[frame] = ThreadCpuSeconds() - t1;
+    progress->Add();
+  });
   for (int frame = 0; frame < source.num_frames; ++frame) {
     result->summary.detection_cpu_s += detection_s[frame];
     result->summary.description_cpu_s += description_s[frame];
@@ -272,6 +277,39 @@ ImageSetMatching MatchImageSet(const io::ImageSequence& sequence, const Detector
   source.names = sequence.FrameNames();
   source.read = [&sequence](int frame) { return sequence.ReadFrame(frame).gray; };
   return MatchSource(source, detector, options, progress);
+}
+
+double DescribeTrackedFeatures(const io::ImageSequence& sequence, FeatureTracks* tracks,
+                               int num_threads, const std::optional<DescriptorOptions>& options,
+                               const ImageSetMatchingProgress& progress) {
+  COMIC_CHECK(tracks != nullptr, kInvalidArgument, "describe tracks: no tracks");
+  COMIC_CHECK(
+      tracks->NumFrames() == sequence.NumFrames() && tracks->image_size == sequence.FrameSize(),
+      kInvalidArgument,
+      "describe tracks: the tracks are of "
+          << tracks->NumFrames() << " frames of " << tracks->image_size << ", the sequence of "
+          << sequence.NumFrames() << " of " << sequence.FrameSize());
+  const DescriptorOptions describe =
+      options ? *options : DescriptorOptionsFor(tracks->detector_name);
+  describe.Check();
+  FrameSource source;
+  source.num_frames = static_cast<int>(sequence.NumFrames());
+  source.image_size = sequence.FrameSize();
+  source.read = [&sequence](int frame) { return sequence.ReadFrame(frame).gray; };
+  std::vector<cv::Mat> descriptors(source.num_frames);
+  std::vector<double> cpu_s(source.num_frames, 0.0);
+  ProgressCounter counter(progress, source.num_frames, 0, source.num_frames);
+  ForEachFrame(source, num_threads, [&](int frame, const cv::Mat& gray) {
+    const double t0 = ThreadCpuSeconds();
+    descriptors[frame] = DescribeFeatures(gray, tracks->features[frame], describe);
+    cpu_s[frame] = ThreadCpuSeconds() - t0;
+    counter.Add();
+  });
+  tracks->descriptors = std::move(descriptors);
+  tracks->Check();
+  double total = 0.0;
+  for (double s : cpu_s) total += s;
+  return total;
 }
 
 ImageSetMatching MatchImageFrames(const std::vector<cv::Mat>& grays, const Detector& detector,

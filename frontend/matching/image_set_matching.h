@@ -98,6 +98,17 @@ ImageSetMatching MatchImageSet(const io::ImageSequence& sequence, const Detector
                                const ImageSetMatchingOptions& options,
                                const ImageSetMatchingProgress& progress = {});
 
+// Adds descriptors to tracks made without them (the patch tracker's): every feature of every frame
+// of `sequence` (the frames the tracks were made from, read again) described with `options`, or
+// DescriptorOptionsFor(tracks->detector_name) when unset, on `num_threads` threads (the result
+// does not depend on it). So that an exported database carries descriptors for COLMAP's matchers.
+// Returns the CPU seconds description took. Throws comic::Error(kInvalidArgument) when the tracks
+// are not of the sequence's frames.
+double DescribeTrackedFeatures(const io::ImageSequence& sequence, FeatureTracks* tracks,
+                               int num_threads,
+                               const std::optional<DescriptorOptions>& options = std::nullopt,
+                               const ImageSetMatchingProgress& progress = {});
+
 // The same over grey frames in memory (all CV_8UC1 of one size); `frame_names` may be empty.
 ImageSetMatching MatchImageFrames(const std::vector<cv::Mat>& grays, const Detector& detector,
                                   const ImageSetMatchingOptions& options,
