@@ -96,6 +96,37 @@ cv::Mat NormalizeSiftDescriptors(const cv::Mat& opencv_descriptors,
   return result;
 }
 
+cv::Mat DescribeOrientedPoints(const cv::Mat& gray, const std::vector<OrientedPoint>& points,
+                               DescriptorNormalization normalization) {
+  COMIC_CHECK(gray.type() == CV_8UC1, kInvalidArgument,
+              "descriptor: expected an 8-bit grey image (CV_8UC1)");
+  if (points.empty()) return cv::Mat(0, kDescriptorSize, CV_8UC1);
+  // cv::SIFT::compute describes a key point on the pyramid level its `octave` names, over a
+  // window of 12 · size / 2 pixels: size = 2σ.
+  std::vector<cv::KeyPoint> keypoints(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const OrientedPoint& point = points[i];
+    COMIC_CHECK(std::isfinite(point.x) && std::isfinite(point.y) && std::isfinite(point.sigma) &&
+                    point.sigma > 0 && std::isfinite(point.angle_deg),
+                kInvalidArgument,
+                "descriptor: point " << i << " has no finite position, σ > 0 "
+                                     << "and angle");
+    cv::KeyPoint& k = keypoints[i];
+    k.pt = cv::Point2f(point.x, point.y);
+    k.size = 2.0f * point.sigma;
+    k.angle = point.angle_deg;
+    k.octave = PackOpenCvOctave(NearestScaleLevel(point.sigma));
+  }
+  const cv::Ptr<cv::SIFT> sift =
+      cv::SIFT::create(0, kSiftLevelsPerOctave, 0.04, 10.0, kSiftBaseSigma, CV_32F);
+  cv::Mat descriptors;
+  sift->compute(gray, keypoints, descriptors);
+  COMIC_CHECK(descriptors.rows == static_cast<int>(points.size()), kInvalidArgument,
+              "descriptor: OpenCV returned " << descriptors.rows << " descriptors for "
+                                             << points.size() << " points");
+  return NormalizeSiftDescriptors(descriptors, normalization);
+}
+
 cv::Mat DescribeFeatures(const cv::Mat& gray, const FeatureSet& features,
                          const DescriptorOptions& options) {
   options.Check();
@@ -107,25 +138,11 @@ cv::Mat DescribeFeatures(const cv::Mat& gray, const FeatureSet& features,
   ScaleLevelImages images(gray);
   const std::vector<float> angles =
       ComputeOrientations(features, sigmas, options.orientation, &images);
-  // cv::SIFT::compute describes a key point on the pyramid level its `octave` names, over a
-  // window of 12 · size / 2 pixels: size = 2σ.
-  std::vector<cv::KeyPoint> keypoints(features.size());
+  std::vector<OrientedPoint> points(features.size());
   for (size_t i = 0; i < features.size(); ++i) {
-    cv::KeyPoint& k = keypoints[i];
-    k.pt = features[i].Position();
-    k.size = static_cast<float>(2.0 * sigmas[i]);
-    k.angle = angles[i];
-    k.octave = PackOpenCvOctave(NearestScaleLevel(sigmas[i]));
-    k.response = features[i].response;
+    points[i] = {features[i].x, features[i].y, static_cast<float>(sigmas[i]), angles[i]};
   }
-  const cv::Ptr<cv::SIFT> sift =
-      cv::SIFT::create(0, kSiftLevelsPerOctave, 0.04, 10.0, kSiftBaseSigma, CV_32F);
-  cv::Mat descriptors;
-  sift->compute(gray, keypoints, descriptors);
-  COMIC_CHECK(descriptors.rows == static_cast<int>(features.size()), kInvalidArgument,
-              "descriptor: OpenCV returned " << descriptors.rows << " descriptors for "
-                                             << features.size() << " features");
-  return NormalizeSiftDescriptors(descriptors, options.normalization);
+  return DescribeOrientedPoints(gray, points, options.normalization);
 }
 
 }  // namespace comic::frontend

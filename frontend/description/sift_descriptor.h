@@ -31,6 +31,7 @@
 
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "frontend/description/feature_orientation.h"
 #include "frontend/feature.h"
@@ -78,6 +79,23 @@ double DescriptorSigma(const Feature& feature, const DescriptorOptions& options)
 // wrong image type or bad options.
 cv::Mat DescribeFeatures(const cv::Mat& gray, const FeatureSet& features,
                          const DescriptorOptions& options = {});
+
+// A point to describe: position (OpenCV pixel convention), σ (pixels) and orientation (degrees,
+// image axes, cv::KeyPoint::angle's convention; COLMAP's keypoint orientation θ in radians is the
+// same angle).
+struct OrientedPoint {
+  float x = 0.0f;
+  float y = 0.0f;
+  float sigma = kSiftBaseSigma;
+  float angle_deg = 0.0f;
+};
+
+// The descriptors of given points (what DescribeFeatures does once it has chosen σ and the
+// orientation): cv::SIFT::compute on the SIFT level nearest each σ, then `normalization`. For
+// COLMAP's own SIFT key points (x − 0.5, y − 0.5, its σ and orientation) this gives COLMAP's
+// stored descriptors (tests/frontend/description: against `colmap feature_extractor`).
+cv::Mat DescribeOrientedPoints(const cv::Mat& gray, const std::vector<OrientedPoint>& points,
+                               DescriptorNormalization normalization);
 
 // Converts OpenCV's SIFT descriptors (CV_32F, L2 length 512 after Lowe's 0.2 clipping) to the
 // stored form (CV_8UC1, `normalization`). Exposed for tests.
