@@ -25,9 +25,8 @@ double ThreadCpuSeconds() {
 // Counts work done from several threads and reports it in increasing order.
 class ProgressCounter {
  public:
-  ProgressCounter(const ImageSetMatchingProgress& progress, size_t total, size_t offset,
-                  size_t grand_total)
-      : progress_(progress), total_(total), offset_(offset), grand_total_(grand_total) {}
+  ProgressCounter(const ImageSetMatchingProgress& progress, size_t offset, size_t grand_total)
+      : progress_(progress), offset_(offset), grand_total_(grand_total) {}
   void Add() {
     if (!progress_) return;
     std::lock_guard<std::mutex> lock(mutex_);
@@ -36,7 +35,6 @@ class ProgressCounter {
 
  private:
   const ImageSetMatchingProgress& progress_;
-  size_t total_;
   size_t offset_;
   size_t grand_total_;
   size_t done_ = 0;
@@ -158,10 +156,9 @@ ImageSetMatching MatchWithOneDetector(const FrameSource& source, const Detector&
   result.tracks.image_size = source.image_size;
   result.tracks.frame_names = source.names;
   result.summary.num_frames = source.num_frames;
-  const size_t num_pairs = ImageSetPairs(source.num_frames, options.window).size();
-  ProgressCounter describe_progress(progress, source.num_frames, offset, grand_total);
+  ProgressCounter describe_progress(progress, offset, grand_total);
   DescribeFrames(source, detector, options, &describe_progress, &result);
-  ProgressCounter match_progress(progress, num_pairs, offset + source.num_frames, grand_total);
+  ProgressCounter match_progress(progress, offset + source.num_frames, grand_total);
   MatchPairs(options, &match_progress, &result);
   const double t0 = ThreadCpuSeconds();
   result.tracks.tracks = BuildTracks(result.tracks.features, result.verified_pairs,
@@ -298,7 +295,7 @@ double DescribeTrackedFeatures(const io::ImageSequence& sequence, FeatureTracks*
   source.read = [&sequence](int frame) { return sequence.ReadFrame(frame).gray; };
   std::vector<cv::Mat> descriptors(source.num_frames);
   std::vector<double> cpu_s(source.num_frames, 0.0);
-  ProgressCounter counter(progress, source.num_frames, 0, source.num_frames);
+  ProgressCounter counter(progress, 0, source.num_frames);
   ForEachFrame(source, num_threads, [&](int frame, const cv::Mat& gray) {
     const double t0 = ThreadCpuSeconds();
     descriptors[frame] = DescribeFeatures(gray, tracks->features[frame], describe);
