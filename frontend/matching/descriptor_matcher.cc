@@ -35,7 +35,8 @@ FloatMatrix ToFloat(const cv::Mat& descriptors) {
 double Angle(float dot) { return std::acos(std::min(1.0, dot * kDotToCosine)); }
 
 // Per row of `dots` (or per column, `by_column`): the index of the accepted nearest neighbour, or
-// −1 (distance and ratio tests as COLMAP's FindBestMatchesOneWayBruteForce).
+// −1 (distance and ratio tests as COLMAP's FindBestMatchesOneWayBruteForce). Entries of `dots`
+// that are 0 are no candidates (COLMAP's guided matching zeroes the excluded ones).
 std::vector<int> BestMatchesOneWay(const cv::Mat& dots, bool by_column,
                                    const DescriptorMatchOptions& options) {
   const int num = by_column ? dots.cols : dots.rows;
@@ -84,6 +85,36 @@ std::vector<int> BestMatchesOneWay(const cv::Mat& dots, bool by_column,
   return result;
 }
 
+// Mutual accepted nearest neighbours of `dots` (see MatchDescriptors).
+std::vector<PatchMatch> MatchDotProducts(const cv::Mat& dots,
+                                         const DescriptorMatchOptions& options) {
+  std::vector<PatchMatch> matches;
+  if (dots.empty()) return matches;
+  const std::vector<int> forward = BestMatchesOneWay(dots, false, options);
+  std::vector<int> backward;
+  if (options.cross_check) backward = BestMatchesOneWay(dots, true, options);
+  for (int i = 0; i < static_cast<int>(forward.size()); ++i) {
+    const int j = forward[i];
+    if (j < 0) continue;
+    if (options.cross_check && backward[j] != i) continue;
+    matches.push_back({i, j, static_cast<float>(Angle(dots.at<float>(i, j)))});
+  }
+  return matches;
+}
+
+// The line x2ᵀ F x1 = 0 of each point, scaled so that its dot product with a point is the distance
+// in pixels.
+std::vector<cv::Vec3d> EpipolarLines(const FeatureSet& features, const cv::Matx33d& f) {
+  std::vector<cv::Vec3d> lines;
+  lines.reserve(features.size());
+  for (const Feature& feature : features) {
+    const cv::Vec3d line = f * cv::Vec3d(feature.x, feature.y, 1.0);
+    const double norm = std::hypot(line[0], line[1]);
+    lines.push_back(norm > 0 ? line / norm : cv::Vec3d(0, 0, 1e30));
+  }
+  return lines;
+}
+
 }  // namespace
 
 void DescriptorMatchOptions::Check() const {
@@ -108,19 +139,36 @@ cv::Mat DescriptorDotProducts(const cv::Mat& descriptors1, const cv::Mat& descri
 std::vector<PatchMatch> MatchDescriptors(const cv::Mat& descriptors1, const cv::Mat& descriptors2,
                                          const DescriptorMatchOptions& options) {
   options.Check();
-  const cv::Mat dots = DescriptorDotProducts(descriptors1, descriptors2);
-  std::vector<PatchMatch> matches;
-  if (dots.empty()) return matches;
-  const std::vector<int> forward = BestMatchesOneWay(dots, false, options);
-  std::vector<int> backward;
-  if (options.cross_check) backward = BestMatchesOneWay(dots, true, options);
-  for (int i = 0; i < static_cast<int>(forward.size()); ++i) {
-    const int j = forward[i];
-    if (j < 0) continue;
-    if (options.cross_check && backward[j] != i) continue;
-    matches.push_back({i, j, static_cast<float>(Angle(dots.at<float>(i, j)))});
+  return MatchDotProducts(DescriptorDotProducts(descriptors1, descriptors2), options);
+}
+
+std::vector<PatchMatch> MatchDescriptorsAlongEpipolarLines(
+    const cv::Mat& descriptors1, const cv::Mat& descriptors2, const FeatureSet& features1,
+    const FeatureSet& features2, const cv::Matx33d& fundamental, double max_error_px,
+    const DescriptorMatchOptions& options) {
+  options.Check();
+  COMIC_CHECK(max_error_px > 0, kInvalidArgument,
+              "guided matching: max_error_px must be > 0, got " << max_error_px);
+  COMIC_CHECK(descriptors1.rows == static_cast<int>(features1.size()) &&
+                  descriptors2.rows == static_cast<int>(features2.size()),
+              kInvalidArgument, "guided matching: one descriptor per feature is needed");
+  cv::Mat dots = DescriptorDotProducts(descriptors1, descriptors2);
+  if (dots.empty()) return {};
+  const std::vector<cv::Vec3d> lines_in_2 = EpipolarLines(features1, fundamental);
+  const std::vector<cv::Vec3d> lines_in_1 = EpipolarLines(features2, fundamental.t());
+  for (int i = 0; i < dots.rows; ++i) {
+    float* row = dots.ptr<float>(i);
+    const cv::Vec3d& line2 = lines_in_2[i];
+    const Feature& f1 = features1[i];
+    for (int j = 0; j < dots.cols; ++j) {
+      const Feature& f2 = features2[j];
+      const double d2 = std::abs(line2[0] * f2.x + line2[1] * f2.y + line2[2]);
+      const cv::Vec3d& line1 = lines_in_1[j];
+      const double d1 = std::abs(line1[0] * f1.x + line1[1] * f1.y + line1[2]);
+      if (d1 > max_error_px || d2 > max_error_px) row[j] = 0.0f;
+    }
   }
-  return matches;
+  return MatchDotProducts(dots, options);
 }
 
 }  // namespace comic::frontend

@@ -37,6 +37,18 @@ struct DescriptorMatchOptions {
 std::vector<PatchMatch> MatchDescriptors(const cv::Mat& descriptors1, const cv::Mat& descriptors2,
                                          const DescriptorMatchOptions& options = {});
 
+// Guided matching (COLMAP's SiftMatchingOptions::guided_matching): as MatchDescriptors, but a
+// descriptor's candidates are only the features of the other frame within `max_error_px` of its
+// epipolar line (both ways; x2ᵀ F x1 = 0, OpenCV pixel coordinates), so the ratio test compares
+// the nearest with the second nearest *along the line*: a match that a look-alike elsewhere in
+// the image made ambiguous is kept. For a pair whose geometry is known (verified).
+// `features1`/`features2` give the positions of the rows of `descriptors1`/`descriptors2`.
+// Throws comic::Error(kInvalidArgument) for sizes that differ or bad options.
+std::vector<PatchMatch> MatchDescriptorsAlongEpipolarLines(
+    const cv::Mat& descriptors1, const cv::Mat& descriptors2, const FeatureSet& features1,
+    const FeatureSet& features2, const cv::Matx33d& fundamental, double max_error_px,
+    const DescriptorMatchOptions& options = {});
+
 // The dot products of every row of `descriptors1` with every row of `descriptors2`: a
 // rows1 × rows2 CV_32F matrix of exact integers. Exposed for tests and for callers that match one
 // frame against several.

@@ -106,6 +106,12 @@ void DescribeFrames(const FrameSource& source, const Detector& detector,
   }
 }
 
+DescriptorMatchOptions GuidedOptions(const ImageSetMatchingOptions& options) {
+  DescriptorMatchOptions guided = options.matching;
+  guided.max_ratio = options.guided_max_ratio;
+  return guided;
+}
+
 // Stage 2: every pair matched and verified in parallel, collected in pair order.
 void MatchPairs(const ImageSetMatchingOptions& options, ProgressCounter* progress,
                 ImageSetMatching* result) {
@@ -127,10 +133,19 @@ void MatchPairs(const ImageSetMatchingOptions& options, ProgressCounter* progres
         MatchDescriptors(tracks.descriptors[frame1], tracks.descriptors[frame2], options.matching);
     const double t1 = ThreadCpuSeconds();
     out.num_raw = static_cast<int>(raw.size());
-    out.verified =
-        VerifyMatches(tracks.features[frame1], tracks.features[frame2], raw, options.verification);
-    out.matching_s = t1 - t0;
-    out.verification_s = ThreadCpuSeconds() - t1;
+    cv::Matx33d fundamental;
+    out.verified = VerifyMatches(tracks.features[frame1], tracks.features[frame2], raw,
+                                 options.verification, &fundamental);
+    const double t2 = ThreadCpuSeconds();
+    if (options.guided_matching && !out.verified.empty()) {
+      std::vector<PatchMatch> guided = MatchDescriptorsAlongEpipolarLines(
+          tracks.descriptors[frame1], tracks.descriptors[frame2], tracks.features[frame1],
+          tracks.features[frame2], fundamental, options.guided_max_error_px,
+          GuidedOptions(options));
+      if (guided.size() > out.verified.size()) out.verified = std::move(guided);
+    }
+    out.matching_s = (t1 - t0) + (ThreadCpuSeconds() - t2);
+    out.verification_s = t2 - t1;
     progress->Add();
   });
   ImageSetMatchingSummary& summary = result->summary;
@@ -250,6 +265,10 @@ void ImageSetMatchingOptions::Check() const {
               "image set matching: window must be >= 0, got " << window);
   COMIC_CHECK(num_threads >= 0, kInvalidArgument,
               "image set matching: num_threads must be >= 0, got " << num_threads);
+  COMIC_CHECK(guided_max_error_px > 0, kInvalidArgument,
+              "image set matching: guided_max_error_px must be > 0, got " << guided_max_error_px);
+  COMIC_CHECK(guided_max_ratio > 0 && guided_max_ratio <= 1, kInvalidArgument,
+              "image set matching: guided_max_ratio must be in (0, 1], got " << guided_max_ratio);
   if (descriptor) descriptor->Check();
   matching.Check();
   verification.Check();

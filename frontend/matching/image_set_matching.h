@@ -1,11 +1,12 @@
 // Feature tracks of an image set by descriptor matching, as COLMAP's exhaustive matcher: detect on
 // every frame, describe every feature (frontend/description/sift_descriptor.h), match the
 // descriptors of every frame pair (descriptor_matcher.h: nearest neighbour, ratio test, cross
-// check), keep the matches a fundamental matrix explains (match_verification.h), and build the
-// tracks from the verified pairs (track_builder.h, conflicts resolved by the lowest descriptor
-// angle). Unlike the patch tracker (tracker.h, which stays for video) nothing here assumes the
-// views are near each other: views taken far apart, turned in their plane or in any order match
-// as long as they overlap.
+// check), keep the matches a fundamental matrix explains (match_verification.h), match the
+// verified pairs again along their epipolar lines (guided matching, optional), and build the tracks
+// from the verified pairs (track_builder.h, conflicts resolved by the lowest descriptor angle).
+// Unlike the patch tracker (tracker.h, which stays for video) nothing here assumes the views are
+// near each other: views taken far apart, turned in their plane or in any order match as long as
+// they overlap.
 //
 //   ImageSetMatchingOptions options;                 // all pairs, COLMAP's thresholds
 //   auto detector = MakeDetector("harris");
@@ -50,6 +51,16 @@ struct ImageSetMatchingOptions {
   // Geometric verification of every pair; COLMAP's SiftMatchingOptions defaults: 4 px, at
   // least 15 inliers, RANSAC budget for a 25 % inlier ratio.
   MatchVerificationOptions verification;
+  // A verified pair is matched again along its epipolar lines (MatchDescriptorsAlongEpipolarLines
+  // within guided_max_error_px: COLMAP's guided_matching) and keeps the larger of the two match
+  // sets, for pairs where look-alikes made the first ratio test reject true matches. Off, as in
+  // COLMAP, until it is measured (docs/descriptors.md gives the results without it).
+  bool guided_matching = false;
+  // The ratio test along the lines: fewer look-alikes compete there than in the whole image, so
+  // it may be looser than matching.max_ratio.
+  double guided_max_ratio = 0.9;
+  // The band around the lines (pixels; the verification's max_error_px allows more).
+  double guided_max_error_px = 2.0;
   // Conflicting matches (a component holding two features of one frame).
   TrackConflictRule conflict_rule = TrackConflictRule::kGreedyByCost;
   // Threads for description and matching (0: one per core). The result does not depend on it.

@@ -88,6 +88,33 @@ TEST(DescriptorMatcher, DistanceAndCrossCheck) {
   EXPECT_EQ(MatchDescriptors(a2, b2, options).size(), 2u);
 }
 
+TEST(DescriptorMatcher, GuidedMatchingComparesOnlyAlongTheEpipolarLine) {
+  // Rectified views: x2ᵀ F x1 = y1 − y2, the lines are the rows. a0 looks exactly like b0 and
+  // b1; only b0 lies on a0's row, so the ratio test along the row keeps a0-b0 where the plain one
+  // rejects it.
+  const cv::Mat a = RandomDescriptors(1, 7);
+  cv::Mat b;
+  cv::vconcat(a, a, b);
+  FeatureSet f1(1), f2(2);
+  f1[0].x = 10;
+  f1[0].y = 50;
+  f2[0].x = 30;
+  f2[0].y = 51.5f;  // 1.5 px off the row
+  f2[1].x = 30;
+  f2[1].y = 200;
+  const cv::Matx33d rectified(0, 0, 0, 0, 0, -1, 0, 1, 0);
+  EXPECT_TRUE(MatchDescriptors(a, b).empty());
+  const std::vector<PatchMatch> guided =
+      MatchDescriptorsAlongEpipolarLines(a, b, f1, f2, rectified, 2.0);
+  ASSERT_EQ(guided.size(), 1u);
+  EXPECT_EQ(guided[0].index1, 0);
+  EXPECT_EQ(guided[0].index2, 0);
+  // A band narrower than the 1.5 px leaves no candidate.
+  EXPECT_TRUE(MatchDescriptorsAlongEpipolarLines(a, b, f1, f2, rectified, 1.0).empty());
+  EXPECT_THROW(MatchDescriptorsAlongEpipolarLines(a, b, f1, FeatureSet(1), rectified, 2.0), Error);
+  EXPECT_THROW(MatchDescriptorsAlongEpipolarLines(a, b, f1, f2, rectified, 0.0), Error);
+}
+
 TEST(DescriptorMatcher, DotProductsAreExactIntegers) {
   const cv::Mat a = RandomDescriptors(40, 4), b = RandomDescriptors(30, 5);
   const cv::Mat dots = DescriptorDotProducts(a, b);
