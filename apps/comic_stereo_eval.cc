@@ -11,6 +11,7 @@
 #include "apps/common/list_flags.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
+#include "frontend/evaluation/evaluation_page.h"
 #include "frontend/evaluation/stereo_evaluation.h"
 #include "frontend/evaluation/stereo_evaluation_report.h"
 #include "frontend/evaluation/stereo_match_figure.h"
@@ -20,6 +21,7 @@
 #include "io/core/staged_folder.h"
 #include "io/datasets/middlebury.h"
 #include "io/image/image_io.h"
+#include "io/report/html_page.h"
 
 namespace {
 
@@ -144,7 +146,8 @@ int Run(int argc, char** argv) {
   parser.AddEpilog(
       "Outputs in DIR: stereo_eval.md (every table, readable), stereo_eval.json, protocol.csv,\n"
       "pairs.csv, detections.csv, scores.csv, matched_precision.csv, repeatability.csv,\n"
-      "paper_comparison.csv and matches_<pair>.png (first count of --counts).\n"
+      "paper_comparison.csv, matches_<pair>.png (first count of --counts) and report.html (the\n"
+      "tables, charts and figures with their legends, one self-contained page).\n"
       "--target-precision P in (0, 1] fixes the matched-precision target; 0 (the default) takes\n"
       "--precision-reference's overall precision at T. --resize-height is the working height\n"
       "(paper: 700).\n\n"
@@ -218,6 +221,8 @@ int Run(int argc, char** argv) {
   for (const io::MiddleburyPair& pair : pairs) {
     outputs.push_back(io::JoinPaths(out.path(), "matches_" + Safe(pair.name) + ".png"));
   }
+  const std::string page = io::JoinPaths(out.path(), "report.html");
+  outputs.push_back(page);
   for (const std::string& path : outputs) io::CheckWritableFile(path);
 
   const fe::StereoProgress progress = [quiet](const std::string& message) {
@@ -239,9 +244,14 @@ int Run(int argc, char** argv) {
       &report.matched_precision, &report.repeatability, &report.paper_comparison};
   for (size_t t = 0; t < tables.size(); ++t)
     io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
+  std::vector<fe::EvaluationFigure> page_figures;
   for (size_t p = 0; p < pairs.size(); ++p) {
     io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
+    page_figures.push_back({io::FileName(outputs[2 + tables.size() + p]), figures[p]});
   }
+  io::WriteHtmlPage(
+      page, fe::StereoEvaluationPage(report, results, options, page_figures,
+                                     comic::apps::CommandLine("comic_stereo_eval", argc, argv)));
   out.Commit();
   if (!quiet) std::cout << "wrote " << outputs.size() << " files to " << out_dir << "\n";
   return 0;

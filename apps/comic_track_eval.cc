@@ -20,6 +20,7 @@
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "frontend/evaluation/epipolar_check.h"
+#include "frontend/evaluation/evaluation_page.h"
 #include "frontend/evaluation/track_drawing.h"
 #include "frontend/evaluation/track_evaluation.h"
 #include "io/core/error.h"
@@ -32,17 +33,12 @@
 #include "io/image/image_sequence.h"
 #include "io/image/mask_folder.h"
 #include "io/report/bar_chart.h"
+#include "io/report/html_page.h"
 
 namespace {
 
 using comic::io::ReportTable;
 namespace fe = comic::frontend;
-
-std::string JoinArgs(int argc, char** argv) {
-  std::string command = "comic_track_eval";
-  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
-  return command;
-}
 
 // Writes a table as name.md, name.csv and name.json in `out`.
 void WriteTable(const std::string& out, const std::string& name, const ReportTable& table) {
@@ -60,7 +56,9 @@ cv::Mat ScoreChart(const fe::TrackEvaluation& evaluation, size_t k, const std::s
                              : std::vector<std::string>{"overall"};
   comic::io::BarChart score_chart, res_chart;
   score_chart.title = title + ": M_score(" + std::to_string(n) + ") %";
+  score_chart.y_label = "M_score(" + std::to_string(n) + ") (% of N)";
   res_chart.title = title + ": ResM_" + std::to_string(n);
+  res_chart.y_label = "ResM_" + std::to_string(n) + " (features)";
   score_chart.groups = res_chart.groups = groups;
   for (const fe::EvaluationRow& row : evaluation.rows) {
     const fe::MatchingScores& s = row.scores[k];
@@ -214,7 +212,8 @@ int Run(int argc, char** argv) {
       "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
       "precision_n<n>.{md,csv,json} with --poses, precision_equal_count.{md,csv,json} with\n"
       "--poses and a matcher other than full, evaluation.json (everything, with\n"
-      "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n"
+      "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png,\n"
+      "report.html (tables, charts and overlays with their legends, one self-contained page).\n"
       "--target-precision: with --poses, the matchers are also compared at this epipolar\n"
       "precision (0-1). --resize-height: the paper works at 700.\n\n"
       "Example:\n"
@@ -329,7 +328,7 @@ int Run(int argc, char** argv) {
       fe::EvaluateTracking(sequence, regions, ground_truth, options, progress.Callback());
 
   // Tables, charts, report.
-  const std::string command = JoinArgs(argc, argv);
+  const std::string command = comic::apps::CommandLine("comic_track_eval", argc, argv);
   std::ostringstream report;
   report << "# comic_track_eval report\n\n```\n"
          << command << "\n```\n\n"
@@ -381,6 +380,7 @@ int Run(int argc, char** argv) {
                                  json.dump(2) + "\n");
 
   // Overlays on frames spread over the sequence, late enough to show some history.
+  std::vector<fe::EvaluationFigure> figures;
   const size_t overlays = std::min<size_t>(overlay_frames, num_frames);
   for (size_t o = 0; o < overlays; ++o) {
     const size_t first_shown = std::min<size_t>(5, num_frames - 1);
@@ -390,9 +390,15 @@ int Run(int argc, char** argv) {
     const comic::io::Frame frame = sequence.ReadFrame(index);
     const cv::Mat labels = regions ? fe::LabelRegion(regions(index), band) : cv::Mat();
     const std::string stem = frame.name.substr(0, frame.name.find_last_of('.'));
-    comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), "tracks_" + stem + ".png"),
-                                    OverlayMosaic(evaluation, frame, index, labels));
+    figures.push_back({"tracks_" + stem + ".png", OverlayMosaic(evaluation, frame, index, labels)});
+    comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), figures.back().caption),
+                                    figures.back().image);
   }
+  const std::string region_words = !masks_dir.empty()
+                                       ? "masks " + masks_dir
+                                       : (!boxes_file.empty() ? "regions " + boxes_file : "none");
+  comic::io::WriteHtmlPage(comic::io::JoinPaths(out.path(), "report.html"),
+                           fe::TrackEvaluationPage(evaluation, {command, region_words, figures}));
   comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "report.md"), report.str());
   out.Commit();
   std::cout << fe::ScoreTable(evaluation, n).ToMarkdown() << "wrote " << out_dir << "/\n";

@@ -235,4 +235,10 @@ int RunMain(const std::string& program, const std::function<int()>& body) {
   }
 }
 
+std::string CommandLine(const std::string& program, int argc, char** argv) {
+  std::string command = program;
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  return command;
+}
+
 }  // namespace comic::apps

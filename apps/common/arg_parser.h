@@ -94,4 +94,7 @@ class ArgParser {
 // an exception escape main().
 int RunMain(const std::string& program, const std::function<int()>& body);
 
+// The command as typed, for reports: `program` and argv[1..] joined by spaces.
+std::string CommandLine(const std::string& program, int argc, char** argv);
+
 }  // namespace comic::apps

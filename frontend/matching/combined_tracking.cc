@@ -43,6 +43,14 @@ TrackingResult MergeTrackingResults(const std::vector<TrackingResult>& parts,
       const FeatureSet& features = part.tracks.features[frame];
       tracks.features[frame].insert(tracks.features[frame].end(), features.begin(), features.end());
     }
+    if (std::all_of(parts.begin(), parts.end(),
+                    [&](const TrackingResult& part) { return frame < part.continued.size(); })) {
+      std::vector<uint8_t> flags;
+      for (const TrackingResult& part : parts) {
+        flags.insert(flags.end(), part.continued[frame].begin(), part.continued[frame].end());
+      }
+      merged.continued.push_back(std::move(flags));
+    }
   }
   // Descriptors are merged when every part has them (one row per feature, in the same order).
   const bool descriptors = std::all_of(parts.begin(), parts.end(), [](const TrackingResult& part) {

@@ -142,6 +142,10 @@ const char* GroundTruthFormatName(GroundTruthFormat format) {
   return "unknown";
 }
 
+const char* GroundTruthLengthUnit(GroundTruthFormat format) {
+  return format == GroundTruthFormat::kKitti || format == GroundTruthFormat::kStrecha ? "m" : "";
+}
+
 GroundTruthFormat ParseGroundTruthFormat(const std::string& name) {
   for (GroundTruthFormat format :
        {GroundTruthFormat::kAuto, GroundTruthFormat::kKitti, GroundTruthFormat::kMiddlebury,

@@ -210,7 +210,7 @@ TEST(ComicSfm, ModelAndPlyFormatsAreChosenByFlags) {
       nlohmann::json::parse(comic::io::ReadFileToString(dir.File("bin/report.json")));
   EXPECT_EQ(report["outputs"],
             nlohmann::json({"sparse/0/cameras.bin", "sparse/0/images.bin", "sparse/0/points3D.bin",
-                            "points.ply", "trajectory.png"}));
+                            "points.ply", "trajectory.png", "report.html"}));
   // The PLYs hold the same points, the binary one to float precision.
   const auto ascii_cloud = comic::io::ReadPly(dir.File("txt/points.ply"));
   const auto binary_cloud = comic::io::ReadPly(dir.File("bin/points.ply"));
@@ -400,6 +400,8 @@ TEST(ComicSfm, NoParallaxIsDiagnosedAndTheTracksAreStillWritten) {
   EXPECT_EQ(report["diagnosis"]["stage"], "initial_pair");
   EXPECT_EQ(err.find(report["diagnosis"]["message"].get<std::string>()), err.find("no initial"));
   EXPECT_EQ(report["outputs"][0], "tracks.db");
+  EXPECT_EQ(report["outputs"].back(), "report.html");  // a failed run gets its page too
+  EXPECT_TRUE(comic::io::IsRegularFile(out + "/report.html"));
   EXPECT_EQ(comic::io::ColmapDatabase::Open(out + "/tracks.db").ReadAllImages().size(), 4u);
   EXPECT_FALSE(comic::io::PathExists(out + "/points3D.txt"));
 }

@@ -111,6 +111,14 @@ TEST(ComicStereoEval, SyntheticPairGivesTheConstructedAnswers) {
   ASSERT_FALSE(figure.empty());
   EXPECT_EQ(figure.cols, 2 * SyntheticStereoScene::kWidth);
   EXPECT_GT(figure.rows, SyntheticStereoScene::kHeight);  // plus a title bar
+  // report.html (issue 28): the tables, the figure and the legend the PNG lacks, in one page.
+  std::ifstream page_file(out + "/report.html");
+  const std::string page((std::istreambuf_iterator<char>(page_file)), {});
+  for (const char* text :
+       {"comic_stereo_eval", "Matched precision", "Beside the paper", "harris/full",
+        "M_score(1) (% of detected)", "data:image/", "correct match", "blue band"}) {
+    EXPECT_NE(page.find(text), std::string::npos) << text;
+  }
 }
 
 TEST(ComicStereoEval, OutputIsDeterministic) {
