@@ -32,7 +32,8 @@ int Run(int argc, char** argv) {
       "comic_export_colmap", "FRAMES --colmap-db DB [options]",
       "Detects and tracks features through FRAMES (a folder of images or a video) and writes\n"
       "them as a COLMAP 3.8 database: one camera, one image per frame with its features as\n"
-      "keypoints, and for every pair of frames at most --window apart that share tracks the raw\n"
+      "keypoints and descriptors, and for every pair of frames at most --window apart that share\n"
+      "tracks the raw\n"
       "matches and the matches verified by two-view geometry (essential matrix with --intrinsics, "
       "fundamental\n"
       "matrix without). Then prints the `colmap mapper` command to run on it, with the options\n"
@@ -49,6 +50,7 @@ int Run(int argc, char** argv) {
   comic::apps::AddCameraModelFlag(parser, &options.camera.camera_model);
   comic::apps::AddDetectorFlag(parser, &options.detector);
   comic::apps::AddMatchingFlag(parser, &options.matching);
+  comic::apps::AddMatcherFlag(parser, &options.matcher);
   comic::apps::AddTrackerFlags(parser, &tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");
   comic::apps::AddFrameRangeFlags(parser, &options.sequence);

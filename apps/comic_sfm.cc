@@ -50,10 +50,12 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
   apps::AddIntrinsicsFlag(parser, &o->camera.intrinsics);
   parser.AddOption("gt", "PATH",
                    "ground-truth cameras: KITTI poses.txt (calib.txt beside it gives the "
-                   "intrinsics; matched by frame index), Middlebury *_par.txt, or a folder of "
-                   "Strecha *.camera files (matched by image name)",
+                   "intrinsics; matched by frame index), Middlebury *_par.txt, a folder of "
+                   "Strecha *.camera files, a COLMAP model (folder of cameras/images .bin or "
+                   ".txt) or a NeRF transforms.json (matched by image name)",
                    &o->gt);
-  parser.AddOption("gt-format", "F", "format of --gt: auto, kitti, middlebury or strecha",
+  parser.AddOption("gt-format", "F",
+                   "format of --gt: auto, kitti, middlebury, strecha, colmap or nerf",
                    &o->gt_format);
   parser.AddFlag("gt-partial",
                  "accept --gt that covers only some frames and evaluate on those (otherwise "
@@ -73,6 +75,7 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
   apps::AddResizeHeightFlag(parser, &o->sequence.resize_height);
   apps::AddFrameRangeFlags(parser, &o->sequence);
   apps::AddMatchingFlag(parser, &o->matching);
+  apps::AddMatcherFlag(parser, &o->matcher);
   apps::AddTrackerFlags(parser, &c->tracker);
   parser.AddFlag("no-retriangulate",
                  "do not triangulate a track again from all its registered views when its point "

@@ -15,8 +15,8 @@ endif()
 # Layers, most specific prefix first. frontend/detector_factory is the one file of frontend/'s
 # common room that may see the detectors it constructs.
 set(layers
-  frontend/detector_factory frontend/comic frontend/baselines frontend/matching
-  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm/run sfm apps python
+  frontend/detector_factory frontend/comic frontend/baselines frontend/description
+  frontend/matching frontend/evaluation frontend sfm/evaluation sfm/colmap sfm/run sfm apps python
   io/core io/image io/colmap io/report io/datasets io render)
 
 # What each layer may include (besides itself).
@@ -33,12 +33,15 @@ set(allowed_frontend ${io_all})
 set(allowed_frontend/comic ${io_all} frontend)
 set(allowed_frontend/baselines ${io_all} frontend)
 set(allowed_frontend/detector_factory ${io_all} frontend frontend/comic frontend/baselines)
+# description/ (descriptors of any detector's features) sees only the common room: it describes
+# Features, whoever made them.
+set(allowed_frontend/description ${io_all} frontend)
 set(allowed_frontend/matching ${io_all} frontend frontend/comic frontend/baselines
-  frontend/detector_factory)
+  frontend/detector_factory frontend/description)
 set(allowed_frontend/evaluation ${io_all} frontend frontend/comic frontend/baselines
-  frontend/detector_factory frontend/matching)
+  frontend/detector_factory frontend/description frontend/matching)
 set(frontend_all frontend frontend/comic frontend/baselines frontend/detector_factory
-  frontend/matching frontend/evaluation)
+  frontend/description frontend/matching frontend/evaluation)
 set(allowed_sfm ${io_all} ${frontend_all})
 set(allowed_sfm/evaluation ${io_all} ${frontend_all} sfm)
 set(allowed_sfm/colmap ${io_all} ${frontend_all} sfm sfm/evaluation)

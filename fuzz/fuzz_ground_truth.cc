@@ -2,7 +2,7 @@
 // calib.txt, a Middlebury *_par.txt, a Strecha *.camera file (alone and as a folder), the
 // intrinsics file reader (fx fy cx cy / K / P, also COLMAP- and OpenCV-style numbers), the
 // calibration-file reader of --intrinsics (the same bytes as an OpenCV FileStorage .yml and .xml,
-// as a COLMAP cameras.txt and as plain numbers) and the format detection. comic::Error is the
+// as a COLMAP cameras.txt and as plain numbers), a NeRF transforms.json and the format detection. comic::Error is the
 // expected answer to bad bytes.
 #include <filesystem>
 
@@ -11,6 +11,7 @@
 #include "io/datasets/camera_calibration_file.h"
 #include "io/datasets/ground_truth_cameras.h"
 #include "io/datasets/kitti_odometry.h"
+#include "io/datasets/nerf_transforms.h"
 
 namespace {
 
@@ -41,6 +42,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Expect([&] { DetectGroundTruthFormat(path); });
   Expect([&] { ReadGroundTruthCameras(path); });
   Expect([&] { ReadKittiGroundTruth(path, path); });
+  const std::string transforms = comic::fuzz::WriteInput("transforms.json", data, size);
+  Expect([&] { ReadNerfTransforms(transforms); });
+  Expect([&] { ReadGroundTruthCameras(transforms); });
   for (const char* name : {"calib.yml", "calib.xml", "cameras.txt", "calib.txt"}) {
     const std::string calibration = comic::fuzz::WriteInput(name, data, size);
     Expect([&] { ReadCameraCalibrationFile(calibration); });

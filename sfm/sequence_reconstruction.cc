@@ -19,6 +19,7 @@ SequenceReconstructionOptions::SequenceReconstructionOptions() {
 
 void SequenceReconstructionOptions::Check() const {
   tracker.Check();
+  if (image_set) image_set->Check();
   mapper.Check();
 }
 
@@ -45,10 +46,18 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
   const auto start = std::chrono::steady_clock::now();
   SequenceReconstruction run;
   run.detector_name = detector.Name();
-  frontend::TrackingResult tracking =
-      frontend::TrackSequenceWithDetector(sequence, detector, options.tracker, tracking_progress);
-  run.tracks = std::move(tracking.tracks);
-  run.track_building = tracking.track_building;
+  if (options.image_set) {
+    frontend::ImageSetMatching matched =
+        frontend::MatchImageSet(sequence, detector, *options.image_set, tracking_progress);
+    run.tracks = std::move(matched.tracks);
+    run.track_building = matched.track_building;
+    run.image_set_matching = matched.summary;
+  } else {
+    frontend::TrackingResult tracking =
+        frontend::TrackSequenceWithDetector(sequence, detector, options.tracker, tracking_progress);
+    run.tracks = std::move(tracking.tracks);
+    run.track_building = tracking.track_building;
+  }
   run.tracking_time_s = Seconds(start);
 
   const auto mapping_start = std::chrono::steady_clock::now();

@@ -1,5 +1,7 @@
 // Structure from motion on a frame sequence, end to end: detect and track features
-// (frontend::TrackSequence with any Detector), reconstruct incrementally, colour the points. The
+// (frontend::TrackSequence with any Detector; for an image set, match descriptors of every frame
+// pair instead: frontend/matching/image_set_matching.h), reconstruct incrementally, colour the
+// points. The
 // SfM itself only sees the tracks, so every detector is treated alike; a combined detector
 // ("comic+hessian") is tracked one component at a time (frontend/matching/combined_tracking.h).
 //
@@ -9,7 +11,10 @@
 //   if (run.mapping.status == ReconstructionStatus::kSuccess) { ... run.mapping.reconstruction }
 #pragma once
 
+#include <optional>
+
 #include "frontend/detector.h"
+#include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/track.h"
 #include "frontend/matching/tracker.h"
 #include "io/image/image_sequence.h"
@@ -24,6 +29,9 @@ struct SequenceReconstructionOptions {
   // driving video), a 60 px radius where nothing predicts a feature, and the 2000 strongest
   // features per frame.
   frontend::TrackerOptions tracker;
+  // Image sets: when set, features are matched by descriptors over frame pairs with these options
+  // (views far apart, turned, in any order) instead of being tracked (`tracker` is then unused).
+  std::optional<frontend::ImageSetMatchingOptions> image_set;
   // Incremental mapping.
   IncrementalPipelineOptions mapper;
 
@@ -38,8 +46,10 @@ struct SequenceReconstruction {
   // Matches given to the track builder and what it dropped or refused (conflicts arise only with
   // tracker.match_window > 1).
   frontend::TrackBuildSummary track_building;
+  // With options.image_set: what descriptor matching met and cost.
+  std::optional<frontend::ImageSetMatchingSummary> image_set_matching;
   IncrementalReconstruction mapping;
-  double tracking_time_s = 0.0;  // detection and tracking
+  double tracking_time_s = 0.0;  // detection and tracking (or description and matching)
   double mapping_time_s = 0.0;   // incremental reconstruction
   double coloring_time_s = 0.0;  // reading frames again for point colours
   double wall_time_s = 0.0;      // everything

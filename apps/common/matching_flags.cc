@@ -11,4 +11,13 @@ void AddMatchingFlag(ArgParser& parser, std::string* matching) {
                    matching);
 }
 
+void AddMatcherFlag(ArgParser& parser, std::string* matcher) {
+  parser.AddOption("matcher", "M",
+                   "how the pairs are matched: patches (default: the patch tracker), descriptors "
+                   "(SIFT descriptors of every feature, with ratio test, cross check and "
+                   "fundamental-matrix verification as COLMAP's exhaustive matcher) or auto "
+                   "(descriptors for an image set, the patch tracker for a video)",
+                   matcher);
+}
+
 }  // namespace comic::apps

@@ -11,5 +11,8 @@
 namespace comic::apps {
 
 void AddMatchingFlag(ArgParser& parser, std::string* matching);
+// --matcher: patches (the default), descriptors, or auto (descriptors for an image set, the patch
+// tracker for a video): frontend::FeatureMatcher.
+void AddMatcherFlag(ArgParser& parser, std::string* matcher);
 
 }  // namespace comic::apps

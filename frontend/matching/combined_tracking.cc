@@ -52,6 +52,24 @@ TrackingResult MergeTrackingResults(const std::vector<TrackingResult>& parts,
       merged.continued.push_back(std::move(flags));
     }
   }
+  // Descriptors are merged when every part has them (one row per feature, in the same order).
+  const bool descriptors = std::all_of(parts.begin(), parts.end(), [](const TrackingResult& part) {
+    return part.tracks.HasDescriptors();
+  });
+  if (descriptors) {
+    tracks.descriptors.resize(first.NumFrames());
+    for (size_t frame = 0; frame < first.NumFrames(); ++frame) {
+      std::vector<cv::Mat> rows;
+      for (const TrackingResult& part : parts) {
+        if (part.tracks.descriptors[frame].rows > 0) rows.push_back(part.tracks.descriptors[frame]);
+      }
+      if (rows.empty()) {
+        tracks.descriptors[frame] = cv::Mat(0, 128, CV_8UC1);
+      } else {
+        cv::vconcat(rows, tracks.descriptors[frame]);
+      }
+    }
+  }
   for (size_t p = 0; p < parts.size(); ++p) {
     for (Track track : parts[p].tracks.tracks) {
       for (TrackObservation& observation : track.observations) {

@@ -23,7 +23,8 @@ void MatchVerificationOptions::Check() const {
 
 std::vector<PatchMatch> VerifyMatches(const FeatureSet& features1, const FeatureSet& features2,
                                       const std::vector<PatchMatch>& matches,
-                                      const MatchVerificationOptions& options) {
+                                      const MatchVerificationOptions& options,
+                                      cv::Matx33d* fundamental_out) {
   options.Check();
   std::vector<cv::Point2f> points1, points2;
   points1.reserve(matches.size());
@@ -52,6 +53,11 @@ std::vector<PatchMatch> VerifyMatches(const FeatureSet& features1, const Feature
   if (num_inliers < options.min_num_inliers ||
       num_inliers < options.min_inlier_ratio * static_cast<double>(matches.size())) {
     return kept;
+  }
+  if (fundamental_out != nullptr) {
+    cv::Mat f64;
+    fundamental.rowRange(0, 3).convertTo(f64, CV_64F);
+    *fundamental_out = cv::Matx33d(f64.ptr<double>());
   }
   kept.reserve(num_inliers);
   for (size_t i = 0; i < matches.size(); ++i) {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "frontend/feature.h"
@@ -38,8 +39,11 @@ struct MatchVerificationOptions {
 // The matches (features1[index1], features2[index2]) consistent with the best fundamental matrix,
 // order kept; empty when the pair fails (see above). Throws comic::Error(kInvalidArgument) for an
 // index out of range or bad options.
+// With `fundamental`, a kept pair also gives its fundamental matrix (x2ᵀ F x1 = 0, OpenCV pixel
+// coordinates; untouched when the pair fails).
 std::vector<PatchMatch> VerifyMatches(const FeatureSet& features1, const FeatureSet& features2,
                                       const std::vector<PatchMatch>& matches,
-                                      const MatchVerificationOptions& options);
+                                      const MatchVerificationOptions& options,
+                                      cv::Matx33d* fundamental = nullptr);
 
 }  // namespace comic::frontend

@@ -224,4 +224,54 @@ TrackerOptions TrackerOptionsForPairing(const Pairing& pairing, int num_frames,
   return base;
 }
 
+const char* FeatureMatcherName(FeatureMatcher matcher) {
+  switch (matcher) {
+    case FeatureMatcher::kAuto:
+      return "auto";
+    case FeatureMatcher::kPatches:
+      return "patches";
+    case FeatureMatcher::kDescriptors:
+      return "descriptors";
+  }
+  return "auto";
+}
+
+FeatureMatcher ParseFeatureMatcher(const std::string& name) {
+  for (FeatureMatcher matcher :
+       {FeatureMatcher::kAuto, FeatureMatcher::kPatches, FeatureMatcher::kDescriptors}) {
+    if (name == FeatureMatcherName(matcher)) return matcher;
+  }
+  throw Error(ErrorKind::kInvalidArgument,
+              "--matcher: unknown matcher '" + name + "' (expected auto, patches or descriptors)");
+}
+
+bool MatchesByDescriptors(FeatureMatcher matcher, const PairingChoice& choice) {
+  switch (matcher) {
+    case FeatureMatcher::kPatches:
+      return false;
+    case FeatureMatcher::kDescriptors:
+      return true;
+    case FeatureMatcher::kAuto:
+      break;
+  }
+  return choice.chosen.mode == PairingMode::kExhaustive ||
+         (choice.measured && !choice.looks_like_video);
+}
+
+ImageSetMatchingOptions ImageSetMatchingOptionsForPairing(const Pairing& pairing,
+                                                          const TrackerOptions& tracker,
+                                                          int num_threads) {
+  COMIC_CHECK(pairing.mode != PairingMode::kAuto, kInvalidArgument,
+              "pairing: choose a pairing (ChoosePairing) before setting up the matching");
+  ImageSetMatchingOptions options;
+  options.window = pairing.mode == PairingMode::kExhaustive ? 0
+                   : pairing.mode == PairingMode::kWindow   ? pairing.window
+                                                            : 1;
+  options.min_response = tracker.min_response;
+  options.max_features = tracker.max_features;
+  options.num_threads = num_threads;
+  options.Check();
+  return options;
+}
+
 }  // namespace comic::frontend

@@ -1,6 +1,7 @@
-// Which frame pairs the tracker matches: consecutive frames of a video, a window of later frames,
-// or every pair of an image set (as COLMAP's sequential and exhaustive matchers), and the `auto`
-// choice between them from the frames themselves.
+// Which frame pairs are matched: consecutive frames of a video, a window of later frames, or every
+// pair of an image set (as COLMAP's sequential and exhaustive matchers), and the `auto` choice
+// between them from the frames themselves; and how (FeatureMatcher: the patch tracker for video,
+// descriptors for image sets).
 //
 //   Pairing requested = ParsePairing("auto");        // or "sequential", "exhaustive", "window:8"
 //   PairingChoice choice = ChoosePairing(ThumbnailsOf(sequence), requested);
@@ -29,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/tracker.h"
 
 namespace comic::io {
@@ -58,8 +60,9 @@ struct PairingChoiceOptions {
   double min_consecutive_similarity = 0.5;
   double min_neighbour_fraction = 0.9;
   // An image set of more frames than this is matched with a window of `image_set_window`
-  // frames instead of all pairs (the cost of all pairs grows with the square of the frames).
-  int max_exhaustive_frames = 60;
+  // frames instead of all pairs (the cost of all pairs grows with the square of the frames; an
+  // image set is matched by descriptors, docs/descriptors.md gives the cost of 100 frames).
+  int max_exhaustive_frames = 200;
   int image_set_window = 20;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -106,5 +109,26 @@ PairingChoice ChoosePairing(const std::vector<cv::Mat>& thumbnails, const Pairin
 //                and Herz-Jesu).
 TrackerOptions TrackerOptionsForPairing(const Pairing& pairing, int num_frames,
                                         TrackerOptions base);
+
+// How the chosen frame pairs are matched (--matcher): the patch tracker (video: frames near each
+// other, frontend/matching/tracker.h) or descriptors (image sets: views far apart, turned, in any
+// order; frontend/matching/image_set_matching.h).
+enum class FeatureMatcher { kAuto, kPatches, kDescriptors };
+
+// "auto", "patches", "descriptors"; Parse throws comic::Error(kInvalidArgument) listing them.
+const char* FeatureMatcherName(FeatureMatcher matcher);
+FeatureMatcher ParseFeatureMatcher(const std::string& name);
+
+// Whether `choice` is matched by descriptors: kDescriptors always, kPatches never, kAuto for an
+// image set (the frames measured as not a video) and for the exhaustive pairing (every pair: as
+// COLMAP's exhaustive matcher).
+bool MatchesByDescriptors(FeatureMatcher matcher, const PairingChoice& choice);
+
+// The descriptor matching of `choice` (not kAuto): every pair for kExhaustive, the next K frames
+// for kWindow K, the next frame for kSequential; the features selected as `tracker` selects them
+// (min_response, max_features); `num_threads` threads.
+ImageSetMatchingOptions ImageSetMatchingOptionsForPairing(const Pairing& pairing,
+                                                          const TrackerOptions& tracker,
+                                                          int num_threads);
 
 }  // namespace comic::frontend

@@ -11,6 +11,19 @@ void FeatureTracks::Check() const {
   COMIC_CHECK(
       frame_names.empty() || frame_names.size() == features.size(), kInvalidData,
       "tracks: " << frame_names.size() << " frame names for " << features.size() << " frames");
+  COMIC_CHECK(
+      descriptors.empty() || descriptors.size() == features.size(), kInvalidData,
+      "tracks: descriptors for " << descriptors.size() << " of " << features.size() << " frames");
+  for (size_t f = 0; f < descriptors.size(); ++f) {
+    const cv::Mat& d = descriptors[f];
+    COMIC_CHECK(d.rows == static_cast<int>(features[f].size()) &&
+                    (d.rows == 0 || (d.type() == CV_8UC1 && d.cols == 128)),
+                kInvalidData,
+                "tracks: frame " << f
+                                 << ": descriptors must be CV_8UC1, 128 columns, one row per "
+                                    "feature ("
+                                 << features[f].size() << "), got " << d.rows << "x" << d.cols);
+  }
   std::set<std::pair<int, int>> used;
   for (size_t t = 0; t < tracks.size(); ++t) {
     int previous_frame = -1;

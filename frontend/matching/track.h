@@ -33,15 +33,21 @@ struct FeatureTracks {
   std::vector<std::string> frame_names;  // one per frame (file names), may be empty
   std::vector<FeatureSet> features;      // per frame
   std::vector<Track> tracks;
+  // Per frame, when they were computed (descriptor matching of an image set, or added for an
+  // export; frontend/description/sift_descriptor.h): features[f].size() rows x 128 columns,
+  // CV_8UC1, row i describing features[f][i]. Empty (no frames at all) when none were computed.
+  std::vector<cv::Mat> descriptors;
 
   size_t NumFrames() const { return features.size(); }
   const Feature& FeatureOf(const TrackObservation& obs) const {
     return features[obs.frame][obs.feature];
   }
+  bool HasDescriptors() const { return !descriptors.empty(); }
 
   // Throws comic::Error(kInvalidData) if an observation indexes a missing frame or feature, a
-  // track's frames are not strictly increasing, a feature belongs to two tracks, or
-  // frame_names is non-empty and of the wrong length.
+  // track's frames are not strictly increasing, a feature belongs to two tracks, frame_names is
+  // non-empty and of the wrong length, or descriptors are non-empty and not one CV_8UC1 matrix of
+  // 128 columns and a row per feature for every frame.
   void Check() const;
 };
 

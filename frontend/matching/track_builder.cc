@@ -14,16 +14,19 @@ const char* TrackConflictRuleName(TrackConflictRule rule) {
       return "drop";
     case TrackConflictRule::kGreedy:
       return "greedy";
+    case TrackConflictRule::kGreedyByCost:
+      return "greedy-cost";
   }
   return "?";
 }
 
 TrackConflictRule ParseTrackConflictRule(const std::string& name) {
-  for (TrackConflictRule rule : {TrackConflictRule::kDrop, TrackConflictRule::kGreedy}) {
+  for (TrackConflictRule rule :
+       {TrackConflictRule::kDrop, TrackConflictRule::kGreedy, TrackConflictRule::kGreedyByCost}) {
     if (name == TrackConflictRuleName(rule)) return rule;
   }
   throw Error(ErrorKind::kInvalidArgument,
-              "unknown track conflict rule '" + name + "' (valid: drop, greedy)");
+              "unknown track conflict rule '" + name + "' (valid: drop, greedy, greedy-cost)");
 }
 
 namespace {
@@ -117,7 +120,13 @@ std::vector<Track> BuildTracks(const std::vector<FeatureSet>& features,
   } else {
     // (gap, cost, frame1, index1) identifies a match (matching is one-to-one per pair), so the
     // order is total and the result independent of the input order.
-    std::sort(matches.begin(), matches.end(), [](const NodeMatch& x, const NodeMatch& y) {
+    // kGreedyByCost: (cost, frame1, index1, gap), equally total.
+    const bool by_cost = rule == TrackConflictRule::kGreedyByCost;
+    std::sort(matches.begin(), matches.end(), [by_cost](const NodeMatch& x, const NodeMatch& y) {
+      if (by_cost) {
+        return std::tie(x.cost, x.frame1, x.index1, x.gap) <
+               std::tie(y.cost, y.frame1, y.index1, y.gap);
+      }
       return std::tie(x.gap, x.cost, x.frame1, x.index1) <
              std::tie(y.gap, y.cost, y.frame1, y.index1);
     });

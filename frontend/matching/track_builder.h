@@ -18,6 +18,9 @@
 //            the lowest cost, then frame and feature indices — and a match that would join two
 //            components sharing a frame is refused. Every component then is a track; a wrong
 //            long-gap match cannot break up a chain of short-gap ones, it is simply left out.
+//   kGreedyByCost  as kGreedy, merged by the lowest cost first (then frame and feature indices):
+//            for image sets matched by descriptors (cost = descriptor angle), where the frame
+//            index says nothing about how near two views are.
 // Both are deterministic: the result depends on the matches only, not on their order in `pairs`.
 #pragma once
 
@@ -40,9 +43,9 @@ struct FramePairMatches {
   int Gap() const { return frame2 - frame1; }
 };
 
-enum class TrackConflictRule { kDrop, kGreedy };
+enum class TrackConflictRule { kDrop, kGreedy, kGreedyByCost };
 
-// "drop", "greedy".
+// "drop", "greedy", "greedy-cost".
 const char* TrackConflictRuleName(TrackConflictRule rule);
 // Throws comic::Error(kInvalidArgument) listing the valid names.
 TrackConflictRule ParseTrackConflictRule(const std::string& name);

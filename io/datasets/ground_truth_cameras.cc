@@ -1,14 +1,19 @@
 #include "io/datasets/ground_truth_cameras.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <sstream>
 
+#include "io/colmap/colmap_binary_model.h"
+#include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/datasets/kitti_odometry.h"
+#include "io/datasets/nerf_transforms.h"
 
 namespace comic::io {
 namespace {
@@ -75,6 +80,50 @@ bool EndsWith(const std::string& text, const std::string& suffix) {
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// "bin" or "txt" for a folder holding a COLMAP model's cameras and images files (binary first),
+// nullptr otherwise.
+const char* ColmapModelKind(const std::string& folder) {
+  for (const char* kind : {"bin", "txt"}) {
+    const std::string ext = std::string(".") + kind;
+    if (IsRegularFile(JoinPaths(folder, "cameras" + ext)) &&
+        IsRegularFile(JoinPaths(folder, "images" + ext))) {
+      return kind;
+    }
+  }
+  return nullptr;
+}
+
+// K of a COLMAP camera in OpenCV's pixel convention, when the camera has no distortion.
+bool UndistortedColmapK(const ColmapCamera& camera, Eigen::Matrix3d* k) {
+  const std::vector<double>& p = camera.params;
+  double fx = 0, fy = 0, cx = 0, cy = 0;
+  size_t first_distortion = p.size();
+  if ((camera.model == "SIMPLE_PINHOLE" || camera.model == "SIMPLE_RADIAL" ||
+       camera.model == "RADIAL") &&
+      p.size() >= 3) {
+    fx = fy = p[0];
+    cx = p[1];
+    cy = p[2];
+    first_distortion = 3;
+  } else if ((camera.model == "PINHOLE" || camera.model == "OPENCV" ||
+              camera.model == "FULL_OPENCV") &&
+             p.size() >= 4) {
+    fx = p[0];
+    fy = p[1];
+    cx = p[2];
+    cy = p[3];
+    first_distortion = 4;
+  } else {
+    return false;  // fisheye and other models: poses only
+  }
+  for (size_t i = first_distortion; i < p.size(); ++i) {
+    if (p[i] != 0.0) return false;
+  }
+  if (!(fx > 0 && fy > 0 && std::isfinite(cx) && std::isfinite(cy))) return false;
+  *k << fx, 0, cx - 0.5, 0, fy, cy - 0.5, 0, 0, 1;
+  return true;
+}
+
 }  // namespace
 
 const char* GroundTruthFormatName(GroundTruthFormat format) {
@@ -87,6 +136,10 @@ const char* GroundTruthFormatName(GroundTruthFormat format) {
       return "middlebury";
     case GroundTruthFormat::kStrecha:
       return "strecha";
+    case GroundTruthFormat::kColmap:
+      return "colmap";
+    case GroundTruthFormat::kNerf:
+      return "nerf";
   }
   return "unknown";
 }
@@ -96,24 +149,34 @@ const char* GroundTruthLengthUnit(GroundTruthFormat format) {
 }
 
 GroundTruthFormat ParseGroundTruthFormat(const std::string& name) {
-  for (GroundTruthFormat format : {GroundTruthFormat::kAuto, GroundTruthFormat::kKitti,
-                                   GroundTruthFormat::kMiddlebury, GroundTruthFormat::kStrecha}) {
+  for (GroundTruthFormat format :
+       {GroundTruthFormat::kAuto, GroundTruthFormat::kKitti, GroundTruthFormat::kMiddlebury,
+        GroundTruthFormat::kStrecha, GroundTruthFormat::kColmap, GroundTruthFormat::kNerf}) {
     if (name == GroundTruthFormatName(format)) return format;
   }
-  throw Error(ErrorKind::kInvalidArgument, "unknown ground-truth format '" + name +
-                                               "' (expected auto, kitti, middlebury or strecha)");
+  throw Error(ErrorKind::kInvalidArgument,
+              "unknown ground-truth format '" + name +
+                  "' (expected auto, kitti, middlebury, strecha, colmap or nerf)");
 }
 
 GroundTruthFormat DetectGroundTruthFormat(const std::string& path) {
   COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file or folder");
   if (IsDirectory(path)) {
+    if (ColmapModelKind(path) != nullptr) return GroundTruthFormat::kColmap;
     for (const std::string& name : ListFiles(path)) {
       if (EndsWith(name, ".camera")) return GroundTruthFormat::kStrecha;
     }
     throw Error(ErrorKind::kInvalidData,
-                path + ": folder holds no *.camera files (ground-truth cameras)");
+                path +
+                    ": folder holds neither a COLMAP model (cameras.bin, images.bin or "
+                    "cameras.txt, images.txt) nor *.camera files (ground-truth cameras)");
   }
   if (EndsWith(path, ".camera")) return GroundTruthFormat::kStrecha;
+  if (EndsWith(path, ".json")) return GroundTruthFormat::kNerf;
+  for (const char* name :
+       {"cameras.bin", "images.bin", "points3D.bin", "cameras.txt", "images.txt", "points3D.txt"}) {
+    if (FileName(path) == name) return GroundTruthFormat::kColmap;
+  }
   const std::vector<TextLine> lines = NonBlankLines(path, false);
   COMIC_CHECK(!lines.empty(), kInvalidData, path << ": empty ground-truth file");
   double value = 0.0;
@@ -124,7 +187,7 @@ GroundTruthFormat DetectGroundTruthFormat(const std::string& path) {
   throw Error(ErrorKind::kInvalidData,
               path +
                   ": not a known ground-truth format (KITTI poses.txt, Middlebury *_par.txt, "
-                  "Strecha *.camera)");
+                  "Strecha *.camera, a COLMAP model, a NeRF transforms.json)");
 }
 
 GroundTruthCameras ReadMiddleburyParFile(const std::string& path) {
@@ -256,6 +319,42 @@ GroundTruthCameras ReadKittiGroundTruth(const std::string& poses_path,
   return result;
 }
 
+GroundTruthCameras ReadColmapGroundTruth(const std::string& path) {
+  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file or folder");
+  const std::string folder = IsDirectory(path) ? path : ParentPath(path);
+  const char* kind = ColmapModelKind(folder);
+  COMIC_CHECK(kind != nullptr, kInvalidData,
+              folder << ": not a COLMAP model (needs cameras.bin and images.bin, or cameras.txt "
+                        "and images.txt)");
+  const ColmapTextModel model =
+      std::string(kind) == "bin" ? ReadColmapBinaryModel(folder) : ReadColmapTextModel(folder);
+  std::map<uint32_t, const ColmapCamera*> cameras;
+  for (const ColmapCamera& camera : model.cameras) cameras[camera.camera_id] = &camera;
+  // Images by id: the order COLMAP lists them in.
+  std::vector<const ColmapImage*> images;
+  for (const ColmapImage& image : model.images) images.push_back(&image);
+  std::sort(images.begin(), images.end(),
+            [](const ColmapImage* a, const ColmapImage* b) { return a->image_id < b->image_id; });
+  GroundTruthCameras result;
+  result.format = GroundTruthFormat::kColmap;
+  for (const ColmapImage* image : images) {
+    GroundTruthCamera camera;
+    camera.image_name = image->name;
+    camera.index = static_cast<int>(result.cameras.size());
+    camera.cam_from_world_rotation = image->cam_from_world_rotation.normalized().toRotationMatrix();
+    camera.cam_from_world_translation = image->cam_from_world_translation;
+    const auto found = cameras.find(image->camera_id);
+    if (found != cameras.end() && UndistortedColmapK(*found->second, &camera.K)) {
+      camera.has_intrinsics = true;
+      camera.width = found->second->width;
+      camera.height = found->second->height;
+    }
+    result.cameras.push_back(camera);
+  }
+  COMIC_CHECK(!result.cameras.empty(), kInvalidData, folder << ": the COLMAP model has no images");
+  return result;
+}
+
 GroundTruthCameras ReadGroundTruthCameras(const std::string& path, GroundTruthFormat format) {
   COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file or folder");
   if (format == GroundTruthFormat::kAuto) format = DetectGroundTruthFormat(path);
@@ -274,6 +373,10 @@ GroundTruthCameras ReadGroundTruthCameras(const std::string& path, GroundTruthFo
       result.cameras.back().index = 0;
       return result;
     }
+    case GroundTruthFormat::kColmap:
+      return ReadColmapGroundTruth(path);
+    case GroundTruthFormat::kNerf:
+      return ReadNerfTransforms(path);
     case GroundTruthFormat::kAuto:
       break;
   }

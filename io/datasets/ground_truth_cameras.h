@@ -10,6 +10,13 @@
 //   kStrecha     Strecha et al. *.camera files (a folder of them, or one file): K (3 lines),
 //                radial distortion (1 line), R camera-to-world (3 lines), the centre C (1 line),
 //                "width height"; P = K [Rᵀ | −Rᵀ C]. "NNNN.jpg.camera" belongs to image "NNNN.jpg".
+//   kColmap      a COLMAP model, binary (cameras.bin, images.bin, points3D.bin) or text: its
+//                folder or one of its files. Poses by image name; intrinsics from the cameras
+//                without distortion (pinhole models, or zero distortion parameters), in OpenCV's
+//                pixel convention (−0.5 on the principal point); a distorted camera gives poses
+//                only (--intrinsics reads its cameras.txt).
+//   kNerf        a NeRF-style transforms.json (io/datasets/nerf_transforms.h: Blender camera axes
+//                turned into OpenCV's).
 //
 // Pixel convention of all intrinsics here: OpenCV's (top-left pixel centre at (0, 0)), which is
 // what these data sets' calibrations use.
@@ -23,10 +30,10 @@
 
 namespace comic::io {
 
-enum class GroundTruthFormat { kAuto, kKitti, kMiddlebury, kStrecha };
+enum class GroundTruthFormat { kAuto, kKitti, kMiddlebury, kStrecha, kColmap, kNerf };
 
-// "auto", "kitti", "middlebury", "strecha"; Parse throws comic::Error(kInvalidArgument) listing
-// the valid names.
+// "auto", "kitti", "middlebury", "strecha", "colmap", "nerf"; Parse throws
+// comic::Error(kInvalidArgument) listing the valid names.
 const char* GroundTruthFormatName(GroundTruthFormat format);
 GroundTruthFormat ParseGroundTruthFormat(const std::string& name);
 
@@ -45,9 +52,12 @@ struct GroundTruthCamera {
   // Intrinsics K when the file gives them (OpenCV pixel convention).
   bool has_intrinsics = false;
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-  // Image size the intrinsics belong to, when the file states it (Strecha); 0 otherwise.
+  // Image size the intrinsics belong to, when the file states it (Strecha, COLMAP); 0 otherwise.
   int width = 0;
   int height = 0;
+  // Without intrinsics, a horizontal field of view (radians) that gives them for any image size:
+  // f = w / 2 / tan(fov / 2), principal point at the centre (NeRF's camera_angle_x); 0 if none.
+  double horizontal_fov_rad = 0.0;
 };
 
 struct GroundTruthCameras {
@@ -56,9 +66,10 @@ struct GroundTruthCameras {
 };
 
 // Detects the format of `path`: a folder holding *.camera files or a *.camera file -> kStrecha;
-// a file whose first non-blank line is a single count -> kMiddlebury; a file of lines of 12
-// numbers -> kKitti. Throws comic::Error: kNotFound for a missing path, kInvalidData when none
-// fits.
+// a folder holding cameras.bin and images.bin, or cameras.txt and images.txt, or one of those
+// files -> kColmap; a *.json file -> kNerf; a file whose first non-blank line is a single count
+// -> kMiddlebury; a file of lines of 12 numbers -> kKitti. Throws comic::Error: kNotFound for a
+// missing path, kInvalidData when none fits.
 GroundTruthFormat DetectGroundTruthFormat(const std::string& path);
 
 // Reads ground-truth cameras in `format` (kAuto: detected). Throws comic::Error: kNotFound for a
@@ -72,6 +83,8 @@ GroundTruthCameras ReadMiddleburyParFile(const std::string& path);
 GroundTruthCamera ReadStrechaCameraFile(const std::string& path);
 // Every *.camera file of `folder`, naturally sorted.
 GroundTruthCameras ReadStrechaCameraFolder(const std::string& folder);
+// A COLMAP model (binary preferred when both are there) in `path`, a folder or one of its files.
+GroundTruthCameras ReadColmapGroundTruth(const std::string& path);
 // KITTI poses.txt, with the intrinsics of P0 from `calib_path` if not empty.
 GroundTruthCameras ReadKittiGroundTruth(const std::string& poses_path,
                                         const std::string& calib_path = "");

@@ -389,7 +389,8 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
       truth:      gt (KITTI poses.txt, Middlebury *_par.txt, Strecha folder), gt_format,
                   gt_partial, masks, regions, boundary_band.
       frames:     resize_height, first, last, stride, max_pixels, allow_truncated.
-      tracking:   matching ("auto", "sequential", "exhaustive", "window:K"), max_features,
+      tracking:   matching ("auto", "sequential", "exhaustive", "window:K"), matcher
+                  ("patches", "descriptors", "auto"), max_features,
                   search_radius, unpredicted_radius, prediction, coarse_radius, match_window,
                   track_conflicts, verify_min_gap, match_turned, max_cost, threads.
       mapping:    no_retriangulate, two_view_tracks, local_ba_images, global_ba_growth,
@@ -435,7 +436,7 @@ def export_colmap(frames, colmap_db, *, detector_options=None, **options):
 
     `options` are comic_export_colmap's long flags with underscores (comic.EXPORT_COLMAP_OPTIONS):
     overwrite, window, max_error, min_inliers, colmap_threads, intrinsics, camera_model, detector,
-    matching and the tracker options (max_features, search_radius, ...), first, last, stride,
+    matching, matcher and the tracker options (max_features, search_radius, ...), first, last, stride,
     resize_height (a video only), max_pixels, threads, image_path, sparse, write_frames (a video's
     frames; default images/ beside the database), quiet (default True; False prints
     comic_export_colmap's report). `detector_options`: the detector's own settings.

@@ -137,7 +137,8 @@ def cli_error(*args):
         (["--regions", "a", "--masks", "b"], {"regions": "a", "masks": "b"}),
         (["--overwrite"], {"overwrite": True}),
         (["--threads", "-1"], {"threads": -1}),
-        (["--gt-format", "colmap", "--gt", POSES], {"gt_format": "colmap", "gt": POSES}),
+        (["--gt-format", "bundler", "--gt", POSES], {"gt_format": "bundler", "gt": POSES}),
+        (["--matcher", "sift"], {"matcher": "sift"}),
     ],
 )
 def test_bad_options_raise_the_command_lines_message(flags, keywords, tmp_path):

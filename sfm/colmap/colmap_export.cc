@@ -255,6 +255,17 @@ ColmapExportSummary WriteTracksToColmapDatabase(const frontend::FeatureTracks& t
     }
     database->WriteKeypoints(image.image_id, keypoints);
     summary.num_keypoints += keypoints.rows();
+    if (tracks.HasDescriptors() && options.write_descriptors) {
+      // The same order as the keypoints: row k describes feature k (COLMAP 3.8's descriptors
+      // table, 128 uint8 per keypoint).
+      const cv::Mat& rows = tracks.descriptors[i];
+      io::ColmapDescriptors descriptors(static_cast<Eigen::Index>(features.size()), 128);
+      for (int k = 0; k < rows.rows; ++k) {
+        std::copy(rows.ptr<uint8_t>(k), rows.ptr<uint8_t>(k) + 128, descriptors.row(k).data());
+      }
+      database->WriteDescriptors(image.image_id, descriptors);
+      summary.num_descriptors += descriptors.rows();
+    }
   }
   summary.num_images = static_cast<int>(tracks.NumFrames());
 

@@ -1,7 +1,9 @@
 // Export of feature tracks to a COLMAP 3.8 database, so that `colmap mapper` reconstructs from our
-// features: one image per frame with all its features as keypoints, and for every pair of frames
-// at most `pair_window` apart that share tracks, the raw matches (one per shared track) and the
-// matches verified by two-view geometry (`two_view_geometries`, which is what the mapper uses).
+// features: one image per frame with all its features as keypoints (and their descriptors, when
+// the tracks carry them: COLMAP's matchers can then extend the database), and for every pair of
+// frames at most `pair_window` apart that share tracks, the raw matches (one per shared track) and
+// the matches verified by two-view geometry (`two_view_geometries`, which is what the mapper
+// uses).
 //
 //   comic::sfm::ColmapExportOptions options;   // pair_window = 5
 //   const auto summary = comic::sfm::ExportTracksToColmapDatabase(tracks, camera, options,
@@ -39,7 +41,12 @@ struct ColmapExportOptions {
   std::string image_name_prefix;
   // Threads verifying pairs (0: one per core). The database does not depend on it.
   int num_threads = 0;
-  // The camera model written when no intrinsics are known (COLMAP's feature extractor default:
+  // Write the tracks' descriptors (when they have them) into COLMAP's descriptors table, one row
+  // per keypoint in the keypoints' order, so that COLMAP's matchers (exhaustive_matcher, ...)
+  // can add pairs to the database; without them COLMAP matches nothing, and its
+  // feature_extractor replaces them with a different number of its own (then its matchers crash).
+  bool write_descriptors = true;
+    // The camera model written when no intrinsics are known (COLMAP's feature extractor default:
   // SIMPLE_RADIAL, f = 1.2 max(w, h), principal point at the centre, no distortion).
   CameraModelId default_camera_model = CameraModelId::kSimpleRadial;
 
@@ -50,6 +57,7 @@ struct ColmapExportOptions {
 struct ColmapExportSummary {
   int num_images = 0;
   int64_t num_keypoints = 0;
+  int64_t num_descriptors = 0;  // rows of `descriptors` written (0: the tracks had none)
   int num_matched_pairs = 0;       // pairs with raw matches (rows of `matches`)
   int num_verified_pairs = 0;      // pairs whose two-view geometry is not DEGENERATE
   int64_t num_matches = 0;         // raw matches over all pairs

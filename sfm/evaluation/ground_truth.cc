@@ -6,6 +6,22 @@
 #include "io/core/error.h"
 
 namespace comic::sfm {
+namespace {
+
+// A name's last path component, and that without its extension: a ground-truth camera names its
+// image as the data set does ("images/0000.jpg" in a COLMAP model, "r_0" in a NeRF transforms
+// file), the frames by file name.
+std::string BaseName(const std::string& name) {
+  const size_t slash = name.find_last_of("/\\");
+  return slash == std::string::npos ? name : name.substr(slash + 1);
+}
+std::string Stem(const std::string& name) {
+  const std::string base = BaseName(name);
+  const size_t dot = base.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
+}
+
+}  // namespace
 
 Camera CameraFromK(const Eigen::Matrix3d& K, int width, int height) {
   COMIC_CHECK(std::abs(K(0, 1)) < 1e-9 * std::abs(K(0, 0)), kInvalidArgument,
@@ -31,11 +47,20 @@ FrameGroundTruth MatchGroundTruthToFrames(const io::GroundTruthCameras& truth,
   COMIC_CHECK(source_size.width > 0 && source_size.height > 0 && frame_size.height > 0,
               kInvalidArgument, "ground truth: empty frame size");
   const bool by_name = !truth.cameras.empty() && !truth.cameras[0].image_name.empty();
-  std::map<std::string, const io::GroundTruthCamera*> by_image_name;
+  // By the full name first, then by the last path component, then by the stem (a name without
+  // extension); a key two cameras share at a level is not used at that level.
+  std::map<std::string, const io::GroundTruthCamera*> by_image_name, by_base_name, by_stem;
   std::map<int, const io::GroundTruthCamera*> by_index;
+  const auto add_unique = [](std::map<std::string, const io::GroundTruthCamera*>* map,
+                             const std::string& key, const io::GroundTruthCamera* camera) {
+    const auto [it, inserted] = map->emplace(key, camera);
+    if (!inserted) it->second = nullptr;
+  };
   for (const io::GroundTruthCamera& camera : truth.cameras) {
     if (by_name) {
       by_image_name[camera.image_name] = &camera;
+      add_unique(&by_base_name, BaseName(camera.image_name), &camera);
+      add_unique(&by_stem, Stem(camera.image_name), &camera);
     } else {
       by_index[camera.index] = &camera;
     }
@@ -47,7 +72,14 @@ FrameGroundTruth MatchGroundTruthToFrames(const io::GroundTruthCameras& truth,
     const io::GroundTruthCamera* camera = nullptr;
     if (by_name) {
       const auto it = by_image_name.find(frame_names[i]);
-      if (it != by_image_name.end()) camera = it->second;
+      if (it != by_image_name.end()) {
+        camera = it->second;
+      } else if (const auto base = by_base_name.find(BaseName(frame_names[i]));
+                 base != by_base_name.end()) {
+        camera = base->second;
+      } else if (const auto stem = by_stem.find(Stem(frame_names[i])); stem != by_stem.end()) {
+        camera = stem->second;
+      }
     } else {
       const auto it = by_index.find(source_indices[i]);
       if (it != by_index.end()) camera = it->second;
@@ -77,6 +109,12 @@ FrameGroundTruth MatchGroundTruthToFrames(const io::GroundTruthCameras& truth,
     camera.width = frame_size.width;
     camera.height = frame_size.height;
     result.camera = camera;
+  } else if (first->horizontal_fov_rad > 0) {
+    // A field of view only (NeRF's camera_angle_x): the intrinsics of the frames as used.
+    const double f = 0.5 * frame_size.width / std::tan(0.5 * first->horizontal_fov_rad);
+    Eigen::Matrix3d k;
+    k << f, 0, (frame_size.width - 1) / 2.0, 0, f, (frame_size.height - 1) / 2.0, 0, 0, 1;
+    result.camera = CameraFromK(k, frame_size.width, frame_size.height);
   }
   return result;
 }

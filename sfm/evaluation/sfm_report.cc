@@ -31,6 +31,7 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.global_ba_cpu_time_s = run.mapping.global_ba_cpu_time_s;
   report.num_local_ba = run.mapping.num_local_ba;
   report.num_global_ba = run.mapping.num_global_ba;
+  report.image_set_matching = run.image_set_matching;
   return report;
 }
 
@@ -95,6 +96,20 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
       {"num_global_bundle_adjustments", report.num_global_ba},
       {"per_frame",
        report.num_frames > 0 ? report.wall_time_s / static_cast<double>(report.num_frames) : 0.0}};
+  if (report.image_set_matching) {
+    const frontend::ImageSetMatchingSummary& m = *report.image_set_matching;
+    json["image_set_matching"] = {{"frames", m.num_frames},
+                                  {"features", m.num_features},
+                                  {"pairs", m.num_pairs},
+                                  {"verified_pairs", m.num_verified_pairs},
+                                  {"raw_matches", m.num_raw_matches},
+                                  {"verified_matches", m.num_verified_matches},
+                                  {"detection_cpu_s", m.detection_cpu_s},
+                                  {"description_cpu_s", m.description_cpu_s},
+                                  {"matching_cpu_s", m.matching_cpu_s},
+                                  {"verification_cpu_s", m.verification_cpu_s},
+                                  {"track_building_cpu_s", m.track_building_cpu_s}};
+  }
   return json;
 }
 

@@ -41,6 +41,9 @@ struct SfmRunReport {
   double global_ba_cpu_time_s = 0.0;
   int num_local_ba = 0;
   int num_global_ba = 0;
+  // Image sets matched by descriptors: pairs, matches and the CPU time of each stage
+  // (report.json "image_set_matching").
+  std::optional<frontend::ImageSetMatchingSummary> image_set_matching;
 };
 
 SfmRunReport MakeRunReport(const SequenceReconstruction& run, const ReconstructionStats& stats,

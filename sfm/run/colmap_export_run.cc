@@ -1,10 +1,12 @@
 #include "sfm/run/colmap_export_run.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <sstream>
 
 #include "frontend/matching/combined_tracking.h"
+#include "frontend/matching/image_set_matching.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/protected_inputs.h"
@@ -79,17 +81,28 @@ io::ImageSequence OpenFrames(const ColmapExportRunOptions& options, bool video) 
   return sequence;
 }
 
-frontend::TrackingResult Track(const ColmapExportRunOptions& options,
-                               const io::ImageSequence& sequence,
-                               const frontend::TrackerOptions& tracker,
-                               const RunCallbacks& callbacks) {
+// The tracks of the frames, a descriptor for every feature (so that COLMAP's matchers can add
+// pairs): an image set matched by descriptors (`image_set`), or tracked, then described.
+frontend::FeatureTracks Track(const ColmapExportRunOptions& options,
+                              const io::ImageSequence& sequence,
+                              const frontend::TrackerOptions& tracker,
+                              const std::optional<frontend::ImageSetMatchingOptions>& image_set,
+                              const RunCallbacks& callbacks) {
   frontend::DetectorOptions detector_options = options.detector_options;
   detector_options.name = options.detector;
   detector_options.comic.num_threads = options.threads;
   detector_options.comic_paper.num_threads = options.threads;
   const auto detector = frontend::MakeDetector(detector_options);
   if (callbacks.stage_started) callbacks.stage_started(RunStage::kTracking, options.detector);
-  return frontend::TrackSequenceWithDetector(sequence, *detector, tracker, callbacks.frame_done);
+  if (image_set) {
+    return frontend::MatchImageSet(sequence, *detector, *image_set, callbacks.frame_done).tracks;
+  }
+  frontend::FeatureTracks tracks =
+      frontend::TrackSequenceWithDetector(sequence, *detector, tracker, callbacks.frame_done)
+          .tracks;
+  frontend::DescribeTrackedFeatures(sequence, &tracks, options.threads, std::nullopt,
+                                    callbacks.frame_done);
+  return tracks;
 }
 
 }  // namespace
@@ -109,6 +122,7 @@ void ColmapExportRunOptions::Check() const {
     throw Error(ErrorKind::kInvalidArgument, std::string("--detector: ") + e.what());
   }
   frontend::ParsePairing(matching);
+  frontend::ParseFeatureMatcher(matcher);
   tracker.ToTrackerOptions();
 }
 
@@ -134,22 +148,29 @@ ColmapExportRunResult RunColmapExport(const ColmapExportRunOptions& options,
   result.pairing = ChooseRunPairing(options.matching, options.tracker, sequence);
   const frontend::TrackerOptions tracker =
       TrackerOptionsForRun(options.tracker, result.pairing, static_cast<int>(result.num_frames));
+  const std::optional<frontend::ImageSetMatchingOptions> image_set =
+      ImageSetMatchingForRun(options.matcher, result.pairing, tracker, options.threads);
+  result.by_descriptors = image_set.has_value();
+  // An image set matched by descriptors: its pairs are any two frames that share tracks.
+  if (image_set) {
+    export_options.pair_window = std::max(1, static_cast<int>(result.num_frames) - 1);
+  }
   // Staged: the frames appear with the database or not at all.
   std::unique_ptr<io::StagedFolder> frames_out;
   if (result.video) frames_out = std::make_unique<io::StagedFolder>(result.frames_folder);
-  const frontend::TrackingResult tracking = Track(options, sequence, tracker, callbacks);
+  const frontend::FeatureTracks tracks = Track(options, sequence, tracker, image_set, callbacks);
   if (frames_out) {
     if (callbacks.stage_started) callbacks.stage_started(RunStage::kWritingFrames, "");
     // A failure (a full disk) names the user's folder, not the staging one.
     frames_out->NamingTarget(
         [&] { io::WriteSequenceFrames(sequence, frames_out->path(), callbacks.frame_done); });
   }
-  result.summary = ExportTracksToColmapDatabase(tracking.tracks, result.camera, export_options,
+  result.summary = ExportTracksToColmapDatabase(tracks, result.camera, export_options,
                                                 options.colmap.colmap_db, options.colmap.overwrite);
   if (frames_out) frames_out->Commit();
 
-  result.num_tracks = tracking.tracks.tracks.size();
-  for (const auto& track : tracking.tracks.tracks) result.num_observations += track.Length();
+  result.num_tracks = tracks.tracks.size();
+  for (const auto& track : tracks.tracks) result.num_observations += track.Length();
   result.guessed_model = export_options.default_camera_model;
   result.pair_window = export_options.pair_window;
   ColmapMapperOptions mapper = RecommendedColmapMapperOptions(result.summary);
@@ -170,7 +191,7 @@ std::vector<std::string> ColmapExportReportLines(const ColmapExportRunOptions& o
          << result.num_observations << " observations)";
   matching << "matching:   " << frontend::PairingName(pairing.chosen) << " ("
            << (pairing.requested.mode == frontend::PairingMode::kAuto ? "auto: " : "")
-           << pairing.reason << ")";
+           << pairing.reason << ")" << (result.by_descriptors ? ", by SIFT descriptors" : "");
   camera << "camera:     "
          << (result.camera ? result.camera->Describe() + ", known intrinsics (" +
                                  options.camera.intrinsics + ")"
@@ -185,6 +206,8 @@ std::vector<std::string> ColmapExportReportLines(const ColmapExportRunOptions& o
           camera.str(),
           pairs.str(),
           matches.str(),
+          "descriptors: " + std::to_string(summary.num_descriptors) +
+              " (128-D uint8 RootSIFT; COLMAP's matchers can add pairs)",
           "wrote:      " + options.colmap.colmap_db,
           "run COLMAP on it with:",
           "  " + result.mapper_command};

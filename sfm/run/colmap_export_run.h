@@ -39,6 +39,7 @@ struct ColmapExportRunOptions {
   // Each detector's own settings (Python's detector_options); comic's threads from `threads`.
   frontend::DetectorOptions detector_options;
   std::string matching = "auto";      // --matching
+  std::string matcher = "patches";    // --matcher (ReconstructionRunOptions::matcher)
   TrackerSettings tracker;            // --max-features, --search-radius, ...
   io::ImageSequenceOptions sequence;  // --first, --last, --stride, --resize-height, --max-pixels
   int threads = 0;                    // --threads (0: one per core)
@@ -59,6 +60,7 @@ struct ColmapExportRunResult {
   std::string image_path;     // COLMAP's --image_path
   std::string sparse;         // the mapper command's --output_path
   frontend::PairingChoice pairing;
+  bool by_descriptors = false;  // matched by descriptors (--matcher), not tracked
   size_t num_tracks = 0;
   size_t num_observations = 0;
   std::optional<Camera> camera;  // known intrinsics (--intrinsics); none: COLMAP's guess

@@ -1,7 +1,9 @@
 #include "sfm/run/colmap_outputs.h"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "frontend/matching/image_set_matching.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/report/json_text.h"
@@ -19,12 +21,30 @@ std::optional<Camera> KnownCamera(const RunInputs& inputs) {
   return inputs.camera.camera;
 }
 
+// The tracks a database is written from, with a descriptor for every feature (an image set's
+// have them; a video's tracked features are described now, reading the frames again), so that
+// COLMAP's matchers can extend the database.
+frontend::FeatureTracks TracksWithDescriptors(const frontend::FeatureTracks& tracks,
+                                              const ReconstructionRunOptions& options,
+                                              const RunInputs& inputs) {
+  frontend::FeatureTracks described = tracks;
+  if (!described.HasDescriptors()) {
+    frontend::DescribeTrackedFeatures(*inputs.sequence, &described, options.threads);
+  }
+  return described;
+}
+
 }  // namespace
 
 ColmapExportOptions RunExportOptions(const ReconstructionRunOptions& options,
                                      const RunInputs& inputs) {
   ColmapExportOptions export_options = options.colmap.export_options;
   export_options.num_threads = options.threads;
+  // An image set matched by descriptors: its pairs are any two frames that share tracks, whatever
+  // their distance in the list (--window is a video's).
+  if (inputs.image_set) {
+    export_options.pair_window = std::max(1, static_cast<int>(inputs.sequence->NumFrames()) - 1);
+  }
   export_options.default_camera_model = inputs.camera.camera.model;  // of a guessed camera
   return export_options;
 }
@@ -32,8 +52,9 @@ ColmapExportOptions RunExportOptions(const ReconstructionRunOptions& options,
 ColmapExportSummary WriteTracksDatabase(const frontend::FeatureTracks& tracks,
                                         const ReconstructionRunOptions& options,
                                         const RunInputs& inputs, const std::string& path) {
-  return ExportTracksToColmapDatabase(tracks, KnownCamera(inputs),
-                                      RunExportOptions(options, inputs), path, /*overwrite=*/true);
+  return ExportTracksToColmapDatabase(TracksWithDescriptors(tracks, options, inputs),
+                                      KnownCamera(inputs), RunExportOptions(options, inputs), path,
+                                      /*overwrite=*/true);
 }
 
 ColmapDatabaseOutput WriteRunColmapDatabase(const DetectorRun& run,
@@ -42,9 +63,9 @@ ColmapDatabaseOutput WriteRunColmapDatabase(const DetectorRun& run,
                                             const std::string& image_path) {
   ColmapDatabaseOutput output;
   output.path = options.colmap.colmap_db;
-  output.summary = ExportTracksToColmapDatabase(run.run.tracks, KnownCamera(inputs),
-                                                RunExportOptions(options, inputs), output.path,
-                                                options.colmap.overwrite);
+  output.summary = ExportTracksToColmapDatabase(
+      TracksWithDescriptors(run.run.tracks, options, inputs), KnownCamera(inputs),
+      RunExportOptions(options, inputs), output.path, options.colmap.overwrite);
   ColmapMapperOptions mapper = RecommendedColmapMapperOptions(output.summary);
   mapper.num_threads = options.colmap.colmap_threads;
   // Into colmap/sparse beside the database: never over our own sparse/0 (issue 29).

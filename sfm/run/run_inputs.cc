@@ -92,6 +92,8 @@ RunInputs ResolveRunInputs(const ReconstructionRunOptions& options) {
   inputs.pairing = ChooseRunPairing(options.matching, options.tracker, *inputs.sequence);
   inputs.tracker = TrackerOptionsForRun(options.tracker, inputs.pairing,
                                         static_cast<int>(inputs.sequence->NumFrames()));
+  inputs.image_set =
+      ImageSetMatchingForRun(options.matcher, inputs.pairing, inputs.tracker, options.threads);
   return inputs;
 }
 

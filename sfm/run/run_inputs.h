@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
 #include "io/datasets/ground_truth_cameras.h"
@@ -31,6 +32,8 @@ struct RunInputs {
   bool plot_plane_from_estimate = false;  // auto without ground truth: PCA of our centres
   frontend::PairingChoice pairing;        // --matching resolved on the frames
   frontend::TrackerOptions tracker;       // the tracker settings set up for that pairing
+  // --matcher resolved: the descriptor matching of the pairs, or none (the patch tracker).
+  std::optional<frontend::ImageSetMatchingOptions> image_set;
 };
 
 // Opens the frames and resolves everything above. Throws comic::Error for unreadable or

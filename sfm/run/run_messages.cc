@@ -40,7 +40,7 @@ std::vector<std::string> RunInputsLines(const RunInputs& inputs, const std::stri
   std::ostringstream matching;
   matching << program << ": matching " << frontend::PairingName(inputs.pairing.chosen) << " ("
            << (inputs.pairing.requested.mode == frontend::PairingMode::kAuto ? "auto: " : "")
-           << inputs.pairing.reason << ")";
+           << inputs.pairing.reason << ")" << (inputs.image_set ? ", by SIFT descriptors" : "");
   return {frames.str(), matching.str()};
 }
 

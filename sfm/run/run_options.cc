@@ -51,6 +51,7 @@ void ReconstructionRunOptions::Check() const {
   io::CheckMaxPixels(sequence.max_pixels);
   sequence.Check();
   frontend::ParsePairing(matching);
+  frontend::ParseFeatureMatcher(matcher);
   COMIC_CHECK(local_ba_images >= 2, kInvalidArgument,
               "--local-ba-images must be >= 2, got " << local_ba_images);
   COMIC_CHECK(global_ba_growth > 1.0, kInvalidArgument,
@@ -87,9 +88,10 @@ void ReconstructionRunOptions::Check() const {
 
 SequenceReconstructionOptions MakeSequenceReconstructionOptions(
     const ReconstructionRunOptions& run, const frontend::TrackerOptions& tracker,
-    bool refine_intrinsics) {
+    bool refine_intrinsics, const std::optional<frontend::ImageSetMatchingOptions>& image_set) {
   SequenceReconstructionOptions options;
   options.tracker = tracker;
+  options.image_set = image_set;
   options.mapper.global_ba.refine_focal_length = run.refine_focal || refine_intrinsics;
   options.mapper.global_ba.refine_principal_point = run.refine_principal_point;
   options.mapper.global_ba.refine_extra_params = run.refine_distortion || refine_intrinsics;
@@ -97,12 +99,15 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
   // Two-view tracks are left out of video (frame-to-frame tracks are long; the two-frame ones
   // are the unchecked leftovers) but kept for image sets matched across several frames, where a
   // track of two views is often all a sparse ring has (docs/sfm.md "Two-view tracks and the
-  // global loss").
-  options.mapper.mapper.ignore_two_view_tracks = !run.two_view_tracks && tracker.match_window <= 1;
+  // global loss"), and for image sets matched by descriptors.
+  options.mapper.mapper.ignore_two_view_tracks =
+      !run.two_view_tracks && tracker.match_window <= 1 && !image_set;
   options.mapper.local_ba_num_images = run.local_ba_images;
   options.mapper.global_ba_growth_ratio = run.global_ba_growth;
   options.mapper.mapper.init_tri_angle_deg = run.init_angle;
   options.mapper.mapper.init_max_frame_gap = run.init_max_gap;
+  // An image set's frame order says nothing about which views are near: any two may start.
+  if (image_set) options.mapper.mapper.init_max_frame_gap = 1 << 30;
   // `threads` is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no output may depend
   // on the thread count. They stay on one thread; detection and the export use `threads`.

@@ -4,6 +4,7 @@
 // Check() validates without touching the file system; its messages name the flags.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "frontend/detector_factory.h"
@@ -48,12 +49,16 @@ struct ReconstructionRunOptions {
   // ---- the camera and the truth
   CameraChoice camera;             // --intrinsics, --camera-model, --fixed-intrinsics, ...
   std::string gt;                  // --gt PATH: ground-truth cameras
-  std::string gt_format = "auto";  // --gt-format auto|kitti|middlebury|strecha
+  std::string gt_format = "auto";  // --gt-format auto|kitti|middlebury|strecha|colmap|nerf
   bool gt_partial = false;         // --gt-partial
 
   // ---- tracking
   std::string matching = "auto";  // --matching auto|sequential|exhaustive|window:K
-  TrackerSettings tracker;        // --max-features, --search-radius, ...
+  // --matcher patches|descriptors|auto (frontend::FeatureMatcher): the patch tracker by default;
+  // descriptors match an image set as COLMAP's exhaustive matcher (its frame order means
+  // nothing: the initial pair may then be any two frames, whatever --init-max-gap).
+  std::string matcher = "patches";
+  TrackerSettings tracker;  // --max-features, --search-radius, ...
 
   // ---- mapping
   bool refine_focal = false;  // on anyway for a self-calibrated camera
@@ -64,7 +69,7 @@ struct ReconstructionRunOptions {
   int local_ba_images = IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
   double init_angle = 4.0;  // degrees
-  int init_max_gap = 20;
+  int init_max_gap = 20;    // a video's; see `matcher`
   int threads = 0;  // detection and the export (0: one per core); never the bundle adjustments
 
   // ---- evaluation
@@ -96,9 +101,11 @@ struct ReconstructionRunOptions {
 
 // The SfM options of one run: the mapping flags, the tracker options resolved for the frames, and
 // the self-calibration rule (a camera no calibration gave has its focal length and distortion
-// refined unless --fixed-intrinsics; camera_resolution.h). Check()ed.
+// refined unless --fixed-intrinsics; camera_resolution.h), and the descriptor matching of an
+// image set (`image_set`, RunInputs). Check()ed.
 SequenceReconstructionOptions MakeSequenceReconstructionOptions(
     const ReconstructionRunOptions& options, const frontend::TrackerOptions& tracker,
-    bool refine_intrinsics);
+    bool refine_intrinsics,
+    const std::optional<frontend::ImageSetMatchingOptions>& image_set = std::nullopt);
 
 }  // namespace comic::sfm

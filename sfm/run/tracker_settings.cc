@@ -91,4 +91,13 @@ frontend::TrackerOptions TrackerOptionsForRun(const TrackerSettings& settings,
   return options;
 }
 
+std::optional<frontend::ImageSetMatchingOptions> ImageSetMatchingForRun(
+    const std::string& matcher, const frontend::PairingChoice& choice,
+    const frontend::TrackerOptions& tracker, int threads) {
+  if (!frontend::MatchesByDescriptors(frontend::ParseFeatureMatcher(matcher), choice)) {
+    return std::nullopt;
+  }
+  return frontend::ImageSetMatchingOptionsForPairing(choice.chosen, tracker, threads);
+}
+
 }  // namespace comic::sfm

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
 
@@ -62,5 +63,12 @@ frontend::PairingChoice ChooseRunPairing(const std::string& matching,
 frontend::TrackerOptions TrackerOptionsForRun(const TrackerSettings& settings,
                                               const frontend::PairingChoice& choice,
                                               int num_frames);
+
+// The descriptor matching of a run, or std::nullopt when the patch tracker matches
+// (`matcher`: --matcher, frontend::MatchesByDescriptors): the chosen pairs, the features
+// `tracker` selects, `threads`. Throws comic::Error(kInvalidArgument) for a bad --matcher.
+std::optional<frontend::ImageSetMatchingOptions> ImageSetMatchingForRun(
+    const std::string& matcher, const frontend::PairingChoice& choice,
+    const frontend::TrackerOptions& tracker, int threads);
 
 }  // namespace comic::sfm

@@ -455,8 +455,12 @@ TEST(ComicSfm, BadInputGivesOneLineErrorAndNonZeroExit) {
       {frames + out + " --detectors harris", 2, "--detectors needs --compare"},
       {frames + out + " --compare --detectors harris,bogus", 2, "bogus"},
       {frames + out + " --gt /nonexistent/poses.txt", 1, "no such file or folder"},
-      {frames + out + " --gt " + Example() + "/poses.txt --gt-format colmap", 2,
+      {frames + out + " --gt " + Example() + "/poses.txt --gt-format bundler", 2,
        "unknown ground-truth format"},
+      // A format that exists but is not the file's: the reader says what it needs.
+      {frames + out + " --gt " + Example() + "/poses.txt --gt-format colmap", 1,
+       "not a COLMAP model"},
+      {frames + out + " --matcher sift", 2, "--matcher: unknown matcher"},
       {frames + out + " --intrinsics " + dir.File("bad_intrinsics.txt"), 1, "expected intrinsics"},
       {frames + " --output " + dir.File("a_file"), 1, "a_file"},
       {frames + out + " --plot-plane up", 2, "--plot-plane"},

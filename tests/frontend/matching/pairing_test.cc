@@ -93,6 +93,41 @@ TEST(Pairing, AutoPicksSequentialForAVideoAndExhaustiveForItsShuffledFrames) {
   EXPECT_EQ(large.chosen.window, options.image_set_window);
 }
 
+TEST(Pairing, ImageSetsAndExhaustivePairsAreMatchedByDescriptors) {
+  PairingChoice video;
+  video.measured = true;
+  video.looks_like_video = true;
+  video.chosen = {PairingMode::kSequential, 0};
+  PairingChoice set = video;
+  set.looks_like_video = false;
+  set.chosen = {PairingMode::kWindow, 20};  // a large image set
+  PairingChoice exhaustive;                 // requested by hand, not measured
+  exhaustive.chosen = {PairingMode::kExhaustive, 0};
+  EXPECT_FALSE(MatchesByDescriptors(FeatureMatcher::kAuto, video));
+  EXPECT_TRUE(MatchesByDescriptors(FeatureMatcher::kAuto, set));
+  EXPECT_TRUE(MatchesByDescriptors(FeatureMatcher::kAuto, exhaustive));
+  EXPECT_TRUE(MatchesByDescriptors(FeatureMatcher::kDescriptors, video));
+  EXPECT_FALSE(MatchesByDescriptors(FeatureMatcher::kPatches, exhaustive));
+  for (FeatureMatcher m :
+       {FeatureMatcher::kAuto, FeatureMatcher::kPatches, FeatureMatcher::kDescriptors}) {
+    EXPECT_EQ(ParseFeatureMatcher(FeatureMatcherName(m)), m);
+  }
+  EXPECT_THROW(ParseFeatureMatcher("sift"), Error);
+
+  TrackerOptions tracker;
+  tracker.max_features = 1234;
+  tracker.min_response = 0.5f;
+  const ImageSetMatchingOptions all =
+      ImageSetMatchingOptionsForPairing({PairingMode::kExhaustive, 0}, tracker, 3);
+  EXPECT_EQ(all.window, 0);
+  EXPECT_EQ(all.max_features, 1234);
+  EXPECT_EQ(all.min_response, 0.5f);
+  EXPECT_EQ(all.num_threads, 3);
+  EXPECT_EQ(ImageSetMatchingOptionsForPairing({PairingMode::kWindow, 7}, tracker, 0).window, 7);
+  EXPECT_EQ(ImageSetMatchingOptionsForPairing({PairingMode::kSequential, 0}, tracker, 0).window, 1);
+  EXPECT_THROW(ImageSetMatchingOptionsForPairing({PairingMode::kAuto, 0}, tracker, 0), Error);
+}
+
 TEST(Pairing, RequestedPairingIsKeptAndShortInputsAreSequential) {
   const std::vector<cv::Mat> video = PanningFrames(6, 4, 2);
   const PairingChoice exhaustive = ChoosePairing(Thumbnails(video), ParsePairing("exhaustive"));

@@ -94,6 +94,22 @@ TEST(TrackBuilder, GreedyRuleKeepsTheShortGapChainAndRefusesTheConflictingMatch)
   ExpectValidTracks(features2, tracks2);
 }
 
+TEST(TrackBuilder, GreedyByCostRuleMergesTheCheapestMatchFirstWhateverTheGap) {
+  // The same conflict: by cost the direct 0 -> 2 match (cost 1) goes before the chain's matches
+  // (10 and 50), so 0:0 1:0 2:0 is cut where it would join 2:2's component.
+  const auto features = Frames({2, 2, 3, 1});
+  TrackBuildSummary summary;
+  const std::vector<Track> tracks =
+      BuildTracks(features, ConflictingMatches(1.f), TrackConflictRule::kGreedyByCost, &summary);
+  // Order: 0:0-2:2 (1), then the cost-10 matches 0:1-1:1, 1:1-2:1, 2:2-3:0, then the cost-50
+  // 0:0-1:0 (joins 1:0 to {0:0 2:2 3:0}) and 1:0-2:0 (would put 2:0 beside 2:2: refused).
+  EXPECT_EQ(Describe(tracks), (std::vector<std::string>{"0:0 1:0 2:2 3:0", "0:1 1:1 2:1"}));
+  EXPECT_EQ(summary.num_refused_matches, 1);
+  ExpectValidTracks(features, tracks);
+  EXPECT_EQ(ParseTrackConflictRule("greedy-cost"), TrackConflictRule::kGreedyByCost);
+  EXPECT_STREQ(TrackConflictRuleName(TrackConflictRule::kGreedyByCost), "greedy-cost");
+}
+
 TEST(TrackBuilder, ResultDoesNotDependOnTheOrderOfThePairs) {
   // Random matches over 6 frames within a window of 3, dense enough for many conflicts.
   std::mt19937 rng(7);
@@ -111,7 +127,8 @@ TEST(TrackBuilder, ResultDoesNotDependOnTheOrderOfThePairs) {
       pairs.push_back(pair);
     }
   }
-  for (TrackConflictRule rule : {TrackConflictRule::kDrop, TrackConflictRule::kGreedy}) {
+  for (TrackConflictRule rule :
+       {TrackConflictRule::kDrop, TrackConflictRule::kGreedy, TrackConflictRule::kGreedyByCost}) {
     TrackBuildSummary summary;
     const std::vector<Track> tracks = BuildTracks(features, pairs, rule, &summary);
     ExpectValidTracks(features, tracks);

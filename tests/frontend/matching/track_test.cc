@@ -48,5 +48,25 @@ TEST(FeatureTracks, OutOfRangeIndicesAreRejected) {
   EXPECT_THROW(tracks.Check(), Error);
 }
 
+TEST(FeatureTracks, DescriptorsAreOneRowOf128BytesPerFeatureOfEveryFrame) {
+  FeatureTracks tracks = ThreeFrames();
+  EXPECT_FALSE(tracks.HasDescriptors());
+  tracks.descriptors.assign(3, cv::Mat(4, 128, CV_8UC1, cv::Scalar(1)));
+  EXPECT_TRUE(tracks.HasDescriptors());
+  EXPECT_NO_THROW(tracks.Check());
+  tracks.descriptors.pop_back();  // a frame without
+  EXPECT_THROW(tracks.Check(), Error);
+  tracks.descriptors.push_back(cv::Mat(3, 128, CV_8UC1));  // a row short
+  EXPECT_THROW(tracks.Check(), Error);
+  tracks.descriptors.back() = cv::Mat(4, 64, CV_8UC1);
+  EXPECT_THROW(tracks.Check(), Error);
+  tracks.descriptors.back() = cv::Mat(4, 128, CV_32F);
+  EXPECT_THROW(tracks.Check(), Error);
+  tracks.features[2].clear();  // a frame without features: no rows, any empty matrix
+  tracks.tracks.clear();
+  tracks.descriptors.back() = cv::Mat();
+  EXPECT_NO_THROW(tracks.Check());
+}
+
 }  // namespace
 }  // namespace comic::frontend

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 
+#include "io/colmap/colmap_binary_model.h"
+#include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "tests/test_support.h"
@@ -170,8 +173,122 @@ TEST(GroundTruthCameras, MalformedFilesThrowNamingTheFile) {
   expect_error("unknown.txt", "1 2 3\n", "not a known ground-truth format");
   EXPECT_THROW(ReadGroundTruthCameras(dir.File("missing.txt")), Error);
   EXPECT_THROW(ReadGroundTruthCameras(dir.path()), Error);  // a folder without *.camera
-  EXPECT_THROW(ParseGroundTruthFormat("colmap"), Error);
+  EXPECT_THROW(ParseGroundTruthFormat("bundler"), Error);
   EXPECT_EQ(ParseGroundTruthFormat("strecha"), GroundTruthFormat::kStrecha);
+  EXPECT_EQ(ParseGroundTruthFormat("colmap"), GroundTruthFormat::kColmap);
+  EXPECT_EQ(ParseGroundTruthFormat("nerf"), GroundTruthFormat::kNerf);
+  expect_error("broken.json", "{\"frames\": [", "not a valid transforms file");
+  expect_error("noframes.json", "{\"camera_angle_x\": 0.7}", "no \"frames\" array");
+  expect_error("nofov.json",
+               "{\"frames\": [{\"file_path\": \"a\", \"transform_matrix\": "
+               "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]}",
+               "neither camera_angle_x nor fl_x");
+  expect_error("scaled.json",
+               "{\"camera_angle_x\": 0.7, \"frames\": [{\"file_path\": \"a\", "
+               "\"transform_matrix\": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]}",
+               "not a rotation");
+  expect_error("short.json",
+               "{\"camera_angle_x\": 0.7, \"frames\": [{\"file_path\": \"a\", "
+               "\"transform_matrix\": [[1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]}",
+               "4 rows of 4 numbers");
+}
+
+// A NeRF transforms file of two cameras 5 units from the origin, each looking at it: one from +z
+// with world y up, one from +x with world z up, in Blender's camera axes (x right, y up, z back).
+const char* kNerfTransforms = R"({
+  "camera_angle_x": 0.9272952180016122,
+  "frames": [
+    {"file_path": "./train/r_0", "transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,5],[0,0,0,1]]},
+    {"file_path": "./train/r_1", "transform_matrix": [[0,0,1,5],[1,0,0,0],[0,1,0,0],[0,0,0,1]]}
+  ]
+})";
+
+TEST(GroundTruthCameras, NerfTransformsTurnBlenderCameraAxesIntoOpenCvs) {
+  test::ScopedTempDir dir;
+  const std::string path = dir.File("transforms_train.json");
+  WriteFileAtomically(path, kNerfTransforms);
+  EXPECT_EQ(DetectGroundTruthFormat(path), GroundTruthFormat::kNerf);
+  const GroundTruthCameras truth = ReadGroundTruthCameras(path);
+  ASSERT_EQ(truth.cameras.size(), 2u);
+  EXPECT_EQ(truth.format, GroundTruthFormat::kNerf);
+  EXPECT_EQ(truth.cameras[0].image_name, "r_0");
+  // No image size in the file: the field of view, for the frames' size (2 atan(1/2): f = w).
+  EXPECT_FALSE(truth.cameras[0].has_intrinsics);
+  EXPECT_NEAR(truth.cameras[0].horizontal_fov_rad, 0.9272952180016122, 1e-15);
+  for (GroundTruthCamera camera : truth.cameras) {
+    camera.K << 100, 0, 49.5, 0, 100, 49.5, 0, 0, 1;  // a 100 x 100 image
+    // The origin is 5 in front of each camera, at the image centre.
+    EXPECT_NEAR(Depth(camera, Eigen::Vector3d::Zero()), 5.0, 1e-12);
+    EXPECT_NEAR((Project(camera, Eigen::Vector3d::Zero()) - Eigen::Vector2d(49.5, 49.5)).norm(), 0,
+                1e-9);
+  }
+  // Camera 0 (from +z, world y up): world +x is to the right, world +y up (smaller image y).
+  GroundTruthCamera front = truth.cameras[0];
+  front.K << 100, 0, 49.5, 0, 100, 49.5, 0, 0, 1;
+  EXPECT_NEAR(Project(front, Eigen::Vector3d(1, 0, 0)).x(), 49.5 + 100.0 / 5, 1e-9);
+  EXPECT_NEAR(Project(front, Eigen::Vector3d(0, 1, 0)).y(), 49.5 - 100.0 / 5, 1e-9);
+  // Camera 1 (from +x, world z up): world +y is to the right, world +z up.
+  GroundTruthCamera side = truth.cameras[1];
+  side.K << 100, 0, 49.5, 0, 100, 49.5, 0, 0, 1;
+  EXPECT_NEAR(Project(side, Eigen::Vector3d(0, 1, 0)).x(), 69.5, 1e-9);
+  EXPECT_NEAR(Project(side, Eigen::Vector3d(0, 0, 1)).y(), 29.5, 1e-9);
+  EXPECT_NEAR(Depth(side, Eigen::Vector3d(1, 0, 0)), 4.0, 1e-12);
+
+  // With an image size and explicit intrinsics (pixel-corner convention, as COLMAP's).
+  const std::string explicit_path = dir.File("transforms.json");
+  WriteFileAtomically(explicit_path,
+                      R"({"fl_x": 120, "fl_y": 121, "cx": 50, "cy": 40, "w": 100, "h": 80,
+                          "frames": [{"file_path": "images/a.png",
+                          "transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,5],[0,0,0,1]]}]})");
+  const GroundTruthCameras explicit_truth = ReadGroundTruthCameras(explicit_path);
+  ASSERT_TRUE(explicit_truth.cameras[0].has_intrinsics);
+  EXPECT_EQ(explicit_truth.cameras[0].image_name, "a.png");
+  EXPECT_DOUBLE_EQ(explicit_truth.cameras[0].K(0, 0), 120);
+  EXPECT_DOUBLE_EQ(explicit_truth.cameras[0].K(1, 1), 121);
+  EXPECT_DOUBLE_EQ(explicit_truth.cameras[0].K(0, 2), 49.5);
+  EXPECT_DOUBLE_EQ(explicit_truth.cameras[0].K(1, 2), 39.5);
+  EXPECT_EQ(explicit_truth.cameras[0].width, 100);
+}
+
+TEST(GroundTruthCameras, ColmapModelsTextAndBinary) {
+  ColmapTextModel model;
+  model.cameras.push_back({1, "PINHOLE", 640, 480, {500, 510, 320, 240}});
+  model.cameras.push_back({2, "SIMPLE_RADIAL", 640, 480, {500, 320, 240, 0.1}});
+  ColmapImage a;
+  a.image_id = 2;
+  a.camera_id = 1;
+  a.name = "images/b.png";
+  a.cam_from_world_rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()));
+  a.cam_from_world_translation = Eigen::Vector3d(1, 2, 3);
+  ColmapImage b = a;
+  b.image_id = 1;
+  b.camera_id = 2;
+  b.name = "images/a.png";
+  model.images = {a, b};
+  test::ScopedTempDir dir;
+  WriteColmapTextModel(model, dir.File("text"));
+  WriteColmapBinaryModel(model, dir.File("binary"));
+  for (const std::string& path : {dir.File("text"), dir.File("binary"), dir.File("text/images.txt"),
+                                  dir.File("binary/cameras.bin")}) {
+    EXPECT_EQ(DetectGroundTruthFormat(path), GroundTruthFormat::kColmap) << path;
+    const GroundTruthCameras truth = ReadGroundTruthCameras(path);
+    ASSERT_EQ(truth.cameras.size(), 2u) << path;
+    // By image id: a.png (id 1, distorted camera: poses only), then b.png.
+    EXPECT_EQ(truth.cameras[0].image_name, "images/a.png");
+    EXPECT_FALSE(truth.cameras[0].has_intrinsics);
+    const GroundTruthCamera& pinhole = truth.cameras[1];
+    EXPECT_EQ(pinhole.image_name, "images/b.png");
+    ASSERT_TRUE(pinhole.has_intrinsics);
+    EXPECT_DOUBLE_EQ(pinhole.K(0, 0), 500);
+    EXPECT_DOUBLE_EQ(pinhole.K(1, 1), 510);
+    EXPECT_DOUBLE_EQ(pinhole.K(0, 2), 319.5);  // COLMAP's pixel centres at +0.5
+    EXPECT_EQ(pinhole.width, 640);
+    EXPECT_TRUE(pinhole.cam_from_world_rotation.isApprox(
+        a.cam_from_world_rotation.toRotationMatrix(), 1e-12));
+    EXPECT_TRUE(pinhole.cam_from_world_translation.isApprox(Eigen::Vector3d(1, 2, 3), 1e-12));
+  }
+  // A folder without a model is not one.
+  EXPECT_THROW(ReadColmapGroundTruth(dir.path()), Error);
 }
 
 TEST(GroundTruthCameras, SharedDataFilesParseAndSeeTheirObjects) {
@@ -215,6 +332,21 @@ TEST(GroundTruthCameras, SharedDataFilesParseAndSeeTheirObjects) {
                               kitti.cameras[50].cam_from_world_translation;
   EXPECT_GT(c50.z(), 55.0);
   EXPECT_LT(std::abs(c50.x()), 5.0);
+
+  // NeRF lego: 100 cameras on a sphere of radius 4.03 around the object at the origin, each
+  // looking at it (the origin within 10 px of the centre of the 800 x 800 views).
+  GroundTruthCameras lego =
+      ReadGroundTruthCameras(data + "/nerf_synthetic_lego/transforms_train.json");
+  ASSERT_EQ(lego.cameras.size(), 100u);
+  EXPECT_EQ(lego.cameras[99].image_name, "r_99");
+  for (GroundTruthCamera& camera : lego.cameras) {
+    const double f = 400.0 / std::tan(0.5 * camera.horizontal_fov_rad);
+    camera.K << f, 0, 399.5, 0, f, 399.5, 0, 0, 1;
+    EXPECT_NEAR(Depth(camera, Eigen::Vector3d::Zero()), 4.03, 0.01) << camera.image_name;
+    EXPECT_LT((Project(camera, Eigen::Vector3d::Zero()) - Eigen::Vector2d(399.5, 399.5)).norm(),
+              10.0)
+        << camera.image_name;
+  }
 }
 
 }  // namespace

@@ -7,8 +7,13 @@
 #include <random>
 #include <set>
 
+#include "frontend/detector_factory.h"
+#include "frontend/matching/image_set_matching.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/datasets/kitti_odometry.h"
+#include "io/image/image_io.h"
+#include "sfm/colmap/colmap_runner.h"
 #include "tests/test_support.h"
 
 namespace comic::sfm {
@@ -379,6 +384,132 @@ TEST(ColmapExport, RejectsBadOptionsAndNonEmptyDatabases) {
   io::ColmapDatabase database = io::ColmapDatabase::Open(":memory:");
   WriteTracksToColmapDatabase(scene.tracks, scene.camera, {}, &database);
   EXPECT_THROW(WriteTracksToColmapDatabase(scene.tracks, scene.camera, {}, &database), Error);
+}
+
+TEST(ColmapExport, WritesOneDescriptorPerKeypointInTheKeypointsOrder) {
+  Scene scene = MakeScene(5, 9);
+  // Tell-tale descriptors: feature k of frame i has byte (i * 7 + k) % 251 everywhere.
+  for (size_t i = 0; i < scene.tracks.NumFrames(); ++i) {
+    cv::Mat rows(static_cast<int>(scene.tracks.features[i].size()), 128, CV_8UC1);
+    for (int k = 0; k < rows.rows; ++k) rows.row(k).setTo((i * 7 + k) % 251);
+    scene.tracks.descriptors.push_back(rows);
+  }
+  io::ColmapDatabase database = io::ColmapDatabase::Open(":memory:");
+  const ColmapExportSummary summary =
+      WriteTracksToColmapDatabase(scene.tracks, scene.camera, {}, &database);
+  EXPECT_EQ(summary.num_descriptors, summary.num_keypoints);
+  for (size_t i = 0; i < scene.tracks.NumFrames(); ++i) {
+    const io::ColmapDescriptors d = database.ReadDescriptors(static_cast<int64_t>(i) + 1);
+    ASSERT_EQ(d.rows(), static_cast<Eigen::Index>(database.NumKeypointsForImage(i + 1)));
+    ASSERT_EQ(d.cols(), 128);
+    for (int k = 0; k < d.rows(); ++k) {
+      EXPECT_EQ(d(k, 0), (i * 7 + k) % 251);
+      EXPECT_EQ(d(k, 127), (i * 7 + k) % 251);
+    }
+  }
+  // Asked not to, or tracks without descriptors: no descriptors table rows.
+  ColmapExportOptions without;
+  without.write_descriptors = false;
+  io::ColmapDatabase second = io::ColmapDatabase::Open(":memory:");
+  EXPECT_EQ(
+      WriteTracksToColmapDatabase(scene.tracks, scene.camera, without, &second).num_descriptors, 0);
+  EXPECT_EQ(second.NumDescriptors(), 0u);
+  scene.tracks.descriptors.clear();
+  io::ColmapDatabase third = io::ColmapDatabase::Open(":memory:");
+  WriteTracksToColmapDatabase(scene.tracks, scene.camera, {}, &third);
+  EXPECT_EQ(third.NumDescriptors(), 0u);
+}
+
+// The real COLMAP on an exported database of six KITTI frames whose tracks come from the
+// consecutive pairs only. With our descriptors COLMAP's exhaustive matcher adds the other pairs
+// and its mapper registers every frame; its feature extractor leaves our features alone (the
+// images are complete), so that its matchers do not crash on keypoints without their
+// descriptors; hierarchical_mapper and point_triangulator run on it too.
+TEST(ColmapExport, ColmapsMatchersAndMappersExtendADatabaseWithDescriptors) {
+  if (!IsColmapAvailable()) GTEST_SKIP() << "colmap is not installed";
+  const std::string frames = test::ExampleDir() + "/image_l";
+  std::vector<cv::Mat> grays;
+  std::vector<std::string> names;
+  for (int i = 0; i < 6; ++i) {
+    names.push_back("00000" + std::to_string(i) + ".png");
+    grays.push_back(io::LoadImage(frames + "/" + names.back(), 0, 1 << 30).gray);
+  }
+  frontend::ImageSetMatchingOptions matching;
+  matching.window = 1;
+  matching.max_features = 1500;
+  const auto detector = frontend::MakeDetector("harris");
+  const frontend::FeatureTracks tracks =
+      frontend::MatchImageFrames(grays, *detector, matching, names).tracks;
+  const cv::Matx33d k = io::ReadKittiIntrinsics(test::ExampleDir() + "/calib.txt", 0);
+  const Camera camera = Camera::FromParams(CameraModelId::kPinhole, grays[0].cols, grays[0].rows,
+                                           {k(0, 0), k(1, 1), k(0, 2), k(1, 2)});
+  ScopedTempDir dir;
+  ColmapExportOptions options;
+  options.pair_window = 1;
+  const std::string with = dir.File("with.db"), without = dir.File("without.db");
+  const ColmapExportSummary summary =
+      ExportTracksToColmapDatabase(tracks, camera, options, with, false);
+  EXPECT_EQ(summary.num_verified_pairs, 5);
+  options.write_descriptors = false;
+  ExportTracksToColmapDatabase(tracks, camera, options, without, false);
+  const std::string log = dir.File("colmap.log");
+  const auto verified_pairs = [](const std::string& path) {
+    int verified = 0;
+    for (const auto& [pair_id, geometry] :
+         io::ColmapDatabase::Open(path).ReadAllTwoViewGeometries()) {
+      verified += geometry.inlier_matches.size() >= 15;
+    }
+    return verified;
+  };
+  for (const std::string& db : {with, without}) {
+    RunColmap({"exhaustive_matcher", "--database_path", db, "--SiftMatching.use_gpu", "0",
+               "--SiftMatching.num_threads", "2"},
+              log);
+  }
+  EXPECT_GE(verified_pairs(with), 12) << "of 15";  // frames 0 and 5 are 6 m apart
+  EXPECT_EQ(verified_pairs(without), 5);
+  ColmapMapperOptions mapper = RecommendedColmapMapperOptions(summary);
+  mapper.num_threads = 2;
+  std::map<std::string, int64_t> registered;
+  for (const std::string& db : {with, without}) {
+    const auto model = RunColmapMapper(db, frames, db + ".sparse", mapper, log);
+    registered[db] = model ? NumRegisteredImagesOfColmapModel(*model) : 0;
+  }
+  EXPECT_EQ(registered[with], 6) << io::ReadFileToString(log);
+  EXPECT_GE(registered[with], registered[without]);
+
+  // feature_extractor over the same images changes nothing; the matcher runs again without error.
+  io::WriteFileAtomically(dir.File("list.txt"), [&] {
+    std::string list;
+    for (const std::string& name : names) list += name + "\n";
+    return list;
+  }());
+  const io::ColmapDescriptors before = io::ColmapDatabase::Open(with).ReadDescriptors(3);
+  RunColmap(
+      {"feature_extractor", "--database_path", with, "--image_path", frames, "--image_list_path",
+       dir.File("list.txt"), "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", "2"},
+      log);
+  {
+    const io::ColmapDatabase database = io::ColmapDatabase::Open(with);
+    EXPECT_EQ(database.NumImages(), 6u);
+    EXPECT_TRUE(database.ReadDescriptors(3) == before);
+  }
+  RunColmap({"exhaustive_matcher", "--database_path", with, "--SiftMatching.use_gpu", "0"}, log);
+  std::filesystem::create_directories(dir.File("hierarchical"));
+  RunColmap({"hierarchical_mapper", "--database_path", with, "--image_path", frames,
+             "--output_path", dir.File("hierarchical"), "--Mapper.init_max_forward_motion", "1",
+             "--Mapper.init_min_tri_angle", "1", "--Mapper.min_model_size", "3",
+             "--Mapper.ba_refine_focal_length", "0", "--Mapper.ba_refine_extra_params", "0",
+             "--num_workers", "2"},
+            log);
+  const auto hierarchical = FindLargestColmapModel(dir.File("hierarchical"));
+  ASSERT_TRUE(hierarchical) << io::ReadFileToString(log);
+  EXPECT_EQ(NumRegisteredImagesOfColmapModel(*hierarchical), 6);
+  std::filesystem::create_directories(dir.File("triangulated"));
+  RunColmap({"point_triangulator", "--database_path", with, "--image_path", frames, "--input_path",
+             *hierarchical, "--output_path", dir.File("triangulated")},
+            log);
+  EXPECT_EQ(NumRegisteredImagesOfColmapModel(dir.File("triangulated")), 6);
 }
 
 // The database's camera row carries the model's id and parameters (+0.5 on the principal point);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io/core/error.h"
 
 namespace comic::sfm {
@@ -65,6 +67,41 @@ TEST(GroundTruth, RejectsMismatches) {
   Eigen::Matrix3d skewed;
   skewed << 800, 5, 320, 0, 800, 240, 0, 0, 1;
   EXPECT_THROW(CameraFromK(skewed, 640, 480), Error);
+}
+
+TEST(GroundTruth, MatchesByPathComponentThenStem) {
+  // A COLMAP model names "images/view1.png", a NeRF file "view2" (no extension); "view3.png"
+  // matches exactly. Two cameras whose names share a stem match neither by stem.
+  io::GroundTruthCameras truth = MakeTruth(true);
+  truth.cameras[1].image_name = "images/view1.png";
+  truth.cameras[2].image_name = "view2";
+  truth.cameras[0].image_name = "a/dup";
+  truth.cameras.push_back(truth.cameras[0]);
+  truth.cameras.back().image_name = "b/dup";
+  const FrameGroundTruth matched =
+      MatchGroundTruthToFrames(truth, {"view1.png", "view2.png", "view3.png", "dup.png"},
+                               {0, 1, 2, 3}, cv::Size(640, 480), cv::Size(640, 480));
+  EXPECT_EQ(matched.num_matched, 3);
+  EXPECT_DOUBLE_EQ(matched.cams_from_world[0]->translation.x(), 1.0);
+  EXPECT_DOUBLE_EQ(matched.cams_from_world[1]->translation.x(), 2.0);
+  EXPECT_DOUBLE_EQ(matched.cams_from_world[2]->translation.x(), 3.0);
+  EXPECT_FALSE(matched.cams_from_world[3].has_value());
+}
+
+TEST(GroundTruth, FieldOfViewGivesTheIntrinsicsOfTheFrames) {
+  // NeRF's camera_angle_x without an image size: f = w / 2 / tan(fov / 2) at the frames' size.
+  io::GroundTruthCameras truth = MakeTruth(true);
+  for (io::GroundTruthCamera& camera : truth.cameras) {
+    camera.has_intrinsics = false;
+    camera.horizontal_fov_rad = 2.0 * std::atan(0.5);  // f = w
+  }
+  const FrameGroundTruth matched =
+      MatchGroundTruthToFrames(truth, {"view0.png"}, {0}, cv::Size(800, 800), cv::Size(400, 400));
+  ASSERT_TRUE(matched.camera.has_value());
+  EXPECT_NEAR(matched.camera->fx, 400.0, 1e-9);
+  EXPECT_NEAR(matched.camera->fy, 400.0, 1e-9);
+  EXPECT_DOUBLE_EQ(matched.camera->cx, 199.5);
+  EXPECT_EQ(matched.camera->width, 400);
 }
 
 TEST(GroundTruth, RegisteredPosesByName) {
