@@ -714,6 +714,17 @@ py::dict ModelToColumns(const io::ColmapTextModel& model) {
 // ---- the runs ---------------------------------------------------------------------------------
 
 // The tracker flags of comic_sfm and comic_export_colmap (apps/common/tracker_flags.h), given.
+// A field of an optional struct: the struct is engaged with its defaults first, as the CLI takes
+// the whole struct once any of its flags is given (apps/common/tracker_flags.cc).
+template <typename S, typename Access>
+Setter InOptional(std::optional<S>* holder, Access access) {
+  return [holder, access](py::handle value) {
+    S given = holder->value_or(S());
+    Field (&access(given))(value);
+    *holder = given;
+  };
+}
+
 void AddRunTrackerSettings(sfm::TrackerSettings* t, OptionTable* table) {
   table->insert({{"max_features", Given(&t->max_features)},
                  {"search_radius", Given(&t->search_radius)},
@@ -724,7 +735,30 @@ void AddRunTrackerSettings(sfm::TrackerSettings* t, OptionTable* table) {
                  {"track_conflicts", Given(&t->track_conflicts)},
                  {"verify_min_gap", Given(&t->verify_min_gap)},
                  {"match_turned", Given(&t->match_turned)},
-                 {"max_cost", Given(&t->max_cost)}});
+                 {"max_cost", Given(&t->max_cost)},
+                 {"align_patches", Given(&t->align_patches)},
+                 {"min_window_eigenvalue", Given(&t->min_window_eigenvalue)}});
+  using Continuation = frontend::TrackContinuationOptions;
+  std::optional<Continuation>* c = &t->continuation;
+  table->insert(
+      {{"max_continued_frames",
+        InOptional(c, [](Continuation& o) -> int& { return o.max_continued_frames; })},
+       {"max_alignment_residual",
+        InOptional(c, [](Continuation& o) -> double& { return o.max_residual; })},
+       {"aligned_radius",
+        InOptional(c, [](Continuation& o) -> double& { return o.aligned_radius; })},
+       {"min_alignment_correlation",
+        InOptional(c, [](Continuation& o) -> double& { return o.min_correlation; })},
+       {"alignment_min_eigenvalue",
+        InOptional(c, [](Continuation& o) -> double& { return o.alignment.min_eigenvalue; })},
+       {"bridge_frames", InOptional(c, [](Continuation& o) -> int& { return o.bridge_frames; })},
+       {"alignment_max_fb",
+        InOptional(c,
+                   [](Continuation& o) -> double& { return o.alignment.max_forward_backward_px; })},
+       {"alignment_iterations",
+        InOptional(c, [](Continuation& o) -> int& { return o.alignment.max_iterations; })},
+       {"alignment_levels",
+        InOptional(c, [](Continuation& o) -> int& { return o.alignment.levels; })}});
 }
 
 // --first, --last, --stride, --resize-height, --max-pixels.
