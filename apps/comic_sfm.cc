@@ -95,7 +95,7 @@ struct Flags {
   int local_ba_images = sfm::IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
   double init_angle = 4.0;
-  int init_max_gap = 20;
+  int init_max_gap = 0;
   int threads = 0;
   comic::apps::ObjectRegionFlags region{"", "", 11.0};
   std::string plot_plane = "auto";
@@ -750,7 +750,9 @@ int Run(int argc, char** argv) {
                    "initial pair: a point's triangulation angle that counts fully towards the "
                    "pair's parallax score",
                    &flags.init_angle);
-  parser.AddOption("init-max-gap", "N", "initial pair: frames at most this far apart",
+  parser.AddOption("init-max-gap", "N",
+                   "initial pair: frames at most this far apart (0: no limit, the gap grows as "
+                   "far as the tracks reach)",
                    &flags.init_max_gap);
   comic::apps::AddThreadsFlag(parser, &flags.threads);
   comic::apps::AddObjectRegionFlags(parser, &flags.region);

@@ -21,9 +21,16 @@ void IncrementalMapper::Options::Check() const {
               "mapper init_tri_angle_deg must be in (0, 90)");
   COMIC_CHECK(init_min_score >= 0, kInvalidArgument, "mapper init_min_score must be >= 0");
   COMIC_CHECK(init_num_anchors >= 1, kInvalidArgument, "mapper init_num_anchors must be >= 1");
-  COMIC_CHECK(init_max_frame_gap >= 1, kInvalidArgument, "mapper init_max_frame_gap must be >= 1");
+  COMIC_CHECK(init_max_frame_gap >= 0, kInvalidArgument,
+              "mapper init_max_frame_gap must be >= 0 (0: no limit)");
+  COMIC_CHECK(init_linear_gap >= 1, kInvalidArgument, "mapper init_linear_gap must be >= 1");
+  COMIC_CHECK(init_gap_growth > 1.0, kInvalidArgument, "mapper init_gap_growth must be > 1");
+  COMIC_CHECK(init_anchor_spacing >= 1, kInvalidArgument,
+              "mapper init_anchor_spacing must be >= 1");
   COMIC_CHECK(init_max_num_trials >= 1, kInvalidArgument,
               "mapper init_max_num_trials must be >= 1");
+  COMIC_CHECK(init_trials_per_frame >= 0, kInvalidArgument,
+              "mapper init_trials_per_frame must be >= 0");
   two_view.Check();
   absolute_pose.Check();
   triangulation.Check();
@@ -88,6 +95,48 @@ int FeatureInFrame(const frontend::Track& track, int frame) {
   return it != track.observations.end() && it->frame == frame ? it->feature : -1;
 }
 
+// The frames (not excluded) ordered by tracked features, most first, ties by frame index.
+std::vector<int> ByTrackedFeatures(const std::vector<int>& num_tracked,
+                                   const std::set<image_t>& excluded) {
+  std::vector<int> frames;
+  for (int frame = 0; frame < static_cast<int>(num_tracked.size()); ++frame) {
+    if (!excluded.count(IncrementalMapper::ImageIdOfFrame(frame))) frames.push_back(frame);
+  }
+  std::stable_sort(frames.begin(), frames.end(),
+                   [&](int a, int b) { return num_tracked[a] > num_tracked[b]; });
+  return frames;
+}
+
+// The initial pair search's first anchors: the `count` most tracked frames.
+std::vector<int> MostTrackedFrames(const std::vector<int>& num_tracked,
+                                   const std::set<image_t>& excluded, int count) {
+  std::vector<int> frames = ByTrackedFeatures(num_tracked, excluded);
+  if (static_cast<int>(frames.size()) > count) frames.resize(count);
+  return frames;
+}
+
+// Anchors over the whole clip: the most tracked frame of every stretch of `spacing` frames, most
+// tracked first.
+std::vector<int> SpreadAnchors(const std::vector<int>& num_tracked,
+                               const std::set<image_t>& excluded, int spacing) {
+  std::vector<int> best_of_stretch((num_tracked.size() + spacing - 1) / spacing, -1);
+  std::vector<int> anchors;
+  for (int frame : ByTrackedFeatures(num_tracked, excluded)) {
+    int& best = best_of_stretch[frame / spacing];
+    if (best >= 0) continue;
+    best = frame;
+    anchors.push_back(frame);
+  }
+  return anchors;
+}
+
+// The next frame gap an anchor is paired at: one more up to init_linear_gap, then growing by
+// init_gap_growth (the number of gaps tried grows with the logarithm of the clip's length).
+int NextGap(int gap, const IncrementalMapper::Options& options) {
+  if (gap < options.init_linear_gap) return gap + 1;
+  return std::max(gap + 1, static_cast<int>(std::lround(gap * options.init_gap_growth)));
+}
+
 }  // namespace
 
 std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair(
@@ -97,143 +146,154 @@ std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair
   return std::move(pairs.front());
 }
 
+IncrementalMapper::InitialPairSearch IncrementalMapper::EvaluateInitialPair(
+    int frame1, int frame2, const std::vector<int>& anchor_tracks, InitialPair* pair,
+    double* measure) const {
+  using Stage = InitialPairSearch::Stage;
+  pair->image_id1 = ImageIdOfFrame(frame1);
+  pair->image_id2 = ImageIdOfFrame(frame2);
+  std::vector<Eigen::Vector2d> points1, points2;
+  for (int t : anchor_tracks) {
+    const int feature2 = FeatureInFrame(tracks_->tracks[t], frame2);
+    if (feature2 < 0) continue;
+    const int feature1 = FeatureInFrame(tracks_->tracks[t], frame1);
+    pair->track_ids.push_back(t);
+    pair->point2D_idxs1.push_back(static_cast<point2D_t>(feature1));
+    pair->point2D_idxs2.push_back(static_cast<point2D_t>(feature2));
+    const frontend::Feature& f1 = tracks_->features[frame1][feature1];
+    const frontend::Feature& f2 = tracks_->features[frame2][feature2];
+    points1.emplace_back(f1.x, f1.y);
+    points2.emplace_back(f2.x, f2.y);
+  }
+  InitialPairSearch candidate;
+  candidate.image_id1 = pair->image_id1;
+  candidate.image_id2 = pair->image_id2;
+  candidate.num_shared_tracks = static_cast<int>(pair->track_ids.size());
+  *measure = candidate.num_shared_tracks;
+  if (candidate.num_shared_tracks < options_.init_min_num_matches) {
+    candidate.stage = Stage::kSharedTracks;
+    return candidate;
+  }
+  const Camera& camera = reconstruction_.camera(camera_id_);
+  pair->geometry =
+      EstimateCalibratedTwoViewGeometry(camera, camera, points1, points2, options_.two_view);
+  candidate.configuration = pair->geometry.configuration;
+  candidate.num_inliers = pair->geometry.num_inliers;
+  candidate.num_essential_inliers = pair->geometry.num_essential_inliers;
+  candidate.num_homography_inliers = pair->geometry.num_homography_inliers;
+  candidate.median_triangulation_angle_deg = pair->geometry.median_triangulation_angle_deg;
+  if (pair->geometry.configuration != TwoViewConfiguration::kCalibrated) {
+    candidate.stage = Stage::kGeometry;
+    // Closest to a general pose: the smallest share of inliers a homography explains; a
+    // degenerate pair (too few inliers for any pose) comes after every such pair.
+    const double homography_share = static_cast<double>(candidate.num_homography_inliers) /
+                                    std::max(candidate.num_essential_inliers, 1);
+    *measure = candidate.configuration == TwoViewConfiguration::kPlanarOrPanoramic
+                   ? 1.0 - homography_share
+                   : -1.0 + 1e-9 * candidate.num_essential_inliers;
+    return candidate;
+  }
+  if (pair->geometry.num_inliers < options_.init_min_num_inliers) {
+    candidate.stage = Stage::kInliers;
+    *measure = candidate.num_inliers;
+    return candidate;
+  }
+  double score = 0.0;
+  for (double angle : pair->geometry.triangulation_angles_deg) {
+    score += std::min(angle / options_.init_tri_angle_deg, 1.0);
+  }
+  pair->score = score;
+  candidate.score = score;
+  candidate.stage = score >= options_.init_min_score ? Stage::kQualified : Stage::kParallax;
+  *measure = score;
+  return candidate;
+}
+
 std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
     const std::set<image_t>& excluded, InitialPairSearch* search) const {
   using Stage = InitialPairSearch::Stage;
   InitialPairSearch seen;
+  double seen_measure = -1.0;
   // Keeps `candidate` if it came closer than the pair kept so far (InitialPairSearch).
-  const auto consider = [&seen](const InitialPairSearch& candidate, double measure,
-                                double* kept_measure) {
-    if (candidate.stage > seen.stage ||
-        (candidate.stage == seen.stage && measure > *kept_measure)) {
+  const auto consider = [&](const InitialPairSearch& candidate, double measure) {
+    if (candidate.stage > seen.stage || (candidate.stage == seen.stage && measure > seen_measure)) {
       const int verified = seen.num_pairs_verified, qualified = seen.num_pairs_qualified;
       seen = candidate;
       seen.num_pairs_verified = verified;
       seen.num_pairs_qualified = qualified;
-      *kept_measure = measure;
+      seen_measure = measure;
     }
   };
-  double seen_measure = -1.0;
-  struct Report {
-    InitialPairSearch* search;
-    InitialPairSearch* seen;
-    ~Report() {
-      if (search) *search = *seen;
-    }
-  } report{search, &seen};
   std::vector<InitialPair> pairs;
   const int num_frames = static_cast<int>(tracks_->NumFrames());
-  if (num_frames < 2) return pairs;
-  // Anchors: frames with the most tracked features first (for a video, the middle frames, whose
-  // tracks run both ways), ties by frame index.
   std::vector<int> num_tracked(num_frames, 0);
   for (const frontend::Track& track : tracks_->tracks) {
     if (track.Length() < 2) continue;
     for (const frontend::TrackObservation& obs : track.observations) ++num_tracked[obs.frame];
   }
-  std::vector<int> anchors;
-  for (int frame = 0; frame < num_frames; ++frame) {
-    if (!excluded.count(ImageIdOfFrame(frame))) anchors.push_back(frame);
-  }
-  std::stable_sort(anchors.begin(), anchors.end(),
-                   [&](int a, int b) { return num_tracked[a] > num_tracked[b]; });
-
-  const Camera& camera = reconstruction_.camera(camera_id_);
   int num_trials = 0;
-  const int num_anchors = std::min<int>(options_.init_num_anchors, anchors.size());
-  for (int a = 0; a < num_anchors && num_trials < options_.init_max_num_trials; ++a) {
-    const int frame1 = anchors[a];
-    // (The first anchor is looked at anyway, so that a search that fails says how many tracks
-    // its best pair shared; it cannot qualify.)
-    if (num_tracked[frame1] < options_.init_min_num_matches && a > 0) break;
-    // Tracks through the anchor.
+  const int max_num_trials =
+      std::max(options_.init_max_num_trials, options_.init_trials_per_frame * num_frames);
+  // Pairs `frame1` with the frames after it at growing gaps: parallax grows with the gap while
+  // the shared tracks dwindle, so the score rises to a peak and falls again.
+  const auto search_anchor = [&](int frame1) {
     std::vector<int> anchor_tracks;
-    for (size_t f = 0; f < track_of_feature_[frame1].size(); ++f) {
-      const int t = track_of_feature_[frame1][f];
+    for (int t : track_of_feature_[frame1]) {
       if (t >= 0 && tracks_->tracks[t].Length() >= 2) anchor_tracks.push_back(t);
     }
-    // Growing gaps: parallax grows with the gap while the shared tracks dwindle, so the score
-    // rises to a peak and falls again.
     double anchor_best_score = 0.0;
-    for (int gap = 1; gap <= options_.init_max_frame_gap && frame1 + gap < num_frames; ++gap) {
+    for (int gap = 1; frame1 + gap < num_frames &&
+                      (options_.init_max_frame_gap == 0 || gap <= options_.init_max_frame_gap);
+         gap = NextGap(gap, options_)) {
       const int frame2 = frame1 + gap;
       if (excluded.count(ImageIdOfFrame(frame2))) continue;
+      // Tracks only end as the gap grows, so past too few shared tracks larger gaps will not do
+      // better; a pair with enough of them costs a trial.
+      if (num_trials >= max_num_trials) return;
       InitialPair pair;
-      pair.image_id1 = ImageIdOfFrame(frame1);
-      pair.image_id2 = ImageIdOfFrame(frame2);
-      std::vector<Eigen::Vector2d> points1, points2;
-      for (int t : anchor_tracks) {
-        const int feature2 = FeatureInFrame(tracks_->tracks[t], frame2);
-        if (feature2 < 0) continue;
-        const int feature1 = FeatureInFrame(tracks_->tracks[t], frame1);
-        pair.track_ids.push_back(t);
-        pair.point2D_idxs1.push_back(static_cast<point2D_t>(feature1));
-        pair.point2D_idxs2.push_back(static_cast<point2D_t>(feature2));
-        const frontend::Feature& f1 = tracks_->features[frame1][feature1];
-        const frontend::Feature& f2 = tracks_->features[frame2][feature2];
-        points1.emplace_back(f1.x, f1.y);
-        points2.emplace_back(f2.x, f2.y);
+      double measure = 0.0;
+      const InitialPairSearch candidate =
+          EvaluateInitialPair(frame1, frame2, anchor_tracks, &pair, &measure);
+      if (candidate.stage == Stage::kSharedTracks) {
+        if (candidate.num_shared_tracks > 0) consider(candidate, measure);
+        return;
       }
-      InitialPairSearch candidate;
-      candidate.image_id1 = pair.image_id1;
-      candidate.image_id2 = pair.image_id2;
-      candidate.num_shared_tracks = static_cast<int>(pair.track_ids.size());
-      // Tracks only end as the gap grows, so larger gaps will not do better.
-      if (static_cast<int>(pair.track_ids.size()) < options_.init_min_num_matches) {
-        candidate.stage = Stage::kSharedTracks;
-        if (!pair.track_ids.empty())
-          consider(candidate, candidate.num_shared_tracks, &seen_measure);
-        break;
-      }
-      if (num_trials++ >= options_.init_max_num_trials) break;
-      pair.geometry =
-          EstimateCalibratedTwoViewGeometry(camera, camera, points1, points2, options_.two_view);
+      ++num_trials;
       ++seen.num_pairs_verified;
-      candidate.configuration = pair.geometry.configuration;
-      candidate.num_inliers = pair.geometry.num_inliers;
-      candidate.num_essential_inliers = pair.geometry.num_essential_inliers;
-      candidate.num_homography_inliers = pair.geometry.num_homography_inliers;
-      candidate.median_triangulation_angle_deg = pair.geometry.median_triangulation_angle_deg;
-      if (pair.geometry.configuration != TwoViewConfiguration::kCalibrated) {
-        candidate.stage = Stage::kGeometry;
-        // Closest to a general pose: the smallest share of inliers a homography explains; a
-        // degenerate pair (too few inliers for any pose) comes after every such pair.
-        const double homography_share = static_cast<double>(candidate.num_homography_inliers) /
-                                        std::max(candidate.num_essential_inliers, 1);
-        consider(candidate,
-                 candidate.configuration == TwoViewConfiguration::kPlanarOrPanoramic
-                     ? 1.0 - homography_share
-                     : -1.0 + 1e-9 * candidate.num_essential_inliers,
-                 &seen_measure);
-        continue;
-      }
-      if (pair.geometry.num_inliers < options_.init_min_num_inliers) {
-        candidate.stage = Stage::kInliers;
-        consider(candidate, candidate.num_inliers, &seen_measure);
-        continue;
-      }
-      double score = 0.0;
-      for (double angle : pair.geometry.triangulation_angles_deg) {
-        score += std::min(angle / options_.init_tri_angle_deg, 1.0);
-      }
-      pair.score = score;
-      candidate.score = score;
-      candidate.stage = score >= options_.init_min_score ? Stage::kQualified : Stage::kParallax;
-      consider(candidate, score, &seen_measure);
+      consider(candidate, measure);
+      if (candidate.stage < Stage::kParallax) continue;
       const bool saturated =
           pair.geometry.median_triangulation_angle_deg >= options_.init_tri_angle_deg;
-      if (score >= options_.init_min_score) {
+      if (candidate.stage == Stage::kQualified) {
         ++seen.num_pairs_qualified;
         pairs.push_back(std::move(pair));
       }
       // Past this anchor's peak, or most inliers already count fully so that larger gaps can
       // only lose matches.
-      if (score < 0.5 * anchor_best_score || saturated) break;
-      anchor_best_score = std::max(anchor_best_score, score);
+      if (candidate.score < 0.5 * anchor_best_score || saturated) return;
+      anchor_best_score = std::max(anchor_best_score, candidate.score);
+    }
+  };
+  // First the most tracked frames (for a video, the middle frames, whose tracks run both ways);
+  // only when none of them starts a model, anchors over the whole clip.
+  std::vector<char> searched(num_frames, 0);
+  for (const std::vector<int>& anchors :
+       {MostTrackedFrames(num_tracked, excluded, options_.init_num_anchors),
+        SpreadAnchors(num_tracked, excluded, options_.init_anchor_spacing)}) {
+    if (!pairs.empty()) break;
+    for (size_t a = 0; a < anchors.size() && num_trials < max_num_trials; ++a) {
+      const int frame1 = anchors[a];
+      // (The first anchor is looked at anyway, so that a search that fails says how many tracks
+      // its best pair shared; it cannot qualify.)
+      if (num_tracked[frame1] < options_.init_min_num_matches && a > 0) break;
+      if (searched[frame1]) continue;
+      searched[frame1] = 1;
+      search_anchor(frame1);
     }
   }
   std::stable_sort(pairs.begin(), pairs.end(),
                    [](const InitialPair& a, const InitialPair& b) { return a.score > b.score; });
+  if (search) *search = seen;
   return pairs;
 }
 
