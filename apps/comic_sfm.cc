@@ -7,6 +7,7 @@
 // (sfm/sequence_reconstruction.h, sfm/evaluation/sfm_report.h, ...); this file only wires flags to
 // them.
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -50,6 +51,7 @@
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/colmap/colmap_runner.h"
+#include "sfm/colmap/model_set_writer.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/evaluation/sfm_report.h"
@@ -58,6 +60,7 @@
 #include "sfm/rotation_only_path.h"
 #include "sfm/sequence_reconstruction.h"
 #include "sfm/trajectory_evaluation.h"
+#include "sfm/working_resolution.h"
 
 namespace {
 
@@ -102,6 +105,8 @@ struct Flags {
   bool quiet = false;
   comic::apps::ColmapDbFlags colmap;
   bool compare_colmap = false;
+  // Exit 1 when the largest model holds fewer than this fraction of the frames (issue 30).
+  double min_registered = 0.5;
   // --write-frames: where a video's frames are written as PNGs (empty: not written, unless
   // --colmap-db needs them; kFramesInOutput: images/ in --output).
   std::string write_frames;
@@ -180,8 +185,16 @@ nlohmann::json CameraReport(const sfm::SequenceReconstruction& run, const Inputs
   const sfm::Reconstruction& reconstruction = mapping.reconstruction;
   const sfm::Camera& camera =
       reconstruction.cameras().empty() ? inputs.camera : reconstruction.cameras().begin()->second;
-  json["final"] = CameraToJson(camera);
-  json["focal_length_px"] = camera.fx;
+  // In the input's pixels (the prior is at the frames' size, see options.frame_size).
+  const sfm::Camera final_camera =
+      sfm::ResizedCamera(camera, run.input_size.width, run.input_size.height);
+  json["final"] = CameraToJson(final_camera);
+  json["focal_length_px"] = final_camera.fx;
+  if (mapping.intrinsics_rejection.rejected) {
+    json["rejected"] = CameraToJson(sfm::ResizedCamera(
+        mapping.intrinsics_rejection.rejected_camera, run.input_size.width, run.input_size.height));
+    json["rejection_reason"] = mapping.intrinsics_rejection.reason;
+  }
   if (mapping.focal_assessed) {
     json["focal_observable"] = mapping.focal_observability.observable;
     json["max_viewing_angle_deg"] = mapping.focal_observability.max_viewing_angle_deg;
@@ -472,20 +485,13 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
                             {"conflicting_components_dropped", building.num_conflicting_components},
                             {"features_dropped", building.num_dropped_features},
                             {"matches_refused", building.num_refused_matches}};
-  if (result.run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
-    const io::ColmapTextModel model = sfm::ToColmapTextModel(reconstruction);
-    std::vector<std::string> outputs;
-    if (flags.model_format != "bin") {
-      io::WriteColmapTextModel(model, out_dir);
-      outputs = {"cameras.txt", "images.txt", "points3D.txt"};
-    }
-    if (flags.model_format != "txt") {
-      // sparse/0/: where COLMAP's mapper puts its first model, and where nerfstudio and the
-      // Gaussian-splatting tools look for it.
-      io::WriteColmapBinaryModel(model, io::JoinPaths(out_dir, "sparse/0"));
-      outputs.insert(outputs.end(),
-                     {"sparse/0/cameras.bin", "sparse/0/images.bin", "sparse/0/points3D.bin"});
-    }
+  if (sfm::HasModel(result.run.mapping.status)) {
+    // Every model in the input's pixels: sparse/<k>/ as COLMAP's mapper numbers its models (where
+    // nerfstudio and the Gaussian-splatting tools look for sparse/0), the largest as text on top.
+    std::vector<std::string> outputs =
+        sfm::WriteModelSet(result.run.mapping, out_dir,
+                           {flags.model_format != "bin", flags.model_format != "txt",
+                            result.run.input_size.width, result.run.input_size.height});
     std::vector<io::PlyPoint> cloud;
     for (const auto& [point3D_id, point] : reconstruction.points3D()) {
       cloud.push_back({point.xyz, point.color});
@@ -532,8 +538,19 @@ DetectorRun RunDetector(const std::string& detector_name, const Flags& flags, co
 
 void PrintSummary(const sfm::SfmRunReport& report, const sfm::SequenceReconstruction& run) {
   std::cout << "[" << report.detector << "] " << report.status << ": "
-            << report.stats.num_registered << "/" << report.num_frames << " frames registered, "
-            << report.stats.all.num_points << " points, mean track length "
+            << report.stats.num_registered << "/" << report.num_frames << " frames registered";
+  if (!report.rotation_only_frames.empty() || !report.interpolated_frames.empty()) {
+    std::cout << " (" << report.rotation_only_frames.size() << " by rotation only, "
+              << report.interpolated_frames.size() << " interpolated)";
+  }
+  if (report.models.size() > 1) {
+    std::cout << " in the largest of " << report.models.size() << " models (";
+    for (size_t m = 1; m < report.models.size(); ++m) {
+      std::cout << (m > 1 ? ", " : "") << report.models[m].num_registered;
+    }
+    std::cout << " frames in the others)";
+  }
+  std::cout << ", " << report.stats.all.num_points << " points, mean track length "
             << report.stats.all.mean_track_length << ", mean reprojection error "
             << report.stats.all.mean_reprojection_error_px << " px";
   if (report.trajectory) {
@@ -546,24 +563,23 @@ void PrintSummary(const sfm::SfmRunReport& report, const sfm::SequenceReconstruc
   const sfm::IncrementalReconstruction& mapping = run.mapping;
   if (mapping.reconstruction.NumRegisteredImages() > 0 &&
       !mapping.reconstruction.cameras().empty()) {
-    std::cout << "; camera " << mapping.reconstruction.cameras().begin()->second.Describe()
+    const sfm::Camera& camera = mapping.reconstruction.cameras().begin()->second;
+    std::cout << "; camera "
+              << sfm::ResizedCamera(camera, run.input_size.width, run.input_size.height).Describe()
               << (mapping.intrinsics_refined ? " (refined)" : "");
+    if (!report.intrinsics_rejection.empty()) {
+      std::cout << " (held at the prior: " << report.intrinsics_rejection << ")";
+    }
     if (mapping.focal_assessed && !mapping.focal_observability.observable) {
       std::cout << ", focal unobservable (optical axes within "
                 << mapping.focal_observability.max_viewing_angle_deg << " deg): prior kept";
     }
   }
-  // Frames the model could not take are reported, by index, in runs (e.g. "40-47").
-  if (report.stats.num_registered > 0 && !report.unregistered_frames.empty()) {
-    std::cout << "; unregistered frames:";
-    const std::vector<int>& frames = report.unregistered_frames;
-    for (size_t i = 0; i < frames.size();) {
-      size_t j = i;
-      while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
-      std::cout << " " << frames[i];
-      if (j > i) std::cout << "-" << frames[j];
-      i = j + 1;
-    }
+  // Frames the largest model could not take, in ranges with the check that failed (e.g.
+  // "40-47 registration/visible_points"; report.json words each).
+  if (report.stats.num_registered > 0 && !report.unregistered_ranges.empty()) {
+    std::cout << "; unregistered frames: "
+              << sfm::DescribeUnregisteredRanges(report.unregistered_ranges);
   }
   std::cout << std::endl;
 }
@@ -614,9 +630,17 @@ sfm::ColmapExportOptions ExportOptions(const Flags& flags, const Inputs& inputs)
 void WriteColmapDatabase(const Flags& flags, const Inputs& inputs,
                          const sfm::SequenceReconstruction& run, const std::string& image_path) {
   const std::string& database = flags.colmap.database;
+  // COLMAP reads a folder's images at their stored size: the tracks in the input's pixels.
+  const double to_input = static_cast<double>(run.input_size.height) / run.frame_size.height;
+  const bool folder = io::IsDirectory(flags.frames);
   const sfm::ColmapExportSummary summary = sfm::ExportTracksToColmapDatabase(
-      run.tracks,
-      IntrinsicsKnown(flags, inputs) ? std::optional<sfm::Camera>(inputs.camera) : std::nullopt,
+      folder && to_input != 1.0 ? sfm::ScaleTracks(run.tracks, to_input) : run.tracks,
+      IntrinsicsKnown(flags, inputs)
+          ? std::optional<sfm::Camera>(
+                folder
+                    ? sfm::ResizedCamera(inputs.camera, run.input_size.width, run.input_size.height)
+                    : inputs.camera)
+          : std::nullopt,
       ExportOptions(flags, inputs), database, flags.colmap.overwrite);
   sfm::ColmapMapperOptions mapper = sfm::RecommendedColmapMapperOptions(summary);
   mapper.num_threads = flags.colmap.colmap_threads;
@@ -637,9 +661,13 @@ void CompareWithColmap(const Flags& flags, const Inputs& inputs,
   const std::vector<std::optional<sfm::Rigid3d>> truth =
       inputs.ground_truth ? inputs.ground_truth->cams_from_world
                           : std::vector<std::optional<sfm::Rigid3d>>();
+  // COLMAP reads the folder's images at their stored size: the tracks in the input's pixels.
+  const double to_input = static_cast<double>(run.input_size.height) / run.frame_size.height;
   const sfm::ColmapComparison comparison = sfm::CompareWithColmap(
-      run.tracks, inputs.camera, IntrinsicsKnown(flags, inputs), truth, flags.frames,
-      io::JoinPaths(out.path(), "colmap"), options, &run.mapping);
+      to_input != 1.0 ? sfm::ScaleTracks(run.tracks, to_input) : run.tracks,
+      sfm::ResizedCamera(inputs.camera, run.input_size.width, run.input_size.height),
+      IntrinsicsKnown(flags, inputs), truth, flags.frames, io::JoinPaths(out.path(), "colmap"),
+      options, &run.mapping);
   const io::ReportTable table = comparison.Table();
   io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.md"), table.ToMarkdown());
   io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.csv"), table.ToCsv());
@@ -754,6 +782,10 @@ int Run(int argc, char** argv) {
                    "initial pair: frames at most this far apart (0: no limit, the gap grows as "
                    "far as the tracks reach)",
                    &flags.init_max_gap);
+  parser.AddOption("min-registered", "F",
+                   "exit 1 unless the largest model holds at least this fraction of the frames "
+                   "(the models are written either way; 'success' needs 0.95)",
+                   &flags.min_registered);
   comic::apps::AddThreadsFlag(parser, &flags.threads);
   comic::apps::AddObjectRegionFlags(parser, &flags.region);
   parser.AddOption("plot-plane", "P",
@@ -817,6 +849,15 @@ int Run(int argc, char** argv) {
       flags.ply_format == "binary" || flags.ply_format == "ascii", kInvalidArgument,
       "--ply-format: unknown format '" << flags.ply_format << "' (expected binary or ascii)");
   CheckColmapFlags(flags);
+  COMIC_CHECK(flags.min_registered >= 0 && flags.min_registered <= 1, kInvalidArgument,
+              "--min-registered must be in [0, 1], got " << flags.min_registered);
+  // Frames larger than the working size are tracked and mapped at it, and the models written in
+  // the input's pixels (sfm/working_resolution.h), unless --resize-height says otherwise.
+  if (!parser.WasSet("resize-height")) {
+    flags.sequence.resize_height = sfm::WorkingResizeHeight(
+        io::ImageSequence::Open(flags.frames, flags.sequence).SourceFrameSize(),
+        sfm::IncrementalPipelineOptions().max_working_image_size);
+  }
   // Validate, then write, all or nothing: --out is checked but not created; the outputs go to a
   // staging folder beside it and move into place when the run has succeeded (issue 19).
   io::CheckCreatableFolder(flags.out);
@@ -880,7 +921,7 @@ int Run(int argc, char** argv) {
   if (!flags.compare) {
     const DetectorRun result = RunDetector(flags.detector, flags, inputs, out.path());
     PrintSummary(result.report, result.run);
-    const bool success = result.run.mapping.status == sfm::ReconstructionStatus::kSuccess;
+    const bool success = sfm::HasModel(result.run.mapping.status);
     write_frames();
     if (success && !flags.colmap.database.empty()) {
       WriteColmapDatabase(flags, inputs, result.run, video ? frames_target : flags.frames);
@@ -903,6 +944,13 @@ int Run(int argc, char** argv) {
     COMIC_CHECK(success, kInvalidData,
                 result.diagnosis.message << "; try " << result.diagnosis.suggestion << " (report: "
                                          << io::JoinPaths(flags.out, "report.json") << ")");
+    COMIC_CHECK(result.report.registered_fraction >= flags.min_registered, kInvalidData,
+                "partial: the largest model holds "
+                    << std::lround(100.0 * result.report.registered_fraction)
+                    << " % of the frames, --min-registered asks for "
+                    << std::lround(100.0 * flags.min_registered)
+                    << " % (every model is written; report: "
+                    << io::JoinPaths(flags.out, "report.json") << ")");
     return 0;
   }
 

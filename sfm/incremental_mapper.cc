@@ -58,6 +58,7 @@ IncrementalMapper::IncrementalMapper(const frontend::FeatureTracks& tracks, cons
   camera.Check();
   camera_id_ = reconstruction_.AddCamera(camera);
   track_of_feature_.resize(tracks.NumFrames());
+  best_failed_pose_inliers_.assign(tracks.NumFrames(), -1);
   for (size_t frame = 0; frame < tracks.NumFrames(); ++frame) {
     Image image;
     image.image_id = ImageIdOfFrame(static_cast<int>(frame));
@@ -274,13 +275,15 @@ std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
       anchor_best_score = std::max(anchor_best_score, candidate.score);
     }
   };
-  // First the most tracked frames (for a video, the middle frames, whose tracks run both ways);
-  // only when none of them starts a model, anchors over the whole clip.
+  // First the most tracked frames (for a video, the middle frames, whose tracks run both ways),
+  // then anchors over the whole clip, so that later models find their pairs in this list; the
+  // pairs of the first anchors come first, each group best score first.
   std::vector<char> searched(num_frames, 0);
+  size_t num_first = 0;
+  bool first_group = true;
   for (const std::vector<int>& anchors :
        {MostTrackedFrames(num_tracked, excluded, options_.init_num_anchors),
         SpreadAnchors(num_tracked, excluded, options_.init_anchor_spacing)}) {
-    if (!pairs.empty()) break;
     for (size_t a = 0; a < anchors.size() && num_trials < max_num_trials; ++a) {
       const int frame1 = anchors[a];
       // (The first anchor is looked at anyway, so that a search that fails says how many tracks
@@ -290,9 +293,17 @@ std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
       searched[frame1] = 1;
       search_anchor(frame1);
     }
+    if (first_group) {
+      num_first = pairs.size();
+      for (InitialPair& pair : pairs) pair.most_tracked_anchor = true;
+    }
+    first_group = false;
   }
-  std::stable_sort(pairs.begin(), pairs.end(),
-                   [](const InitialPair& a, const InitialPair& b) { return a.score > b.score; });
+  const auto by_score = [](const InitialPair& a, const InitialPair& b) {
+    return a.score > b.score;
+  };
+  std::stable_sort(pairs.begin(), pairs.begin() + static_cast<long>(num_first), by_score);
+  std::stable_sort(pairs.begin() + static_cast<long>(num_first), pairs.end(), by_score);
   if (search) *search = seen;
   return pairs;
 }
@@ -387,9 +398,14 @@ bool IncrementalMapper::RegisterNextImage(image_t image_id) {
     points2D.push_back(image.points2D[idx].xy);
     points3D.push_back(reconstruction_.point3D(point3D_id).xyz);
   }
+  int num_inliers_found = 0;
   const auto pose = EstimateAbsolutePose(reconstruction_.camera(image.camera_id), points2D,
-                                         points3D, options_.absolute_pose);
-  if (!pose) return false;
+                                         points3D, options_.absolute_pose, &num_inliers_found);
+  if (!pose) {
+    best_failed_pose_inliers_[frame] =
+        std::max(best_failed_pose_inliers_[frame], num_inliers_found);
+    return false;
+  }
   image.cam_from_world = pose->cam_from_world;
   reconstruction_.RegisterImage(image_id);
   registration_order_.push_back(image_id);
@@ -479,15 +495,30 @@ size_t IncrementalMapper::TriangulateAllTracks() {
   return num_new;
 }
 
-size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
-  // Point pairs through the features of frames registered in both models.
+size_t IncrementalMapper::MergeModel(const Reconstruction& other,
+                                     const std::vector<FeatureLink>& links) {
+  // Point pairs: the points the two models give to one physical point.
   struct PointPair {
-    image_t image_id;
+    image_t image_id;           // a frame of this model observing it
     Eigen::Vector2d xy;         // the feature in that frame
     Eigen::Vector3d other_xyz;  // the point of `other`
     Eigen::Vector3d xyz;        // the point of this model
   };
   std::vector<PointPair> pairs;
+  std::set<std::pair<point3D_t, point3D_t>> paired;  // (this, other) point ids
+  const auto add_pair = [&](image_t image_id, point2D_t idx, point3D_t other_point3D_id) {
+    const Point2D& point2D = reconstruction_.image(image_id).points2D[idx];
+    if (!point2D.HasPoint3D() || other_point3D_id == kInvalidPoint3DId) return;
+    if (!paired.insert({point2D.point3D_id, other_point3D_id}).second) return;
+    pairs.push_back({image_id, point2D.xy, other.point3D(other_point3D_id).xyz,
+                     reconstruction_.point3D(point2D.point3D_id).xyz});
+  };
+  const auto other_point = [&](image_t image_id, point2D_t idx) {
+    if (!other.ExistsImage(image_id)) return kInvalidPoint3DId;
+    const Image& image = other.image(image_id);
+    return image.registered && idx < image.points2D.size() ? image.points2D[idx].point3D_id
+                                                           : kInvalidPoint3DId;
+  };
   std::vector<image_t> new_image_ids;
   for (const auto& [image_id, other_image] : other.images()) {
     if (!other_image.registered || !reconstruction_.ExistsImage(image_id)) continue;
@@ -496,17 +527,36 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
       new_image_ids.push_back(image_id);
       continue;
     }
+    // A frame registered in both.
     const size_t n = std::min(image.points2D.size(), other_image.points2D.size());
     for (size_t idx = 0; idx < n; ++idx) {
-      if (!image.points2D[idx].HasPoint3D() || !other_image.points2D[idx].HasPoint3D()) continue;
-      pairs.push_back({image_id, image.points2D[idx].xy,
-                       other.point3D(other_image.points2D[idx].point3D_id).xyz,
-                       reconstruction_.point3D(image.points2D[idx].point3D_id).xyz});
+      add_pair(image_id, static_cast<point2D_t>(idx), other_image.points2D[idx].point3D_id);
     }
   }
-  if (new_image_ids.empty() || static_cast<int>(pairs.size()) < options_.merge_min_num_inliers) {
-    return 0;
+  if (new_image_ids.empty()) return 0;
+  // A track with a point in both (its frames may be registered in one model each).
+  for (const auto& [point3D_id, point] : reconstruction_.points3D()) {
+    const TrackElement& element = point.track.front();
+    const int t = track_of_feature_[FrameOfImageId(element.image_id)][element.point2D_idx];
+    if (t < 0) continue;
+    for (const frontend::TrackObservation& obs : tracks_->tracks[t].observations) {
+      const point3D_t other_id = other_point(ImageIdOfFrame(obs.frame), obs.feature);
+      if (other_id == kInvalidPoint3DId) continue;
+      add_pair(element.image_id, element.point2D_idx, other_id);
+      break;
+    }
   }
+  // The two ends of a link.
+  for (const FeatureLink& link : links) {
+    if (!reconstruction_.ExistsImage(link.image_id) ||
+        !reconstruction_.image(link.image_id).registered ||
+        link.point2D_idx >= reconstruction_.image(link.image_id).points2D.size()) {
+      continue;
+    }
+    add_pair(link.image_id, link.point2D_idx,
+             other_point(link.other_image_id, link.other_point2D_idx));
+  }
+  if (static_cast<int>(pairs.size()) < options_.merge_min_num_inliers) return 0;
 
   const auto consistent = [&](const Sim3d& sim, const PointPair& pair) {
     const Image& image = reconstruction_.image(pair.image_id);
@@ -570,7 +620,50 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
     registration_order_.push_back(image_id);
   }
   TriangulateAllTracks();
+  // The tracks do not know that the two ends of a link are one point: tell the model.
+  for (const FeatureLink& link : links) {
+    if (!reconstruction_.ExistsImage(link.image_id) ||
+        !reconstruction_.ExistsImage(link.other_image_id)) {
+      continue;
+    }
+    const Image& image = reconstruction_.image(link.image_id);
+    const Image& other_image = reconstruction_.image(link.other_image_id);
+    if (!image.registered || !other_image.registered || link.point2D_idx >= image.points2D.size() ||
+        link.other_point2D_idx >= other_image.points2D.size()) {
+      continue;
+    }
+    const point3D_t a = image.points2D[link.point2D_idx].point3D_id;
+    const point3D_t b = other_image.points2D[link.other_point2D_idx].point3D_id;
+    if (a != kInvalidPoint3DId && b != kInvalidPoint3DId && a != b) FusePoints(a, b);
+  }
   return new_image_ids.size();
+}
+
+void IncrementalMapper::FusePoints(point3D_t a, point3D_t b) {
+  const Eigen::Vector3d xyz = reconstruction_.point3D(a).xyz;
+  std::set<image_t> seen;
+  for (const TrackElement& element : reconstruction_.point3D(a).track) {
+    seen.insert(element.image_id);
+  }
+  std::vector<TrackElement> moved;
+  for (const TrackElement& element : reconstruction_.point3D(b).track) {
+    if (seen.count(element.image_id)) continue;
+    const Image& image = reconstruction_.image(element.image_id);
+    const auto projection =
+        ProjectPoint(reconstruction_.camera(image.camera_id), image.cam_from_world, xyz);
+    if (projection && (*projection - image.points2D[element.point2D_idx].xy).norm() <=
+                          options_.complete_max_reprojection_error_px) {
+      moved.push_back(element);
+    }
+  }
+  if (moved.empty()) return;
+  reconstruction_.DeletePoint3D(b);
+  for (const TrackElement& element : moved) reconstruction_.AddObservation(a, element);
+}
+
+void IncrementalMapper::ResetCamera(const Camera& camera) {
+  camera.Check();
+  reconstruction_.camera(camera_id_) = camera;
 }
 
 void IncrementalMapper::FixGauge(BundleAdjustmentConfig* config) const {

@@ -21,7 +21,7 @@ ReconstructionDiagnosis DiagnoseReconstruction(const IncrementalReconstruction& 
                                                const std::vector<std::string>& frame_names) {
   using Stage = IncrementalMapper::InitialPairSearch::Stage;
   ReconstructionDiagnosis diagnosis;
-  if (reconstruction.status == ReconstructionStatus::kSuccess) return diagnosis;
+  if (HasModel(reconstruction.status)) return diagnosis;
   diagnosis.failed = true;
   const IncrementalMapper::Options& mapper = options.mapper;
   std::ostringstream message;
