@@ -682,7 +682,7 @@ PyReconstruction Reconstruct(const std::string& path, const std::string& detecto
         sfm::MakeRunReport(run, sfm::ComputeReconstructionStats(reconstruction), evaluation);
     result.report_json = sfm::RunReportToJson(report).dump();
     result.status = sfm::ReconstructionStatusName(run.mapping.status);
-    if (run.mapping.status == sfm::ReconstructionStatus::kSuccess) {
+    if (sfm::HasModel(run.mapping.status)) {
       result.model = sfm::ToColmapTextModel(reconstruction);
     }
   }
