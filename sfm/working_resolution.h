@@ -4,8 +4,8 @@
 // factor for both axes, as the project resizes frames (to a height) and scales cameras
 // (Camera::Scaled: pixel areas scale, so a pixel centre c maps to (c + 0.5) s - 0.5).
 //
-//   const int height = WorkingResizeHeight(sequence.SourceFrameSize(), 1600);  // 0: keep
-//   const double s = WorkingScale(width, height, 1600);
+//   const int height = WorkingResizeHeight(sequence.SourceFrameSize(), 1280);  // 0: keep
+//   const double s = WorkingScale(width, height, 1280);
 //   FeatureTracks small = ScaleTracks(tracks, s);
 //   ... reconstruct at the working size ...
 //   ScaleReconstruction(1.0 / s, width, height, &reconstruction);  // back in the input's pixels
