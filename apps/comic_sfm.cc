@@ -50,6 +50,7 @@
 #include "sfm/colmap/colmap_comparison.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/colmap/colmap_pipeline.h"
 #include "sfm/colmap/colmap_runner.h"
 #include "sfm/colmap/model_set_writer.h"
 #include "sfm/evaluation/ground_truth.h"
@@ -105,6 +106,7 @@ struct Flags {
   bool quiet = false;
   comic::apps::ColmapDbFlags colmap;
   bool compare_colmap = false;
+  bool compare_colmap_sift = false;  // COLMAP's own pipeline on the same frames
   // Exit 1 when the largest model holds fewer than this fraction of the frames (issue 30).
   double min_registered = 0.5;
   // --write-frames: where a video's frames are written as PNGs (empty: not written, unless
@@ -587,6 +589,17 @@ void PrintSummary(const sfm::SfmRunReport& report, const sfm::SequenceReconstruc
 // --colmap-db / --compare-colmap: checks that can fail before any work.
 void CheckColmapFlags(const Flags& flags) {
   comic::apps::CheckColmapDbFlags(flags.colmap);
+  if (flags.compare_colmap_sift) {
+    COMIC_CHECK(!flags.compare && io::IsDirectory(flags.frames), kInvalidArgument,
+                "--compare-colmap-sift needs FRAMES to be a folder of images and one detector "
+                "(not --compare)");
+    COMIC_CHECK(sfm::IsColmapAvailable(), kNotFound,
+                "--compare-colmap-sift: colmap is not installed (apt-get install colmap)");
+    COMIC_CHECK(!io::PathExists(io::JoinPaths(flags.out, "colmap_sift")), kIo,
+                io::JoinPaths(flags.out, "colmap_sift")
+                    << ": exists from an earlier --compare-colmap-sift; remove it or use another "
+                       "--output");
+  }
   if (flags.colmap.database.empty() && !flags.compare_colmap) return;
   COMIC_CHECK(!flags.compare, kInvalidArgument,
               "--colmap-db and --compare-colmap work on one detector's run, not with --compare");
@@ -691,6 +704,32 @@ void CompareWithColmap(const Flags& flags, const Inputs& inputs,
   std::cout << out.ToTargetPaths(table.ToMarkdown())
             << "COLMAP ran: " << out.ToTargetPaths(comparison.colmap_mapper_command)
             << "\n(log: " << out.ToTargetPaths(comparison.log_path) << ")" << std::endl;
+}
+
+// --compare-colmap-sift: COLMAP's own pipeline (SIFT, matcher, mapper) on the same frames.
+void CompareWithColmapSift(const Flags& flags, const Inputs& inputs, const sfm::SfmRunReport& ours,
+                           bool threads_set, const io::StagedFolder& out) {
+  sfm::ColmapPipelineOptions options;
+  options.sequential = inputs.pairing.chosen.mode == frontend::PairingMode::kSequential;
+  if (threads_set) options.num_threads = flags.colmap.colmap_threads;
+  const sfm::ColmapPipelineRun colmap = sfm::RunColmapPipeline(
+      flags.frames, inputs.sequence->FrameNames(), io::JoinPaths(out.path(), "colmap_sift"),
+      inputs.ground_truth ? inputs.ground_truth->cams_from_world
+                          : std::vector<std::optional<sfm::Rigid3d>>(),
+      options);
+  const io::ReportTable table = sfm::ColmapPipelineTable(ours, colmap);
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_sift_compare.md"), table.ToMarkdown());
+  nlohmann::json json = {{"table", table.ToJson()}, {"commands", nlohmann::json::array()}};
+  for (const std::string& command : colmap.commands) {
+    json["commands"].push_back(out.ToTargetPaths(command));
+  }
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_sift_compare.json"),
+                          json.dump(2) + "\n");
+  std::cout << table.ToMarkdown() << "COLMAP ran (log: " << out.ToTargetPaths(colmap.log_path)
+            << "):\n";
+  for (const std::string& command : colmap.commands)
+    std::cout << "  " << out.ToTargetPaths(command) << "\n";
+  std::cout << std::flush;
 }
 
 int Run(int argc, char** argv) {
@@ -803,6 +842,13 @@ int Run(int argc, char** argv) {
                  "also run COLMAP's mapper on the same tracks and write the side-by-side table "
                  "--output/colmap_compare.md (.csv, .json); COLMAP's files go to --output/colmap/",
                  &flags.compare_colmap);
+  parser.AddFlag(
+      "compare-colmap-sift",
+      "also run COLMAP's own pipeline on the same frames with its defaults (SIFT, the "
+      "sequential or exhaustive matcher as --matching chose, mapper; one thread unless "
+      "--colmap-threads) and write the side-by-side table --output/colmap_sift_compare.md; "
+      "COLMAP's files go to --output/colmap_sift/",
+      &flags.compare_colmap_sift);
   parser.AddEpilog(
       "Example (the bundled KITTI clip, calibrated from its calib.txt, measured against\n"
       "its poses.txt):\n"
@@ -927,6 +973,9 @@ int Run(int argc, char** argv) {
       WriteColmapDatabase(flags, inputs, result.run, video ? frames_target : flags.frames);
     }
     if (success && flags.compare_colmap) CompareWithColmap(flags, inputs, result.run, out);
+    if (flags.compare_colmap_sift) {
+      CompareWithColmapSift(flags, inputs, result.report, parser.WasSet("colmap-threads"), out);
+    }
     // A failed reconstruction commits its report.json (the documented exception): it says why.
     commit();
     // The error line says which check failed, by how much, and what to try (issue 17).
