@@ -2,68 +2,31 @@
 // 3.8 database (cameras, images, keypoints, raw and verified matches) for `colmap mapper`, then
 // prints the exact mapper command the sequence needs. A video's frames are written as PNGs
 // (--write-frames), since COLMAP reads image files.
-#include <filesystem>
 #include <iostream>
-#include <optional>
+#include <memory>
+#include <string>
 
 #include "apps/common/arg_parser.h"
-#include "apps/common/camera_intrinsics.h"
 #include "apps/common/colmap_db_flags.h"
 #include "apps/common/frame_range_flags.h"
 #include "apps/common/input_budget_flags.h"
 #include "apps/common/matching_flags.h"
 #include "apps/common/progress_line.h"
 #include "apps/common/shared_flags.h"
-#include "apps/common/thread_count.h"
 #include "apps/common/tracker_flags.h"
-#include "frontend/detector_factory.h"
-#include "frontend/matching/combined_tracking.h"
-#include "frontend/matching/pairing.h"
-#include "frontend/matching/tracker.h"
-#include "io/core/error.h"
-#include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
 #include "io/core/pixel_budget.h"
-#include "io/core/staged_folder.h"
-#include "io/image/frame_export.h"
-#include "io/image/image_sequence.h"
-#include "sfm/colmap/colmap_export.h"
-#include "sfm/colmap/colmap_runner.h"
+#include "sfm/run/colmap_export_run.h"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-// --write-frames without a folder: images/ beside the database.
-const char kFramesBesideDatabase[] = "<DB's folder>/images";
-
-// COLMAP's image names are paths relative to its --image_path: the path from `image_path` to the
-// frames' folder (empty when they are the same), which must lie inside it.
-std::string ImageNamePrefix(const std::string& frames, const std::string& image_path) {
-  std::error_code ec;
-  const fs::path relative =
-      fs::relative(fs::weakly_canonical(frames, ec), fs::weakly_canonical(image_path, ec), ec);
-  COMIC_CHECK(!ec && !relative.empty() && *relative.begin() != "..", kInvalidArgument,
-              "--image-path " << image_path << " must be FRAMES or a folder above it");
-  const std::string prefix = relative.generic_string();
-  return prefix == "." ? "" : prefix + "/";
-}
+namespace sfm = comic::sfm;
 
 int Run(int argc, char** argv) {
-  std::string frames;
-  std::string intrinsics_path;
-  std::string camera_model;
-  std::string detector_name = "harris";
-  std::string image_path;
-  std::string sparse_path;
-  int threads = 0;
-  bool quiet = false;
-  std::string write_frames;
+  sfm::ColmapExportRunOptions options;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
-  comic::io::ImageSequenceOptions sequence_options;
-  std::string matching = "auto";            // comic_sfm's --matching
   comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
-  comic::apps::ColmapDbFlags colmap;
+  bool quiet = false;
 
   comic::apps::ArgParser parser(
       "comic_export_colmap", "FRAMES --colmap-db DB [options]",
@@ -79,31 +42,31 @@ int Run(int argc, char** argv) {
   parser.AddPositional("FRAMES",
                        "folder of images, or video file (its frames are written as images, see "
                        "--write-frames)",
-                       &frames);
-  comic::apps::AddColmapDbFlags(parser, &colmap);
+                       &options.frames);
+  comic::apps::AddColmapDbFlags(parser, &options.colmap);
   parser.AddDeprecatedAlias("output", "colmap-db");
-  comic::apps::AddIntrinsicsFlag(parser, &intrinsics_path);
-  comic::apps::AddCameraModelFlag(parser, &camera_model);
-  comic::apps::AddDetectorFlag(parser, &detector_name);
-  comic::apps::AddMatchingFlag(parser, &matching);
+  comic::apps::AddIntrinsicsFlag(parser, &options.camera.intrinsics);
+  comic::apps::AddCameraModelFlag(parser, &options.camera.camera_model);
+  comic::apps::AddDetectorFlag(parser, &options.detector);
+  comic::apps::AddMatchingFlag(parser, &options.matching);
   comic::apps::AddTrackerFlags(parser, &tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");
-  comic::apps::AddFrameRangeFlags(parser, &sequence_options);
-  comic::apps::AddThreadsFlag(parser, &threads);
+  comic::apps::AddFrameRangeFlags(parser, &options.sequence);
+  comic::apps::AddThreadsFlag(parser, &options.threads);
   parser.AddOption("image-path", "DIR",
                    "COLMAP's --image_path: FRAMES (default) or a folder above it; image names "
                    "are relative to it",
-                   &image_path);
+                   &options.image_path);
   parser.AddOption("sparse", "DIR",
                    "output folder in the printed mapper command (default: DB's folder/sparse)",
-                   &sparse_path);
+                   &options.sparse);
   comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
-  comic::apps::AddResizeHeightFlag(parser, &sequence_options.resize_height);
+  comic::apps::AddResizeHeightFlag(parser, &options.sequence.resize_height);
   parser.AddOptionalValueOption(
       "write-frames", "DIR",
       "video input: write each frame once as DIR/frame_000000.png ..., the names the database "
       "uses, and use DIR as COLMAP's --image_path (default, and alone: images/ beside DB)",
-      kFramesBesideDatabase, &write_frames);
+      sfm::kFramesBesideDatabase, &options.write_frames);
   comic::apps::AddQuietFlag(parser, &quiet);
   parser.AddEpilog(
       "Without --intrinsics the camera is COLMAP's SIMPLE_RADIAL guess (or --camera-model's).\n"
@@ -115,116 +78,28 @@ int Run(int argc, char** argv) {
       "      --output_path sparse --Mapper.init_max_forward_motion 1 ...\n"
       "For forward motion COLMAP's default --Mapper.init_max_forward_motion 0.95 and\n"
       "--Mapper.init_min_tri_angle 16 reject every initial pair; the printed values let it start.\n"
-      "Known intrinsics are held fixed (--Mapper.ba_refine_* 0).\n");
+      "Known intrinsics are held fixed (--Mapper.ba_refine_* 0).\n"
+      "Python: comic.export_colmap(FRAMES, DB, ...) runs the same (python/README.md).\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  options.sequence.max_pixels = max_pixels;
+  options.tracker = comic::apps::ToTrackerSettings(tracker_flags, parser);
 
-  // Everything that can be checked before the work starts.
-  const std::string& output = colmap.database;
-  COMIC_CHECK(!output.empty(), kInvalidArgument, "--colmap-db DB is required");
-  comic::apps::CheckThreadCount("--threads", threads);
-  comic::io::CheckMaxPixels(max_pixels);
-  sequence_options.max_pixels = max_pixels;
-  sequence_options.Check();
-  comic::sfm::ColmapExportOptions export_options = colmap.export_options;
-  export_options.num_threads = threads;
-  comic::apps::CheckColmapDbFlags(colmap);
-  std::optional<comic::sfm::CameraModelId> model;
-  if (!camera_model.empty()) model = comic::apps::ParseCameraModelFlag(camera_model);
-  if (model) export_options.default_camera_model = *model;
-  comic::frontend::DetectorOptions detector_options;
-  detector_options.name = detector_name;
-  detector_options.comic.num_threads = threads;
-  detector_options.comic_paper.num_threads = threads;
-  detector_options.Check();
-  comic::frontend::ParsePairing(matching);
-  comic::apps::ToTrackerOptions(tracker_flags);  // validated before any work
-  comic::io::CheckWritableFile(output, colmap.overwrite);
-  COMIC_CHECK(comic::io::PathExists(frames), kNotFound, frames << ": no such file or folder");
-  const bool video = !comic::io::IsDirectory(frames);
-  COMIC_CHECK(video || write_frames.empty(), kInvalidArgument,
-              "--write-frames: " << frames
-                                 << " is a folder of images already (COLMAP reads them there); "
-                                    "--write-frames is for a video");
-  // A folder's images are COLMAP's as stored; a video's frames are written as the tracker saw
-  // them (resized too).
-  COMIC_CHECK(video || sequence_options.resize_height == 0, kInvalidArgument,
-              "--resize-height needs a video FRAMES (COLMAP reads a folder's image files at "
-              "their stored size)");
-  // Where COLMAP will find the frames: FRAMES itself, or the folder a video's frames go to.
-  std::string frames_folder = frames;
-  if (video) {
-    frames_folder = write_frames.empty() || write_frames == kFramesBesideDatabase
-                        ? comic::io::JoinPaths(comic::io::ParentPath(output), "images")
-                        : write_frames;
-    comic::io::CheckCreatableFolder(frames_folder);
+  std::unique_ptr<comic::apps::ProgressLine> progress;
+  sfm::RunCallbacks callbacks;
+  callbacks.stage_started = [&](sfm::RunStage stage, const std::string& detector) {
+    progress = std::make_unique<comic::apps::ProgressLine>(
+        stage == sfm::RunStage::kTracking
+            ? "comic_export_colmap: [" + detector + "] detection and tracking"
+            : "comic_export_colmap: writing frames",
+        quiet);
+  };
+  callbacks.frame_done = [&](size_t done, size_t total) {
+    if (progress) progress->Update(done, total);
+  };
+  const sfm::ColmapExportRunResult result = sfm::RunColmapExport(options, callbacks);
+  for (const std::string& line : sfm::ColmapExportReportLines(options, result)) {
+    std::cout << line << "\n";
   }
-  if (image_path.empty()) image_path = frames_folder;
-  COMIC_CHECK(comic::io::IsDirectory(image_path) || image_path == frames_folder, kNotFound,
-              image_path << ": --image-path is not a folder");
-  export_options.image_name_prefix = ImageNamePrefix(frames_folder, image_path);
-  if (sparse_path.empty())
-    sparse_path = comic::io::JoinPaths(comic::io::ParentPath(output), "sparse");
-
-  const auto sequence = comic::io::ImageSequence::Open(frames, sequence_options);
-  COMIC_CHECK(sequence.IsVideo() == video, kInvalidArgument,
-              frames << ": a single image, not a folder of images or a video (COLMAP export "
-                        "needs at least two frames)");
-  COMIC_CHECK(sequence.NumFrames() >= 2, kInvalidArgument,
-              frames << ": COLMAP export needs at least two frames, got " << sequence.NumFrames());
-  std::optional<comic::sfm::Camera> camera;
-  if (!intrinsics_path.empty()) {
-    camera = comic::apps::LoadCameraIntrinsics(intrinsics_path, sequence.SourceFrameSize(),
-                                               sequence.FrameSize(), model);
-  }
-
-  const comic::frontend::PairingChoice pairing =
-      comic::apps::ChooseRunPairing(matching, parser, sequence);
-  const comic::frontend::TrackerOptions tracker_options = comic::apps::TrackerOptionsForRun(
-      parser, tracker_flags, pairing, static_cast<int>(sequence.NumFrames()));
-  const auto detector = comic::frontend::MakeDetector(detector_options);
-  // Staged: the frames appear with the database or not at all.
-  std::unique_ptr<comic::io::StagedFolder> frames_out;
-  if (video) frames_out = std::make_unique<comic::io::StagedFolder>(frames_folder);
-  comic::apps::ProgressLine tracking_progress(
-      "comic_export_colmap: [" + detector_name + "] detection and tracking", quiet);
-  const comic::frontend::TrackingResult tracking = comic::frontend::TrackSequenceWithDetector(
-      sequence, *detector, tracker_options, tracking_progress.Callback());
-  const comic::frontend::FeatureTracks& tracks = tracking.tracks;
-  if (frames_out) {
-    comic::apps::ProgressLine progress("comic_export_colmap: writing frames", quiet);
-    comic::io::WriteSequenceFrames(sequence, frames_out->path(), progress.Callback());
-  }
-  const comic::sfm::ColmapExportSummary summary = comic::sfm::ExportTracksToColmapDatabase(
-      tracks, camera, export_options, output, colmap.overwrite);
-  if (frames_out) frames_out->Commit();
-
-  comic::sfm::ColmapMapperOptions mapper_options =
-      comic::sfm::RecommendedColmapMapperOptions(summary);
-  mapper_options.num_threads = colmap.colmap_threads;
-  size_t observations = 0;
-  for (const auto& track : tracks.tracks) observations += track.Length();
-  std::cout << "frames:     " << sequence.NumFrames() << " (" << frames
-            << (video ? ", written as PNG to " + frames_folder : std::string()) << ")\n"
-            << "tracks:     " << tracks.tracks.size() << " (" << detector_name << ", "
-            << observations << " observations)\n"
-            << "matching:   " << comic::frontend::PairingName(pairing.chosen) << " ("
-            << (pairing.requested.mode == comic::frontend::PairingMode::kAuto ? "auto: " : "")
-            << pairing.reason << ")\n"
-            << "camera:     "
-            << (camera ? camera->Describe() + ", known intrinsics (" + intrinsics_path + ")"
-                       : comic::sfm::CameraModelName(export_options.default_camera_model) +
-                             ", guessed (no --intrinsics)")
-            << "\n"
-            << "pairs:      " << summary.num_matched_pairs << " within "
-            << export_options.pair_window << " frames, " << summary.num_verified_pairs
-            << " verified\n"
-            << "matches:    " << summary.num_matches << " raw, " << summary.num_inlier_matches
-            << " verified\n"
-            << "wrote:      " << output << "\n"
-            << "run COLMAP on it with:\n"
-            << "  "
-            << comic::sfm::ColmapMapperCommandLine(output, image_path, sparse_path, mapper_options)
-            << "\n";
   return 0;
 }
 

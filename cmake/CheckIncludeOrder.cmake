@@ -15,7 +15,7 @@ endif()
 # common room that may see the detectors it constructs.
 set(layers
   frontend/detector_factory frontend/comic frontend/baselines frontend/matching
-  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm apps python
+  frontend/evaluation frontend sfm/evaluation sfm/colmap sfm/run sfm apps python
   io/core io/image io/colmap io/report io/datasets io)
 
 # What each layer may include (besides itself).
@@ -41,9 +41,11 @@ set(frontend_all frontend frontend/comic frontend/baselines frontend/detector_fa
 set(allowed_sfm ${io_all} ${frontend_all})
 set(allowed_sfm/evaluation ${io_all} ${frontend_all} sfm)
 set(allowed_sfm/colmap ${io_all} ${frontend_all} sfm sfm/evaluation)
-set(allowed_apps ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap)
+# sfm/run: the runs behind the apps and the Python module, over every other library folder.
+set(allowed_sfm/run ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap)
+set(allowed_apps ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap sfm/run)
 # The Python bindings sit where the apps do: over every library, under nothing.
-set(allowed_python ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap)
+set(allowed_python ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap sfm/run)
 
 function(layer_of path out)
   foreach(layer ${layers})

@@ -1,15 +1,16 @@
 // The compiled half of the Python module `comic` (python/comic/__init__.py is the other half):
 // thin wrappers that turn numpy arrays and keyword dicts into the libraries' Options and types,
 // release the GIL around the heavy calls, and hand results back as plain numpy columns, which
-// __init__.py packs into structured arrays. comic::Error becomes ValueError (kInvalidArgument) or
-// RuntimeError (every other kind), with the C++ message.
+// __init__.py packs into structured arrays. reconstruct and export_colmap are doors onto the runs
+// comic_sfm and comic_export_colmap call (sfm/run/), with their options named as the flags
+// (--max-features -> max_features). comic::Error becomes ValueError (kInvalidArgument) or
+// RuntimeError (every other kind), with the C++ message, which is the command line's.
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cstring>
-#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -17,28 +18,25 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "frontend/detector_factory.h"
 #include "frontend/matching/patch_matcher.h"
 #include "frontend/matching/tracker.h"
 #include "io/colmap/colmap_binary_model.h"
+#include "io/colmap/colmap_model_folder.h"
 #include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/version.h"
-#include "io/datasets/ground_truth_cameras.h"
 #include "io/image/image_io.h"
 #include "io/image/image_sequence.h"
 #include "io/report/ply.h"
-#include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_model_conversion.h"
-#include "sfm/colmap/colmap_runner.h"
-#include "sfm/evaluation/ground_truth.h"
-#include "sfm/evaluation/reconstruction_stats.h"
-#include "sfm/evaluation/sfm_report.h"
-#include "sfm/sequence_reconstruction.h"
-#include "sfm/trajectory_evaluation.h"
+#include "sfm/run/colmap_export_run.h"
+#include "sfm/run/reconstruction_run.h"
+#include "sfm/run/run_messages.h"
 
 namespace py = pybind11;
 
@@ -61,8 +59,11 @@ Setter Field(T* field) {
     // swapped argument is an error rather than a silent 1 or true.
     if constexpr (std::is_same_v<T, bool>) {
       if (!py::isinstance<py::bool_>(value)) throw py::type_error("expects a bool");
-    } else {
+    } else if constexpr (std::is_arithmetic_v<T>) {
       if (py::isinstance<py::bool_>(value)) throw py::type_error("expects a number, not a bool");
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      // A path or a name: str (os.PathLike is turned into str by comic/__init__.py).
+      if (!py::isinstance<py::str>(value)) throw py::type_error("expects a str");
     }
     *field = py::cast<T>(value);
   };
@@ -71,6 +72,16 @@ Setter Field(T* field) {
 template <typename Parse, typename T>
 Setter Parsed(T* field, Parse parse) {
   return [field, parse](py::handle value) { *field = parse(py::cast<std::string>(value)); };
+}
+
+// A field whose being given matters (sfm::TrackerSettings: a given value wins over the pairing's).
+template <typename T>
+Setter Given(std::optional<T>* field) {
+  return [field](py::handle value) {
+    T given{};
+    Field (&given)(value);
+    *field = given;
+  };
 }
 
 // Sets every (name, value) of `options` through `table`; unknown names raise ValueError listing the
@@ -158,12 +169,20 @@ OptionTable DetectorOptionTable(frontend::DetectorOptions* o) {
           {"nonmax_suppression", Field(&f->nonmax_suppression)}};
 }
 
-frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py::dict& options) {
+// `options` for the detector `name` (one of comic.DETECTORS, or several joined by '+' when
+// `options` is empty). `threads` says whether "threads" is one of them (detect; the runs take
+// their threads= instead, as the flags do).
+frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py::dict& options,
+                                              bool threads = true) {
   frontend::DetectorOptions detector_options;
   detector_options.name = name;
-  COMIC_CHECK(frontend::IsDetectorName(name), kInvalidArgument,
-              "unknown detector '" << name << "' (expected one of comic.detector_names)");
-  ApplyOptions(options, DetectorOptionTable(&detector_options), "detector '" + name + "'");
+  frontend::CheckDetectorName(name);  // the command line's message, listing the names
+  if (options.empty()) return detector_options;
+  COMIC_CHECK(name.find('+') == std::string::npos, kInvalidArgument,
+              "detector_options are one detector's; '" << name << "' names several");
+  OptionTable table = DetectorOptionTable(&detector_options);
+  if (!threads) table.erase("threads");
+  ApplyOptions(options, table, "detector '" + name + "'");
   detector_options.Check();
   return detector_options;
 }
@@ -176,8 +195,7 @@ void AddMatcherOptions(frontend::PatchMatcherOptions* m, OptionTable* table) {
                  {"max_cost", Field(&m->max_cost)}});
 }
 
-// The tracker options comic_sfm and comic_export_colmap share (apps/common/tracker_flags.h), by
-// their flag names.
+// comic.track's tracker options named as the apps' tracker flags (apps/common/tracker_flags.h).
 void AddSfmTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
   table->insert({{"max_features", Field(&t->max_features)},
                  {"search_radius", Field(&t->matcher.radius)},
@@ -392,12 +410,30 @@ frontend::TrackingProgress TrackingCallback(const py::object& callback) {
   };
 }
 
-sfm::MapperProgressCallback MapperCallback(const py::object& callback) {
-  if (callback.is_none()) return {};
+// The run's progress for Python: `callback(event)` after each registered frame (a dict), and the
+// command line's lines printed (sys.stdout) unless `quiet`; a truncated video's warning as a
+// RuntimeWarning. Each takes the GIL, as TrackingCallback does.
+sfm::RunCallbacks RunCallbacksFor(const py::object& callback, bool quiet,
+                                  const std::string& program) {
+  sfm::RunCallbacks callbacks;
   const py::object* function = &callback;
-  return [function](const sfm::MapperProgress& p) {
+  callbacks.inputs_resolved = [quiet, program](const sfm::RunInputs& inputs) {
     py::gil_scoped_acquire gil;
+    if (!inputs.sequence->warning().empty() &&
+        PyErr_WarnEx(PyExc_RuntimeWarning, inputs.sequence->warning().c_str(), 1) != 0) {
+      throw py::error_already_set();
+    }
+    if (quiet) return;
+    for (const std::string& line : sfm::RunInputsLines(inputs, program)) py::print(line);
+  };
+  callbacks.frame_registered = [function, quiet](const std::string& detector,
+                                                 const sfm::MapperProgress& p) {
+    if (function->is_none() && quiet) return;
+    py::gil_scoped_acquire gil;
+    if (!quiet) py::print(sfm::FrameRegisteredLine(detector, p));
+    if (function->is_none()) return;
     py::dict event;
+    event["detector"] = detector;
     event["frame"] = p.frame;
     event["frame_name"] = p.frame_name;
     event["model"] = p.attempt;
@@ -408,6 +444,13 @@ sfm::MapperProgressCallback MapperCallback(const py::object& callback) {
     event["num_points3D"] = p.num_points3D;
     (*function)(event);
   };
+  if (!quiet) {
+    callbacks.detector_finished = [](const sfm::DetectorRun& run) {
+      py::gil_scoped_acquire gil;
+      py::print(sfm::DetectorSummaryLine(run));
+    };
+  }
+  return callbacks;
 }
 
 // ---- the functions ----------------------------------------------------------------------------
@@ -494,11 +537,13 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
   return TracksToPython(result.tracks);
 }
 
-// A finished reconstruction: the COLMAP model (what comic_sfm writes) and the run's report.
+// A reconstruction for Python: the COLMAP model and, for a run's, its report.json and status.
 struct PyReconstruction {
   io::ColmapTextModel model;
-  std::string status;
-  std::string report_json;
+  std::string status;       // ReconstructionStatusName; "" for a model read without a report
+  std::string report_json;  // report.json's text ("" without one)
+  std::string failure;      // a single detector's run without a model: the command line's error
+  std::string path;         // where the model is on disk ("" for a run without --output)
 };
 
 py::dict ModelToColumns(const io::ColmapTextModel& model) {
@@ -599,178 +644,213 @@ py::dict ModelToColumns(const io::ColmapTextModel& model) {
   return result;
 }
 
-// comic_sfm's intrinsics rule: --intrinsics, else the ground truth's, else f = 1.2 max(w, h).
-sfm::Camera ResolveCamera(const io::ImageSequence& sequence, const std::string& intrinsics,
-                          const std::optional<sfm::FrameGroundTruth>& truth) {
-  const cv::Size source_size = sequence.SourceFrameSize();
-  const cv::Size frame_size = sequence.FrameSize();
-  const double scale = static_cast<double>(frame_size.height) / source_size.height;
-  sfm::Camera camera;
-  if (!intrinsics.empty()) {
-    const sfm::Camera source_camera =
-        sfm::CameraFromK(io::ReadIntrinsicsFile(intrinsics), source_size.width, source_size.height);
-    camera = scale == 1.0 ? source_camera : source_camera.Scaled(scale);
-  } else if (truth && truth->camera) {
-    camera = *truth->camera;
-  } else {
-    camera = sfm::Camera::FromImageSize(frame_size.width, frame_size.height);
-  }
-  camera.width = frame_size.width;
-  camera.height = frame_size.height;
-  return camera;
+// ---- the runs ---------------------------------------------------------------------------------
+
+// The tracker flags of comic_sfm and comic_export_colmap (apps/common/tracker_flags.h), given.
+void AddRunTrackerSettings(sfm::TrackerSettings* t, OptionTable* table) {
+  table->insert({{"max_features", Given(&t->max_features)},
+                 {"search_radius", Given(&t->search_radius)},
+                 {"unpredicted_radius", Given(&t->unpredicted_radius)},
+                 {"prediction", Given(&t->prediction)},
+                 {"coarse_radius", Given(&t->coarse_radius)},
+                 {"match_window", Given(&t->match_window)},
+                 {"track_conflicts", Given(&t->track_conflicts)},
+                 {"verify_min_gap", Given(&t->verify_min_gap)},
+                 {"match_turned", Given(&t->match_turned)},
+                 {"max_cost", Given(&t->max_cost)}});
 }
 
-PyReconstruction Reconstruct(const std::string& path, const std::string& detector_name,
-                             const py::dict& detector_options, const std::string& intrinsics,
-                             const std::string& gt, const std::string& gt_format,
-                             const py::dict& options, const py::object& callback) {
-  frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
-  sfm::SequenceReconstructionOptions sfm_options;
-  io::ImageSequenceOptions sequence_options;
-  OptionTable table;
-  // comic_sfm's option names, so that the same run is spelt the same way in both.
-  sfm::IncrementalPipelineOptions* m = &sfm_options.mapper;
-  AddSfmTrackerOptions(&sfm_options.tracker, &table);
-  table.insert({{"refine_focal", Field(&m->global_ba.refine_focal_length)},
-                {"retriangulate", Field(&m->mapper.retriangulate_incomplete_tracks)},
-                {"local_ba_images", Field(&m->local_ba_num_images)},
-                {"global_ba_growth", Field(&m->global_ba_growth_ratio)},
-                {"init_angle", Field(&m->mapper.init_tri_angle_deg)},
-                {"init_max_gap", Field(&m->mapper.init_max_frame_gap)}});
-  // As comic_sfm's --threads: detection only (0 = one per core); the bundle adjustments stay on
-  // one thread, as Ceres's sums depend on its thread scheduling.
-  int threads = 0;
-  table["threads"] = Field(&threads);
-  AddSequenceOptions(&sequence_options, &table);
-  ApplyOptions(options, table, "reconstruct");
-  COMIC_CHECK(threads >= 0, kInvalidArgument, "reconstruct: threads must be >= 0, got " << threads);
-  sfm_options.Check();
-  sequence_options.Check();
+// --first, --last, --stride, --resize-height, --max-pixels.
+void AddRunSequenceOptions(io::ImageSequenceOptions* s, OptionTable* table) {
+  AddSequenceOptions(s, table);
+  table->insert({{"max_pixels", Field(&s->max_pixels)}});
+}
 
-  if (!detector_options.contains("threads")) {
-    made.comic.num_threads = threads;
-    made.comic_paper.num_threads = threads;
-  }
-  const io::ImageSequence sequence = io::ImageSequence::Open(path, sequence_options);
-  std::optional<sfm::FrameGroundTruth> truth;
-  if (!gt.empty()) {
-    std::vector<int> source_indices;
-    for (size_t k = 0; k < sequence.NumFrames(); ++k) {
-      source_indices.push_back(sequence_options.first_frame +
-                               static_cast<int>(k) * sequence_options.stride);
+// --colmap-db and its flags (apps/common/colmap_db_flags.h).
+void AddColmapDatabaseOptions(sfm::ColmapDatabaseOptions* c, OptionTable* table) {
+  table->insert({{"colmap_db", Field(&c->colmap_db)},
+                 {"overwrite", Field(&c->overwrite)},
+                 {"window", Field(&c->export_options.pair_window)},
+                 {"max_error", Field(&c->export_options.two_view.max_error_px)},
+                 {"min_inliers", Field(&c->export_options.two_view.min_num_inliers)},
+                 {"colmap_threads", Field(&c->colmap_threads)}});
+}
+
+// --write-frames: True for the default folder (`implicit`), a path, or False / "" for none.
+Setter WriteFrames(std::string* field, const char* implicit) {
+  return [field, implicit](py::handle value) {
+    if (py::isinstance<py::bool_>(value)) {
+      *field = py::cast<bool>(value) ? implicit : "";
+    } else {
+      *field = py::cast<std::string>(value);
     }
-    truth = sfm::MatchGroundTruthToFrames(
-        io::ReadGroundTruthCameras(gt, io::ParseGroundTruthFormat(gt_format)),
-        sequence.FrameNames(), source_indices, sequence.SourceFrameSize(), sequence.FrameSize());
-  }
-  const sfm::Camera camera = ResolveCamera(sequence, intrinsics, truth);
-  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
-  const sfm::MapperProgressCallback progress = MapperCallback(callback);
+  };
+}
+
+// comic_sfm's options by their flags' names (apps/comic_sfm.cc), into the run's options.
+OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet) {
+  OptionTable table = {{"detector", Field(&o->detector)},
+                       {"compare", Field(&o->compare)},
+                       {"detectors", Field(&o->detectors)},
+                       {"intrinsics", Field(&o->camera.intrinsics)},
+                       {"camera_model", Field(&o->camera.camera_model)},
+                       {"fixed_intrinsics", Field(&o->camera.fixed_intrinsics)},
+                       {"ignore_gt_intrinsics", Field(&o->camera.ignore_gt_intrinsics)},
+                       {"gt", Field(&o->gt)},
+                       {"gt_format", Field(&o->gt_format)},
+                       {"gt_partial", Field(&o->gt_partial)},
+                       {"allow_truncated", Field(&o->sequence.allow_truncated)},
+                       {"matching", Field(&o->matching)},
+                       {"refine_focal", Field(&o->refine_focal)},
+                       {"refine_principal_point", Field(&o->refine_principal_point)},
+                       {"refine_distortion", Field(&o->refine_distortion)},
+                       {"no_retriangulate", Field(&o->no_retriangulate)},
+                       {"two_view_tracks", Field(&o->two_view_tracks)},
+                       {"local_ba_images", Field(&o->local_ba_images)},
+                       {"global_ba_growth", Field(&o->global_ba_growth)},
+                       {"init_angle", Field(&o->init_angle)},
+                       {"init_max_gap", Field(&o->init_max_gap)},
+                       {"max_working_size", Field(&o->max_working_size)},
+                       {"min_registered", Field(&o->min_registered)},
+                       {"threads", Field(&o->threads)},
+                       {"masks", Field(&o->masks)},
+                       {"regions", Field(&o->regions)},
+                       {"boundary_band", Field(&o->boundary_band)},
+                       {"plot_plane", Field(&o->plot_plane)},
+                       {"output", Field(&o->output)},
+                       {"model_format", Field(&o->model_format)},
+                       {"ply_format", Field(&o->ply_format)},
+                       {"compare_colmap", Field(&o->compare_colmap)},
+                       {"compare_colmap_sift", Field(&o->compare_colmap_sift)},
+                       {"write_frames", WriteFrames(&o->write_frames, sfm::kFramesInOutput)},
+                       {"quiet", Field(quiet)}};
+  AddRunSequenceOptions(&o->sequence, &table);
+  AddRunTrackerSettings(&o->tracker, &table);
+  AddColmapDatabaseOptions(&o->colmap, &table);
+  return table;
+}
+
+PyReconstruction FromDetectorRun(const sfm::DetectorRun& run, const std::string& path) {
   PyReconstruction result;
+  if (run.success()) result.model = sfm::ToColmapTextModel(run.run.mapping.reconstruction);
+  result.status = sfm::ReconstructionStatusName(run.run.mapping.status);
+  result.report_json = run.report_json.dump(2) + "\n";
+  result.path = run.success() ? path : "";
+  return result;
+}
+
+// comic.reconstruct: comic_sfm's run (sfm/run/reconstruction_run.h). Returns {"runs": [one
+// Reconstruction per detector], "failure", "comparison" (the --compare table), "lines" (what
+// comic_sfm prints after the run)}.
+py::dict Reconstruct(const std::string& frames, const py::dict& options,
+                     const py::dict& detector_options, const py::object& callback) {
+  sfm::ReconstructionRunOptions run;
+  run.frames = frames;
+  run.output.clear();  // nothing written unless output= is given
+  bool quiet = true;
+  ApplyOptions(options, ReconstructOptionTable(&run, &quiet), "reconstruct");
+  run.Check();
+  if (!detector_options.empty()) {
+    COMIC_CHECK(!run.compare, kInvalidArgument,
+                "detector_options are one detector's, not --compare's");
+    run.detector_options =
+        MakeDetectorOptions(run.DetectorList().front(), detector_options, /*threads=*/false);
+  }
+  const sfm::RunCallbacks callbacks = RunCallbacksFor(callback, quiet, "comic.reconstruct");
+  sfm::ReconstructionRunResult result;
   {
     py::gil_scoped_release release;
-    const sfm::SequenceReconstruction run =
-        sfm::ReconstructSequence(sequence, *detector, camera, sfm_options, {}, progress);
-    const sfm::Reconstruction& reconstruction = run.mapping.reconstruction;
-    std::optional<sfm::TrajectoryEvaluation> evaluation;
-    if (truth) {
-      evaluation =
-          sfm::EvaluateTrajectory(sfm::RegisteredPosesByName(reconstruction, sequence.FrameNames()),
-                                  truth->cams_from_world);
-    }
-    const sfm::SfmRunReport report =
-        sfm::MakeRunReport(run, sfm::ComputeReconstructionStats(reconstruction), evaluation);
-    result.report_json = sfm::RunReportToJson(report).dump();
-    result.status = sfm::ReconstructionStatusName(run.mapping.status);
-    if (sfm::HasModel(run.mapping.status)) {
-      result.model = sfm::ToColmapTextModel(reconstruction);
-    }
+    result = sfm::RunReconstruction(run, callbacks);
+  }
+  py::list runs;
+  for (const sfm::DetectorRun& detector_run : result.runs) {
+    const std::string folder = run.output.empty() ? ""
+                               : run.compare      ? io::JoinPaths(run.output, detector_run.detector)
+                                                  : run.output;
+    PyReconstruction reconstruction = FromDetectorRun(detector_run, folder);
+    if (!run.compare) reconstruction.failure = result.failure;
+    runs.append(py::cast(std::move(reconstruction)));
+  }
+  py::dict out;
+  out["runs"] = runs;
+  out["failure"] = result.failure;
+  out["comparison"] =
+      result.comparison ? py::object(py::str(result.comparison->ToMarkdown())) : py::none();
+  out["lines"] = sfm::RunOutcomeLines(result, run.output, "comic.reconstruct", quiet);
+  return out;
+}
+
+// comic.Reconstruction(path): a model in a folder (io/colmap/colmap_model_folder.h), with the
+// report.json beside it when comic_sfm wrote one.
+PyReconstruction ReadReconstruction(const std::string& path) {
+  PyReconstruction result;
+  result.model = io::ReadColmapModel(path);
+  result.path = path;
+  const std::string report = io::JoinPaths(path, "report.json");
+  if (io::PathExists(report)) {
+    result.report_json = io::ReadFileToString(report);
+    const nlohmann::json json = nlohmann::json::parse(result.report_json, nullptr, false);
+    COMIC_CHECK(!json.is_discarded() && json.is_object(), kInvalidData,
+                report << ": not a JSON object");
+    if (json.contains("status") && json["status"].is_string()) result.status = json["status"];
   }
   return result;
 }
 
-// comic_export_colmap's image names: relative to image_path, which must be `frames` or above it.
-std::string ImageNamePrefix(const std::string& frames, const std::string& image_path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path relative =
-      fs::relative(fs::weakly_canonical(frames, ec), fs::weakly_canonical(image_path, ec), ec);
-  COMIC_CHECK(!ec && !relative.empty() && *relative.begin() != "..", kInvalidArgument,
-              "image_path " << image_path << " must be the frames' folder or a folder above it");
-  const std::string prefix = relative.generic_string();
-  return prefix == "." ? "" : prefix + "/";
+// comic_export_colmap's options by their flags' names (apps/comic_export_colmap.cc).
+OptionTable ExportOptionTable(sfm::ColmapExportRunOptions* o, bool* quiet) {
+  OptionTable table = {{"intrinsics", Field(&o->camera.intrinsics)},
+                       {"camera_model", Field(&o->camera.camera_model)},
+                       {"detector", Field(&o->detector)},
+                       {"matching", Field(&o->matching)},
+                       {"threads", Field(&o->threads)},
+                       {"image_path", Field(&o->image_path)},
+                       {"sparse", Field(&o->sparse)},
+                       {"write_frames", WriteFrames(&o->write_frames, sfm::kFramesBesideDatabase)},
+                       {"quiet", Field(quiet)}};
+  AddColmapDatabaseOptions(&o->colmap, &table);
+  table.erase("colmap_db");  // the second argument
+  AddRunSequenceOptions(&o->sequence, &table);
+  AddRunTrackerSettings(&o->tracker, &table);
+  return table;
 }
 
-py::dict ExportColmap(const std::string& frames, const std::string& database,
-                      const std::string& detector_name, const py::dict& detector_options,
-                      const std::string& intrinsics, const std::string& image_path_arg,
-                      bool overwrite, const py::dict& options) {
-  frontend::DetectorOptions made = MakeDetectorOptions(detector_name, detector_options);
-  // comic_export_colmap's defaults, which are comic_sfm's: the same tracks from the same folder.
-  frontend::TrackerOptions tracker = sfm::SequenceReconstructionOptions().tracker;
-  io::ImageSequenceOptions sequence_options;
-  sfm::ColmapExportOptions export_options;
-  int threads = 0;
-  OptionTable table = {{"window", Field(&export_options.pair_window)},
-                       {"max_error", Field(&export_options.two_view.max_error_px)},
-                       {"min_inliers", Field(&export_options.two_view.min_num_inliers)},
-                       {"threads", Field(&threads)}};
-  AddSfmTrackerOptions(&tracker, &table);
-  AddSequenceOptions(&sequence_options, &table);
-  ApplyOptions(options, table, "export_colmap");
-  COMIC_CHECK(threads >= 0, kInvalidArgument,
-              "export_colmap: threads must be >= 0, got " << threads);
-  export_options.num_threads = threads;
-  if (!detector_options.contains("threads")) {
-    made.comic.num_threads = threads;
-    made.comic_paper.num_threads = threads;
+// comic.export_colmap: comic_export_colmap's run (sfm/run/colmap_export_run.h).
+py::dict ExportColmap(const std::string& frames, const std::string& colmap_db,
+                      const py::dict& options, const py::dict& detector_options) {
+  sfm::ColmapExportRunOptions run;
+  run.frames = frames;
+  run.colmap.colmap_db = colmap_db;
+  bool quiet = true;
+  ApplyOptions(options, ExportOptionTable(&run, &quiet), "export_colmap");
+  run.Check();
+  if (!detector_options.empty()) {
+    run.detector_options = MakeDetectorOptions(run.detector, detector_options, /*threads=*/false);
   }
-  sequence_options.Check();
-  export_options.Check();
-  tracker.Check();
-  io::CheckWritableFile(database, overwrite);
-  COMIC_CHECK(io::PathExists(frames), kNotFound, frames << ": no such file or folder");
-  COMIC_CHECK(io::IsDirectory(frames), kInvalidArgument,
-              frames << ": not a folder (COLMAP needs the frames as image files in a folder)");
-  const std::string image_path = image_path_arg.empty() ? frames : image_path_arg;
-  COMIC_CHECK(io::IsDirectory(image_path), kNotFound, image_path << ": image_path is not a folder");
-  export_options.image_name_prefix = ImageNamePrefix(frames, image_path);
-  const io::ImageSequence sequence = io::ImageSequence::Open(frames, sequence_options);
-  COMIC_CHECK(sequence.NumFrames() >= 2, kInvalidArgument,
-              frames << ": COLMAP export needs at least two frames, got " << sequence.NumFrames());
-  std::optional<sfm::Camera> camera;
-  if (!intrinsics.empty()) {
-    const Eigen::Matrix3d k = io::ReadIntrinsicsFile(intrinsics);
-    sfm::Camera known;
-    known.width = sequence.FrameSize().width;
-    known.height = sequence.FrameSize().height;
-    known.fx = k(0, 0);
-    known.fy = k(1, 1);
-    known.cx = k(0, 2);
-    known.cy = k(1, 2);
-    known.Check();
-    camera = known;
-  }
-  const std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(made);
-  sfm::ColmapExportSummary summary;
+  sfm::ColmapExportRunResult result;
   {
     py::gil_scoped_release release;
-    const frontend::TrackingResult tracking = frontend::TrackSequence(sequence, *detector, tracker);
-    summary = sfm::ExportTracksToColmapDatabase(tracking.tracks, camera, export_options, database,
-                                                overwrite);
+    result = sfm::RunColmapExport(run);
   }
-  const std::string sparse = io::JoinPaths(io::ParentPath(database), "sparse");
-  py::dict result;
-  result["num_images"] = summary.num_images;
-  result["num_keypoints"] = summary.num_keypoints;
-  result["num_matched_pairs"] = summary.num_matched_pairs;
-  result["num_verified_pairs"] = summary.num_verified_pairs;
-  result["num_matches"] = summary.num_matches;
-  result["num_inlier_matches"] = summary.num_inlier_matches;
-  result["known_intrinsics"] = summary.known_intrinsics;
-  result["mapper_command"] = sfm::ColmapMapperCommandLine(
-      database, image_path, sparse, sfm::RecommendedColmapMapperOptions(summary));
-  return result;
+  if (!quiet) {
+    for (const std::string& line : sfm::ColmapExportReportLines(run, result)) py::print(line);
+  }
+  const sfm::ColmapExportSummary& summary = result.summary;
+  py::dict out;
+  out["num_images"] = summary.num_images;
+  out["num_keypoints"] = summary.num_keypoints;
+  out["num_matched_pairs"] = summary.num_matched_pairs;
+  out["num_verified_pairs"] = summary.num_verified_pairs;
+  out["num_matches"] = summary.num_matches;
+  out["num_inlier_matches"] = summary.num_inlier_matches;
+  out["known_intrinsics"] = summary.known_intrinsics;
+  out["num_tracks"] = result.num_tracks;
+  out["num_observations"] = result.num_observations;
+  out["matching"] = frontend::PairingName(result.pairing.chosen);
+  out["frames_folder"] = result.frames_folder;
+  out["image_path"] = result.image_path;
+  out["mapper_command"] = result.mapper_command;
+  return out;
 }
 
 }  // namespace
@@ -801,16 +881,31 @@ PYBIND11_MODULE(_core, m) {
         py::arg("image2"), py::arg("features2"), py::arg("side_masks2"), py::arg("options"));
   m.def("track", &Track, py::arg("frames"), py::arg("detector"), py::arg("detector_options"),
         py::arg("options"), py::arg("callback"));
-  m.def("reconstruct", &Reconstruct, py::arg("path"), py::arg("detector"),
-        py::arg("detector_options"), py::arg("intrinsics"), py::arg("gt"), py::arg("gt_format"),
-        py::arg("options"), py::arg("callback"));
-  m.def("export_colmap", &ExportColmap, py::arg("frames"), py::arg("database"), py::arg("detector"),
-        py::arg("detector_options"), py::arg("intrinsics"), py::arg("image_path"),
-        py::arg("overwrite"), py::arg("options"));
+  m.def("reconstruct", &Reconstruct, py::arg("frames"), py::arg("options"),
+        py::arg("detector_options"), py::arg("callback"));
+  m.def("export_colmap", &ExportColmap, py::arg("frames"), py::arg("colmap_db"), py::arg("options"),
+        py::arg("detector_options"));
+  m.def("read_reconstruction", &ReadReconstruction, py::arg("path"));
+  m.def("reconstruct_option_names", [] {
+    comic::sfm::ReconstructionRunOptions options;
+    bool quiet = true;
+    std::vector<std::string> names;
+    for (const auto& entry : ReconstructOptionTable(&options, &quiet)) names.push_back(entry.first);
+    return names;
+  });
+  m.def("export_colmap_option_names", [] {
+    comic::sfm::ColmapExportRunOptions options;
+    bool quiet = true;
+    std::vector<std::string> names;
+    for (const auto& entry : ExportOptionTable(&options, &quiet)) names.push_back(entry.first);
+    return names;
+  });
 
   py::class_<PyReconstruction>(m, "Reconstruction")
       .def_readonly("status", &PyReconstruction::status)
       .def_readonly("report_json", &PyReconstruction::report_json)
+      .def_readonly("failure", &PyReconstruction::failure)
+      .def_readonly("path", &PyReconstruction::path)
       .def("columns", [](const PyReconstruction& r) { return ModelToColumns(r.model); })
       .def("write_text",
            [](const PyReconstruction& r, const std::string& folder) {

@@ -23,6 +23,9 @@ PACKAGES=(
   python3-pybind11
   python3-numpy  # its arrays
   python3-pytest # its test suite (ctest python/pytest)
+  python3-pip    # its wheel (pyproject.toml), built offline with setuptools and wheel (ctest python/wheel)
+  python3-setuptools
+  python3-wheel
   clang          # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
   libfuzzer-14-dev
 )

@@ -84,11 +84,14 @@ struct IncrementalPipelineOptions {
   // unaffected.
   bool relax_initial_pair = true;
   // Models are merged into the model being grown (IncrementalMapper::MergeModel) when it stops
-  // short, and as soon as it has registered merge_overlap_frames frames of an earlier model (and
-  // again at each doubling of that overlap), so that a model does not grow again what an earlier
-  // one holds; the merged model grows on from the merged frames.
+  // short, and once it has registered merge_overlap_frames frames of an earlier model (and again
+  // at each doubling of that overlap), so that a model does not grow again all an earlier one
+  // holds (COLMAP stops a model at 20 shared images, max_model_overlap); the merged model grows
+  // on from the merged frames. Merging early takes the earlier model's poses of frames this one
+  // would have registered itself: at 3 shared frames the temple ring's hessian run merged two
+  // frames 19 and 43 deg off (ATE 1.6 % of the path instead of 0.03 %).
   bool merge_models = true;
-  int merge_overlap_frames = 3;
+  int merge_overlap_frames = 20;
   // When a model stops short and a FrameMatcher is given, its frames facing an earlier model it
   // could not merge across a gap of at most seam_max_frame_gap frames (seam_num_frames on each
   // side; no other model in between) are matched, and the matches link the two models

@@ -40,10 +40,10 @@ void AddMinSideOverlapFlag(ArgParser& parser, int* pixels);
 // full-patch matches instead (frontend/matching/patch_matcher.h, issue 15).
 void AddCalibratedCostFlags(ArgParser& parser, double* min_side_fraction, double* noise_sigma,
                             bool* noise_from_pair);
-// --intrinsics FILE: the frames' intrinsics as stored (see apps/common/camera_intrinsics.h).
+// --intrinsics FILE: the frames' intrinsics as stored (see sfm/run/camera_resolution.h).
 void AddIntrinsicsFlag(ArgParser& parser, std::string* path);
 // --camera-model NAME: COLMAP's model name (sfm/camera_model.h) for the camera, checked by
-// apps/common/camera_intrinsics.h's ParseCameraModelFlag.
+// sfm/run/camera_resolution.h's ParseCameraModel.
 void AddCameraModelFlag(ArgParser& parser, std::string* name);
 
 // The object region of a sequence (paper §5.1: boundary vs interior features): --masks DIR or

@@ -1,15 +1,12 @@
-// --threads, bounded: 0 means every hardware thread, and more than the machine has is refused
-// (issue 19: --threads 100000 was accepted by six apps). Outputs do not depend on the value.
+// The apps' names for io/core/thread_count.h (HardwareThreads, CheckThreadCount), which the
+// library's runs (sfm/run/) check their thread counts with too.
 #pragma once
 
-#include <string>
+#include "io/core/thread_count.h"
 
 namespace comic::apps {
 
-// The machine's hardware threads (at least 1).
-int HardwareThreads();
-
-// Throws comic::Error(kInvalidArgument) naming `flag` unless 0 <= threads <= HardwareThreads().
-void CheckThreadCount(const std::string& flag, int threads);
+using io::CheckThreadCount;
+using io::HardwareThreads;
 
 }  // namespace comic::apps

@@ -2,12 +2,12 @@
 
 #include "apps/common/shared_flags.h"
 #include "frontend/matching/track_builder.h"
-#include "sfm/sequence_reconstruction.h"
+#include "sfm/run/tracker_settings.h"
 
 namespace comic::apps {
 
 TrackerFlags::TrackerFlags()
-    : options(sfm::SequenceReconstructionOptions().tracker),
+    : options(sfm::DefaultRunTrackerOptions()),
       prediction(frontend::MotionPredictionName(options.prediction)),
       track_conflicts(frontend::TrackConflictRuleName(options.conflict_rule)) {}
 
@@ -49,12 +49,20 @@ void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags) {
   AddMaxCostFlag(parser, &options.matcher.max_cost);
 }
 
-frontend::TrackerOptions ToTrackerOptions(const TrackerFlags& flags) {
-  frontend::TrackerOptions options = flags.options;
-  options.prediction = frontend::ParseMotionPrediction(flags.prediction);
-  options.conflict_rule = frontend::ParseTrackConflictRule(flags.track_conflicts);
-  options.Check();
-  return options;
+sfm::TrackerSettings ToTrackerSettings(const TrackerFlags& flags, const ArgParser& parser) {
+  const frontend::TrackerOptions& o = flags.options;
+  sfm::TrackerSettings settings;
+  if (parser.WasSet("max-features")) settings.max_features = o.max_features;
+  if (parser.WasSet("search-radius")) settings.search_radius = o.matcher.radius;
+  if (parser.WasSet("unpredicted-radius")) settings.unpredicted_radius = o.unpredicted_radius;
+  if (parser.WasSet("prediction")) settings.prediction = flags.prediction;
+  if (parser.WasSet("coarse-radius")) settings.coarse_radius = o.coarse_radius;
+  if (parser.WasSet("match-window")) settings.match_window = o.match_window;
+  if (parser.WasSet("track-conflicts")) settings.track_conflicts = flags.track_conflicts;
+  if (parser.WasSet("verify-min-gap")) settings.verify_min_gap = o.verify_min_gap;
+  if (parser.WasSet("match-turned")) settings.match_turned = o.match_turned_180;
+  if (parser.WasSet("max-cost")) settings.max_cost = o.matcher.max_cost;
+  return settings;
 }
 
 }  // namespace comic::apps

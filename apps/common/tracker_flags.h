@@ -8,6 +8,7 @@
 
 #include "apps/common/arg_parser.h"
 #include "frontend/matching/tracker.h"
+#include "sfm/run/tracker_settings.h"
 
 namespace comic::apps {
 
@@ -23,8 +24,8 @@ struct TrackerFlags {
 
 void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags);
 
-// flags.options with the names parsed, Check()ed. Throws comic::Error(kInvalidArgument) naming
-// the bad flag.
-frontend::TrackerOptions ToTrackerOptions(const TrackerFlags& flags);
+// The tracker flags given on the command line (parser.WasSet), as the run's settings: the others
+// keep the run's defaults, set up for the pairing --matching chooses (sfm/run/tracker_settings.h).
+sfm::TrackerSettings ToTrackerSettings(const TrackerFlags& flags, const ArgParser& parser);
 
 }  // namespace comic::apps

@@ -2,18 +2,26 @@
 
 Conventions follow cv2 and pycolmap: images are uint8 numpy arrays (H x W grey, or H x W x 3 BGR as
 cv2.imread gives them), pixel centres at integer coordinates (OpenCV), results are numpy arrays
-(structured where a row has named fields), options are keyword arguments named as the C++ Options
-fields and the apps' flags (with underscores), and errors are exceptions carrying the C++ message:
-ValueError for an invalid argument, TypeError for an option of the wrong type, RuntimeError for
-everything else (unreadable files, malformed data). Long calls release the GIL.
+(structured where a row has named fields), options are keyword arguments named as the apps' flags
+with underscores (comic_sfm --max-features -> max_features), and errors are exceptions carrying the
+command line's message: ValueError for an invalid argument, TypeError for an option of the wrong
+type, RuntimeError for everything else (unreadable files, malformed data). Long calls release the
+GIL.
+
+reconstruct() and export_colmap() run what comic_sfm and comic_export_colmap run (the library's
+sfm/run/): the same options give the same files, byte for byte.
 
     import cv2, comic
     image = cv2.imread("frame.png")
     features, side_masks = comic.detect(image, detector="comic", scale=8.4)
     features["x"], features["response"]          # float32 columns, strongest first
+
+    model = comic.reconstruct("frames/", output="out/sfm")   # as comic_sfm frames/ -o out/sfm
+    model = comic.Reconstruction("out/sfm")                   # or any COLMAP model folder
 """
 
 import json as _json
+import os as _os
 
 import numpy as _np
 
@@ -24,6 +32,8 @@ __all__ = [
     "FEATURE_DTYPE",
     "MATCH_DTYPE",
     "DETECTORS",
+    "EXPORT_COLMAP_OPTIONS",
+    "RECONSTRUCT_OPTIONS",
     "Reconstruction",
     "Tracks",
     "detect",
@@ -49,9 +59,14 @@ FEATURE_DTYPE = _np.dtype(
 )
 #: One row per match: indices into the two feature arrays and the SSD cost (grey levels squared).
 MATCH_DTYPE = _np.dtype([("index1", _np.int32), ("index2", _np.int32), ("cost", _np.float32)])
-#: The detector names, in the paper's table order.
+#: The detector names, in the paper's table order (several may be joined by '+': "comic+hessian").
 DETECTORS = tuple(_core.detector_names)
+#: The side of a feature's patch in pixels (23).
 PATCH_SIZE = _core.patch_size
+#: The keyword options of reconstruct(): comic_sfm's long flags with underscores.
+RECONSTRUCT_OPTIONS = tuple(sorted(_core.reconstruct_option_names()))
+#: The keyword options of export_colmap(): comic_export_colmap's long flags with underscores.
+EXPORT_COLMAP_OPTIONS = tuple(sorted(_core.export_colmap_option_names()))
 
 
 def _pack(columns, dtype):
@@ -129,9 +144,11 @@ class Tracks:
 
     @property
     def num_tracks(self):
+        """The number of tracks (track ids run from 0 to num_tracks - 1)."""
         return int(self.observations["track"].max()) + 1 if len(self.observations) else 0
 
     def __len__(self):
+        """The number of tracks."""
         return self.num_tracks
 
     def __repr__(self):
@@ -152,26 +169,65 @@ def track(frames, detector="comic", detector_options=None, callback=None, **opti
     unpredicted_radius, match_window, ...; for a path also resize_height, first, last, stride.
     `callback(done, total)` is called after each frame. Returns a Tracks.
     """
+    if isinstance(frames, _os.PathLike):
+        frames = _os.fspath(frames)
     if not isinstance(frames, str):
         frames = [_np.asarray(frame) for frame in frames]
     return Tracks(_core.track(frames, detector, detector_options or {}, options, callback))
 
 
-class Reconstruction:
-    """A reconstruction as comic_sfm writes it (COLMAP conventions: pixel centre of the top-left
-    pixel at (0.5, 0.5), cam_from_world poses, ids from 1).
+def _option_values(options):
+    """Paths (os.PathLike) as strings and detector lists as comic_sfm's comma-separated text."""
+    values = {}
+    for name, value in options.items():
+        if isinstance(value, _os.PathLike):
+            value = _os.fspath(value)
+        elif name == "detectors" and isinstance(value, (list, tuple)):
+            value = ",".join(value)
+        values[name] = value
+    return values
 
-    cameras: structured (camera_id, model, width, height, params[4]); images: structured
-    (image_id, camera_id, qvec[4] (w, x, y, z), tvec[3], name, num_points2D); points3D: structured
-    (point3D_id, xyz[3], rgb[3], error, track_length); points2D: structured (image_id, x, y,
-    point3D_id; -1 for none). status: "success" or why it failed; report: report.json's content
-    (without the app's "options" and "track_building").
+
+class Reconstruction:
+    """A COLMAP model as numpy arrays, read from a folder or made by reconstruct().
+
+    Reconstruction(path) reads a model as pycolmap.Reconstruction(path) does: `path` itself when it
+    holds cameras, images and points3D (.bin preferred over .txt), else its sparse/0/. So it opens
+    comic_sfm's --output (and its report.json), COLMAP's sparse/0 and any text model. Raises
+    RuntimeError naming the path when there is none.
+
+    Conventions are COLMAP's: the centre of the top-left pixel at (0.5, 0.5), cam_from_world poses
+    (qvec w, x, y, z; tvec), ids from 1.
+
+    Attributes:
+        cameras: structured array (camera_id, model, width, height, params[n]).
+        images: structured array (image_id, camera_id, qvec[4], tvec[3], name, num_points2D).
+        points3D: structured array (point3D_id, xyz[3], rgb[3], error, track_length).
+        points2D: structured array (image_id, x, y, point3D_id), one row per 2-D point of every
+            image; point3D_id is -1 for a point without a 3-D point.
+        status: a run's status ("success", or why it failed: "no_initial_pair", ...); None for a
+            model read without a report.json.
+        report: report.json's content as a dict ({} without one).
+        failure: a single detector's failed run: comic_sfm's error line (which check failed, by how
+            much, what to try); "" otherwise.
+        path: the folder the model was read from or written to ("" for a run without output).
     """
 
-    def __init__(self, core):
+    def __init__(self, path):
+        self._load(_core.read_reconstruction(_os.fspath(path)))
+
+    @classmethod
+    def _from_core(cls, core):
+        reconstruction = cls.__new__(cls)
+        reconstruction._load(core)
+        return reconstruction
+
+    def _load(self, core):
         self._core = core
-        self.status = core.status
-        self.report = _json.loads(core.report_json)
+        self.status = core.status or None
+        self.report = _json.loads(core.report_json) if core.report_json else {}
+        self.failure = core.failure
+        self.path = core.path
         columns = core.columns()
         cams = columns["cameras"]
         num_params = max([len(p) for p in cams["params"]] + [0])
@@ -229,84 +285,122 @@ class Reconstruction:
             ),
         )
 
+    def _check_model(self):
+        if self.status is not None and self.status != "success":
+            raise RuntimeError("reconstruction failed (%s): nothing to write" % self.status)
+
     def write(self, folder, model_format="both", ply_format="binary"):
-        """Writes what comic_sfm writes into `folder`: cameras.txt, images.txt, points3D.txt
-        (model_format "txt" or "both"), sparse/0/*.bin ("bin" or "both") and points.ply."""
+        """Writes the model as comic_sfm does into `folder`: cameras.txt, images.txt,
+        points3D.txt (model_format "txt" or "both"), sparse/0/*.bin ("bin" or "both") and
+        points.ply (ply_format "binary" or "ascii"). Raises ValueError for an unknown format and
+        RuntimeError for a failed run's reconstruction (no model)."""
         if model_format not in ("txt", "bin", "both"):
             raise ValueError(
-                "model_format: unknown format '%s' (expected txt, bin or both)" % model_format
+                "--model-format: unknown format '%s' (expected txt, bin or both)" % model_format
             )
-        if self.status != "success":
-            raise RuntimeError("reconstruction failed (%s): nothing to write" % self.status)
+        self._check_model()
+        folder = _os.fspath(folder)
         if model_format != "bin":
             self._core.write_text(folder)
         if model_format != "txt":
-            self._core.write_binary(folder + "/sparse/0")
-        self._core.write_ply(folder + "/points.ply", ply_format)
+            self._core.write_binary(_os.path.join(folder, "sparse", "0"))
+        self._core.write_ply(_os.path.join(folder, "points.ply"), ply_format)
+
+    def write_text(self, folder):
+        """Writes cameras.txt, images.txt and points3D.txt into `folder` (COLMAP's text model)."""
+        self._check_model()
+        self._core.write_text(_os.fspath(folder))
+
+    def write_binary(self, folder):
+        """Writes cameras.bin, images.bin and points3D.bin into `folder` (COLMAP's binary model)."""
+        self._check_model()
+        self._core.write_binary(_os.fspath(folder))
+
+    def write_ply(self, path, ply_format="binary"):
+        """Writes the 3-D points with their colours as a PLY file ("binary" or "ascii")."""
+        self._check_model()
+        self._core.write_ply(_os.fspath(path), ply_format)
 
     def __repr__(self):
         return "<comic.Reconstruction %s: %d cameras, %d images, %d points>" % (
-            self.status,
+            self.status or "model",
             len(self.cameras),
             len(self.images),
             len(self.points3D),
         )
 
 
-def reconstruct(
-    path,
-    detector="harris",
-    detector_options=None,
-    intrinsics=None,
-    gt=None,
-    gt_format="auto",
-    callback=None,
-    **options
-):
-    """Structure from motion on a frame sequence (folder of images or video), as comic_sfm.
+def reconstruct(frames, *, detector_options=None, callback=None, **options):
+    """Structure from motion on a frame sequence (a folder of images or a video), as comic_sfm.
 
-    intrinsics: a file ('fx fy cx cy', 3x3 K or 3x4 P such as KITTI's calib.txt); else those of
-    `gt` (ground-truth cameras: KITTI poses.txt, Middlebury *_par.txt, Strecha folder), else
-    f = 1.2 max(w, h). `options` use comic_sfm's names: max_features, search_radius,
-    unpredicted_radius, prediction, match_window, max_cost, threads (detection; 0 = one per
-    core), resize_height, first, last, stride, ... `callback(event)` gets a dict after each registered frame (frame, frame_name,
-    num_registered, num_frames, num_points3D, ...). Returns a Reconstruction; a sequence that
-    cannot be reconstructed gives status != "success", not an exception.
+    The run is comic_sfm's (the library's sfm/run/reconstruction_run.h): the camera comes from
+    `intrinsics`, else from the ground truth `gt`, else it is COLMAP's default SIMPLE_RADIAL guess
+    (f = 1.2 max(w, h)) self-calibrated during the run unless fixed_intrinsics=True; the same
+    options write the same files as `comic_sfm FRAMES --output ...`, byte for byte.
+
+    `options` are comic_sfm's long flags with underscores (comic.RECONSTRUCT_OPTIONS; `comic_sfm
+    --help` gives every meaning and default). A flag without a value is a bool (compare=True).
+      detectors:  detector (default "harris"; "comic", "comic+hessian", ...), compare, detectors
+                  (comma-separated or a list); detector_options: the one detector's own settings
+                  (e.g. {"scale": 8.4} for comic; not with compare).
+      camera:     intrinsics (fx fy cx cy [k1 k2 p1 p2], 3x3 K, 3x4 P such as KITTI's calib.txt,
+                  OpenCV .yml/.xml, COLMAP cameras.txt), camera_model, fixed_intrinsics,
+                  refine_focal, refine_principal_point, refine_distortion, ignore_gt_intrinsics.
+      truth:      gt (KITTI poses.txt, Middlebury *_par.txt, Strecha folder), gt_format,
+                  gt_partial, masks, regions, boundary_band.
+      frames:     resize_height, first, last, stride, max_pixels, allow_truncated.
+      tracking:   matching ("auto", "sequential", "exhaustive", "window:K"), max_features,
+                  search_radius, unpredicted_radius, prediction, coarse_radius, match_window,
+                  track_conflicts, verify_min_gap, match_turned, max_cost, threads.
+      mapping:    no_retriangulate, two_view_tracks, local_ba_images, global_ba_growth,
+                  init_angle, init_max_gap.
+      outputs:    output (a folder: written as comic_sfm writes it, all or nothing; default None:
+                  nothing written, unlike comic_sfm's out/sfm), model_format, ply_format,
+                  plot_plane, colmap_db, overwrite, window, max_error, min_inliers,
+                  colmap_threads, compare_colmap, write_frames (True: images/ in output, or a
+                  folder).
+      quiet:      default True (a library call is silent); False prints comic_sfm's lines.
+
+    `callback(event)` is called after each registered frame with a dict (detector, frame,
+    frame_name, model, initial_pair, merged, num_registered, num_frames, num_points3D).
+
+    Returns a Reconstruction; with compare=True a dict {detector: Reconstruction} in the order
+    run. A sequence that cannot be reconstructed is not an exception: its Reconstruction has
+    status != "success", no model, its report (with the diagnosis) and `failure`, comic_sfm's
+    error line. Bad options raise ValueError (TypeError for a wrong type) with comic_sfm's
+    message; unreadable input raises RuntimeError.
     """
-    core = _core.reconstruct(
-        path,
-        detector,
-        detector_options or {},
-        intrinsics or "",
-        gt or "",
-        gt_format,
-        options,
-        callback,
+    result = _core.reconstruct(
+        _os.fspath(frames), _option_values(options), detector_options or {}, callback
     )
-    return Reconstruction(core)
+    if not options.get("quiet", True):
+        for line in result["lines"]:
+            print(line)
+    runs = [Reconstruction._from_core(core) for core in result["runs"]]
+    if options.get("compare", False):
+        return {run.report["detector"]: run for run in runs}
+    return runs[0]
 
 
-def export_colmap(
-    frames,
-    database,
-    detector="harris",
-    detector_options=None,
-    intrinsics=None,
-    image_path=None,
-    overwrite=False,
-    **options
-):
-    """Tracks features through a folder of frames and writes a COLMAP 3.8 database, as
-    comic_export_colmap (same options and defaults, which are comic_sfm's tracker's: the same
-    tracks from the same folder; window=5, max_error, min_inliers, threads). Returns a summary
-    dict with the `colmap mapper` command to run."""
+def export_colmap(frames, colmap_db, *, detector_options=None, **options):
+    """Tracks features through `frames` (a folder of images or a video) and writes them as a
+    COLMAP 3.8 database at `colmap_db`, as comic_export_colmap (the library's
+    sfm/run/colmap_export_run.h): the same options write the same database, and comic_sfm's
+    colmap_db= with the same tracker options too.
+
+    `options` are comic_export_colmap's long flags with underscores (comic.EXPORT_COLMAP_OPTIONS):
+    overwrite, window, max_error, min_inliers, colmap_threads, intrinsics, camera_model, detector,
+    matching and the tracker options (max_features, search_radius, ...), first, last, stride,
+    resize_height (a video only), max_pixels, threads, image_path, sparse, write_frames (a video's
+    frames; default images/ beside the database), quiet (default True; False prints
+    comic_export_colmap's report). `detector_options`: the detector's own settings.
+
+    Returns a dict: num_images, num_keypoints, num_matched_pairs, num_verified_pairs, num_matches,
+    num_inlier_matches, known_intrinsics, num_tracks, num_observations, matching, frames_folder,
+    image_path and mapper_command (the `colmap mapper` command to run). Raises ValueError for bad
+    options and RuntimeError for input or outputs it cannot use (an existing database without
+    overwrite=True), leaving the database and frames as they were.
+    """
     return _core.export_colmap(
-        frames,
-        database,
-        detector,
-        detector_options or {},
-        intrinsics or "",
-        image_path or "",
-        bool(overwrite),
-        options,
+        _os.fspath(frames), _os.fspath(colmap_db), _option_values(options), detector_options or {}
     )

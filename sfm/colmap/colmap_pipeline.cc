@@ -5,14 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "io/colmap/colmap_binary_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
-#include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/colmap/colmap_runner.h"
-#include "sfm/evaluation/ground_truth.h"
 
 namespace comic::sfm {
 namespace {
@@ -121,10 +120,20 @@ ColmapPipelineRun RunColmapPipeline(const std::string& image_path,
   if (run.largest_model_path) {
     run.num_registered_largest = run.num_registered_per_model.front();
     if (!ground_truth.empty()) {
-      const Reconstruction largest = FromColmapTextModel(
-          io::ReadColmapBinaryModel(*run.largest_model_path), /*ignore_distortion=*/true);
-      run.trajectory =
-          EvaluateTrajectory(RegisteredPosesByName(largest, frame_names), ground_truth);
+      // The poses alone: COLMAP's tracks may observe one image twice, which a Reconstruction
+      // refuses, and the trajectory needs no points.
+      std::map<std::string, Rigid3d> by_name;
+      for (const io::ColmapImage& image :
+           io::ReadColmapBinaryModel(*run.largest_model_path).images) {
+        by_name[image.name] =
+            Rigid3d(image.cam_from_world_rotation, image.cam_from_world_translation);
+      }
+      std::vector<std::optional<Rigid3d>> poses(frame_names.size());
+      for (size_t i = 0; i < frame_names.size(); ++i) {
+        const auto it = by_name.find(frame_names[i]);
+        if (it != by_name.end()) poses[i] = it->second;
+      }
+      run.trajectory = EvaluateTrajectory(poses, ground_truth);
     }
   }
   return run;

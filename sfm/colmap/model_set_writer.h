@@ -26,8 +26,13 @@ struct ModelSetWriteOptions {
   int height = 0;
 };
 
+// The files WriteModelSet writes for `mapping`, relative to the folder, in its order.
+std::vector<std::string> ModelSetFiles(const IncrementalReconstruction& mapping,
+                                       const ModelSetWriteOptions& options);
+
 // Writes the models of `mapping` (HasModel(mapping.status) must hold) into `folder` and returns
-// the files written, relative to it. Throws comic::Error(kIo) when a file cannot be written.
+// the files written, relative to it (ModelSetFiles). Throws comic::Error(kIo) when a file cannot
+// be written.
 std::vector<std::string> WriteModelSet(const IncrementalReconstruction& mapping,
                                        const std::string& folder,
                                        const ModelSetWriteOptions& options);

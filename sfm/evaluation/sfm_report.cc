@@ -164,9 +164,7 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                      {"merges", report.num_merges},
                      {"seam_links", report.num_seam_links},
                      {"initial_pair_searches", report.num_initial_pair_searches},
-                     {"initial_pair_search_cpu_s", report.initial_pair_search_cpu_time_s},
                      {"seam_matches", report.num_seam_matches},
-                     {"seam_matching_cpu_s", report.seam_matching_cpu_time_s},
                      {"working_scale", report.working_scale}};
   json["intrinsics_rejection"] = report.intrinsics_rejection.empty()
                                      ? nlohmann::json(nullptr)
@@ -207,6 +205,8 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
       {"total", report.wall_time_s},
       {"cpu",
        {{"mapping", report.mapping_cpu_time_s},
+        {"initial_pair_search", report.initial_pair_search_cpu_time_s},
+        {"seam_matching", report.seam_matching_cpu_time_s},
         {"local_bundle_adjustment", report.local_ba_cpu_time_s},
         {"global_bundle_adjustment", report.global_ba_cpu_time_s}}},
       {"num_local_bundle_adjustments", report.num_local_ba},

@@ -431,7 +431,7 @@ TEST(ComicSfm, BadInputGivesOneLineErrorAndNonZeroExit) {
       {frames + out + " --model-format json", 2, "--model-format"},
       {frames + out + " --ply-format binary_big_endian", 2, "--ply-format"},
       {frames + out + " --prediction psychic", 2, "psychic"},
-      {frames + out + " --local-ba-images 1", 2, "local_ba_num_images"},
+      {frames + out + " --local-ba-images 1", 2, "--local-ba-images must be >= 2"},
       {frames + out + " --threads -1", 2, "--threads must be >= 0"},
       {frames + out + " --regions a --masks b", 2, "exclude each other"},
       {frames + out + " --max-features x", 2, "expected an integer"},

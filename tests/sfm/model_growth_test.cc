@@ -51,7 +51,8 @@ TEST(ModelGrowth, AnImplausibleSelfCalibrationIsResetToThePrior) {
 
 TEST(ModelGrowth, MergesAnEarlierModelOnceItOverlapsIt) {
   const SyntheticScene scene = HandHeldScene();
-  const IncrementalPipelineOptions options;
+  IncrementalPipelineOptions options;
+  options.merge_overlap_frames = 3;
   IncrementalMapper searcher(scene.tracks, scene.camera, options.mapper);
   const auto first_pair = searcher.FindInitialPair();
   ASSERT_TRUE(first_pair.has_value());

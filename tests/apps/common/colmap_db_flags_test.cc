@@ -1,4 +1,5 @@
-// ColmapDbFlags: the export flags comic_sfm --colmap-db and comic_export_colmap share.
+// AddColmapDbFlags: the export flags comic_sfm --colmap-db and comic_export_colmap share, bound to
+// sfm::ColmapDatabaseOptions, whose Check() names the bad flag.
 #include "apps/common/colmap_db_flags.h"
 
 #include <gtest/gtest.h>
@@ -11,7 +12,7 @@
 namespace {
 
 using comic::apps::ArgParser;
-using comic::apps::ColmapDbFlags;
+using ColmapDbFlags = comic::sfm::ColmapDatabaseOptions;
 
 void Parse(ArgParser& parser, std::vector<std::string> args) {
   args.insert(args.begin(), "prog");
@@ -26,7 +27,7 @@ std::string CheckMessage(const std::vector<std::string>& args) {
   comic::apps::AddColmapDbFlags(parser, &flags);
   Parse(parser, args);
   try {
-    comic::apps::CheckColmapDbFlags(flags);
+    flags.Check();
   } catch (const comic::Error& e) {
     EXPECT_EQ(e.kind(), comic::ErrorKind::kInvalidArgument);
     return e.what();
@@ -49,7 +50,7 @@ TEST(ColmapDbFlags, DefaultsAreTheExportsAndFlagsReachThem) {
   comic::apps::AddColmapDbFlags(set_parser, &set);
   Parse(set_parser, {"--colmap-db", "a.db", "--overwrite", "--window", "3", "--max-error", "1.5",
                      "--min-inliers", "20", "--colmap-threads", "2"});
-  EXPECT_EQ(set.database, "a.db");
+  EXPECT_EQ(set.colmap_db, "a.db");
   EXPECT_TRUE(set.overwrite);
   EXPECT_EQ(set.export_options.pair_window, 3);
   EXPECT_EQ(set.export_options.two_view.max_error_px, 1.5);

@@ -29,7 +29,8 @@ TEST(TrackerFlags, DefaultsAreTheReconstructionsTracker) {
   ArgParser parser("prog", "", "");
   comic::apps::AddTrackerFlags(parser, &flags);
   Parse(parser, {});
-  const comic::frontend::TrackerOptions options = comic::apps::ToTrackerOptions(flags);
+  const comic::frontend::TrackerOptions options =
+      comic::apps::ToTrackerSettings(flags, parser).ToTrackerOptions();
   EXPECT_EQ(options.max_features, 2000);
   EXPECT_EQ(options.max_features, expected.max_features);
   EXPECT_EQ(options.prediction, comic::frontend::MotionPrediction::kConstantVelocity);
@@ -50,7 +51,8 @@ TEST(TrackerFlags, FlagsReachTheOptions) {
   Parse(parser, {"--max-features", "100", "--search-radius", "12.5", "--prediction",
                  "coarse-to-fine", "--match-window", "3", "--track-conflicts", "drop", "--max-cost",
                  "250", "--verify-min-gap", "2", "--match-turned"});
-  const comic::frontend::TrackerOptions options = comic::apps::ToTrackerOptions(flags);
+  const comic::frontend::TrackerOptions options =
+      comic::apps::ToTrackerSettings(flags, parser).ToTrackerOptions();
   EXPECT_EQ(options.max_features, 100);
   EXPECT_EQ(options.matcher.radius, 12.5);
   EXPECT_EQ(options.prediction, comic::frontend::MotionPrediction::kCoarseToFine);
@@ -70,7 +72,7 @@ TEST(TrackerFlags, BadNamesAndValuesThrowInvalidArgument) {
     comic::apps::AddTrackerFlags(parser, &flags);
     Parse(parser, args);
     try {
-      comic::apps::ToTrackerOptions(flags);
+      comic::apps::ToTrackerSettings(flags, parser).ToTrackerOptions();
       ADD_FAILURE() << args.front() << " " << args.back() << " was accepted";
     } catch (const comic::Error& e) {
       EXPECT_EQ(e.kind(), comic::ErrorKind::kInvalidArgument) << e.what();

@@ -1,11 +1,11 @@
-#include "apps/common/thread_count.h"
+#include "io/core/thread_count.h"
 
 #include <algorithm>
 #include <thread>
 
 #include "io/core/error.h"
 
-namespace comic::apps {
+namespace comic::io {
 
 int HardwareThreads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
@@ -16,4 +16,4 @@ void CheckThreadCount(const std::string& flag, int threads) {
                    << "machine; 0 = all), got " << threads);
 }
 
-}  // namespace comic::apps
+}  // namespace comic::io

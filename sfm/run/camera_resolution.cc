@@ -1,0 +1,90 @@
+#include "sfm/run/camera_resolution.h"
+
+#include "io/core/error.h"
+#include "io/datasets/camera_calibration_file.h"
+
+namespace comic::sfm {
+
+void CameraChoice::Check() const {
+  if (!camera_model.empty()) ParseCameraModel(camera_model);
+}
+
+CameraModelId ParseCameraModel(const std::string& name) {
+  const auto model = CameraModelFromName(name);
+  COMIC_CHECK(model.has_value(), kInvalidArgument,
+              "--camera-model: expected one of " << CameraModelNames() << ", got '" << name << "'");
+  return *model;
+}
+
+Camera ConvertCameraModel(const Camera& camera, CameraModelId model) {
+  if (camera.model == model) return camera;
+  Camera converted = camera;
+  converted.model = model;
+  try {
+    converted.Check();
+  } catch (const Error&) {
+    throw Error(ErrorKind::kInvalidArgument, "--camera-model " + CameraModelName(model) +
+                                                 " cannot hold the camera " + camera.Describe() +
+                                                 " without losing parameters");
+  }
+  return converted;
+}
+
+Camera LoadCameraCalibration(const std::string& path, const cv::Size& source_size,
+                             const cv::Size& frame_size,
+                             const std::optional<CameraModelId>& model) {
+  const io::CameraCalibration calibration = io::ReadCameraCalibrationFile(path);
+  COMIC_CHECK(
+      (calibration.width == 0 && calibration.height == 0) ||
+          (calibration.width == source_size.width && calibration.height == source_size.height),
+      kInvalidData,
+      path << ": calibration is for " << calibration.width << "x" << calibration.height
+           << " images, the frames are " << source_size.width << "x" << source_size.height);
+  const auto file_model = CameraModelFromName(calibration.model);
+  COMIC_CHECK(file_model.has_value(), kInvalidData,
+              path << ": unsupported camera model " << calibration.model);
+  Camera source_camera;
+  try {
+    source_camera =
+        Camera::FromParams(*file_model, source_size.width, source_size.height, calibration.params);
+  } catch (const Error& error) {
+    throw Error(ErrorKind::kInvalidData, path + ": " + error.what());
+  }
+  if (model) source_camera = ConvertCameraModel(source_camera, *model);
+  const double scale = static_cast<double>(frame_size.height) / source_size.height;
+  Camera camera = scale == 1.0 ? source_camera : source_camera.Scaled(scale);
+  camera.width = frame_size.width;
+  camera.height = frame_size.height;
+  return camera;
+}
+
+ResolvedCamera ResolveCamera(const CameraChoice& choice, const cv::Size& source_size,
+                             const cv::Size& frame_size,
+                             const std::optional<FrameGroundTruth>& ground_truth,
+                             const std::string& gt_path) {
+  std::optional<CameraModelId> model;
+  if (!choice.camera_model.empty()) model = ParseCameraModel(choice.camera_model);
+  ResolvedCamera resolved;
+  if (!choice.intrinsics.empty()) {
+    resolved.camera = LoadCameraCalibration(choice.intrinsics, source_size, frame_size, model);
+    resolved.source = "file " + choice.intrinsics;
+  } else if (ground_truth && ground_truth->camera && !choice.ignore_gt_intrinsics) {
+    resolved.camera = *ground_truth->camera;
+    if (model) resolved.camera = ConvertCameraModel(resolved.camera, *model);
+    resolved.source = "ground truth " + gt_path;
+  } else {
+    // COLMAP's default for unknown cameras: SIMPLE_RADIAL, f = 1.2 max(w, h), k = 0.
+    resolved.camera = Camera::FromImageSize(frame_size.width, frame_size.height,
+                                            model.value_or(CameraModelId::kSimpleRadial));
+    resolved.self_calibrating = true;
+    resolved.refine_intrinsics = !choice.fixed_intrinsics;
+    resolved.source =
+        std::string("default: f = 1.2 max(w, h), principal point at the centre") +
+        (choice.fixed_intrinsics ? ", held fixed" : ", refined once the model constrains it");
+  }
+  resolved.camera.width = frame_size.width;
+  resolved.camera.height = frame_size.height;
+  return resolved;
+}
+
+}  // namespace comic::sfm

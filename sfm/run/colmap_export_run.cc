@@ -1,0 +1,183 @@
+#include "sfm/run/colmap_export_run.h"
+
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "frontend/matching/combined_tracking.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/core/staged_folder.h"
+#include "io/core/thread_count.h"
+#include "io/image/frame_export.h"
+#include "sfm/colmap/colmap_runner.h"
+
+namespace comic::sfm {
+
+namespace {
+
+// COLMAP's image names are paths relative to its --image_path: the path from `image_path` to the
+// frames' folder (empty when they are the same), which must lie inside it.
+std::string ImageNamePrefix(const std::string& frames, const std::string& image_path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path relative =
+      fs::relative(fs::weakly_canonical(frames, ec), fs::weakly_canonical(image_path, ec), ec);
+  COMIC_CHECK(!ec && !relative.empty() && *relative.begin() != "..", kInvalidArgument,
+              "--image-path " << image_path << " must be FRAMES or a folder above it");
+  const std::string prefix = relative.generic_string();
+  return prefix == "." ? "" : prefix + "/";
+}
+
+// Where things go, from the options and the file system, before any work: the frames' folder
+// for COLMAP, --image-path, --sparse. Throws comic::Error naming the flag or the file.
+void PlaceOutputs(const ColmapExportRunOptions& options, ColmapExportRunResult* result) {
+  const std::string& database = options.colmap.colmap_db;
+  io::CheckWritableFile(database, options.colmap.overwrite);
+  COMIC_CHECK(io::PathExists(options.frames), kNotFound,
+              options.frames << ": no such file or folder");
+  result->video = !io::IsDirectory(options.frames);
+  COMIC_CHECK(result->video || options.write_frames.empty(), kInvalidArgument,
+              "--write-frames: " << options.frames
+                                 << " is a folder of images already (COLMAP reads them there); "
+                                    "--write-frames is for a video");
+  // A folder's images are COLMAP's as stored; a video's frames are written as the tracker saw
+  // them (resized too).
+  COMIC_CHECK(result->video || options.sequence.resize_height == 0, kInvalidArgument,
+              "--resize-height needs a video FRAMES (COLMAP reads a folder's image files at "
+              "their stored size)");
+  result->frames_folder = options.frames;
+  if (result->video) {
+    result->frames_folder =
+        options.write_frames.empty() || options.write_frames == kFramesBesideDatabase
+            ? io::JoinPaths(io::ParentPath(database), "images")
+            : options.write_frames;
+    io::CheckCreatableFolder(result->frames_folder);
+  }
+  result->image_path = options.image_path.empty() ? result->frames_folder : options.image_path;
+  COMIC_CHECK(io::IsDirectory(result->image_path) || result->image_path == result->frames_folder,
+              kNotFound, result->image_path << ": --image-path is not a folder");
+  result->sparse =
+      options.sparse.empty() ? io::JoinPaths(io::ParentPath(database), "sparse") : options.sparse;
+}
+
+io::ImageSequence OpenFrames(const ColmapExportRunOptions& options, bool video) {
+  io::ImageSequence sequence = io::ImageSequence::Open(options.frames, options.sequence);
+  COMIC_CHECK(sequence.IsVideo() == video, kInvalidArgument,
+              options.frames << ": a single image, not a folder of images or a video (COLMAP "
+                                "export needs at least two frames)");
+  COMIC_CHECK(
+      sequence.NumFrames() >= 2, kInvalidArgument,
+      options.frames << ": COLMAP export needs at least two frames, got " << sequence.NumFrames());
+  return sequence;
+}
+
+frontend::TrackingResult Track(const ColmapExportRunOptions& options,
+                               const io::ImageSequence& sequence,
+                               const frontend::TrackerOptions& tracker,
+                               const RunCallbacks& callbacks) {
+  frontend::DetectorOptions detector_options = options.detector_options;
+  detector_options.name = options.detector;
+  detector_options.comic.num_threads = options.threads;
+  detector_options.comic_paper.num_threads = options.threads;
+  const auto detector = frontend::MakeDetector(detector_options);
+  if (callbacks.stage_started) callbacks.stage_started(RunStage::kTracking, options.detector);
+  return frontend::TrackSequenceWithDetector(sequence, *detector, tracker, callbacks.frame_done);
+}
+
+}  // namespace
+
+void ColmapExportRunOptions::Check() const {
+  COMIC_CHECK(!colmap.colmap_db.empty(), kInvalidArgument, "--colmap-db DB is required");
+  io::CheckThreadCount("--threads", threads);
+  io::CheckMaxPixels(sequence.max_pixels);
+  sequence.Check();
+  colmap.Check();
+  camera.Check();
+  frontend::DetectorOptions detector_check = detector_options;
+  detector_check.name = detector;
+  try {
+    detector_check.Check();
+  } catch (const Error& e) {
+    throw Error(ErrorKind::kInvalidArgument, std::string("--detector: ") + e.what());
+  }
+  frontend::ParsePairing(matching);
+  tracker.ToTrackerOptions();
+}
+
+ColmapExportRunResult RunColmapExport(const ColmapExportRunOptions& options,
+                                      const RunCallbacks& callbacks) {
+  options.Check();
+  ColmapExportRunResult result;
+  PlaceOutputs(options, &result);
+  ColmapExportOptions export_options = options.colmap.export_options;
+  export_options.num_threads = options.threads;
+  if (!options.camera.camera_model.empty()) {
+    export_options.default_camera_model = ParseCameraModel(options.camera.camera_model);
+  }
+  export_options.image_name_prefix = ImageNamePrefix(result.frames_folder, result.image_path);
+  const io::ImageSequence sequence = OpenFrames(options, result.video);
+  result.num_frames = sequence.NumFrames();
+  if (!options.camera.intrinsics.empty()) {
+    result.camera = ResolveCamera(options.camera, sequence.SourceFrameSize(), sequence.FrameSize(),
+                                  std::nullopt)
+                        .camera;
+  }
+  result.pairing = ChooseRunPairing(options.matching, options.tracker, sequence);
+  const frontend::TrackerOptions tracker =
+      TrackerOptionsForRun(options.tracker, result.pairing, static_cast<int>(result.num_frames));
+  // Staged: the frames appear with the database or not at all.
+  std::unique_ptr<io::StagedFolder> frames_out;
+  if (result.video) frames_out = std::make_unique<io::StagedFolder>(result.frames_folder);
+  const frontend::TrackingResult tracking = Track(options, sequence, tracker, callbacks);
+  if (frames_out) {
+    if (callbacks.stage_started) callbacks.stage_started(RunStage::kWritingFrames, "");
+    io::WriteSequenceFrames(sequence, frames_out->path(), callbacks.frame_done);
+  }
+  result.summary = ExportTracksToColmapDatabase(tracking.tracks, result.camera, export_options,
+                                                options.colmap.colmap_db, options.colmap.overwrite);
+  if (frames_out) frames_out->Commit();
+
+  result.num_tracks = tracking.tracks.tracks.size();
+  for (const auto& track : tracking.tracks.tracks) result.num_observations += track.Length();
+  result.guessed_model = export_options.default_camera_model;
+  result.pair_window = export_options.pair_window;
+  ColmapMapperOptions mapper = RecommendedColmapMapperOptions(result.summary);
+  mapper.num_threads = options.colmap.colmap_threads;
+  result.mapper_command =
+      ColmapMapperCommandLine(options.colmap.colmap_db, result.image_path, result.sparse, mapper);
+  return result;
+}
+
+std::vector<std::string> ColmapExportReportLines(const ColmapExportRunOptions& options,
+                                                 const ColmapExportRunResult& result) {
+  const ColmapExportSummary& summary = result.summary;
+  const frontend::PairingChoice& pairing = result.pairing;
+  std::ostringstream frames, tracks, matching, camera, pairs, matches;
+  frames << "frames:     " << result.num_frames << " (" << options.frames
+         << (result.video ? ", written as PNG to " + result.frames_folder : std::string()) << ")";
+  tracks << "tracks:     " << result.num_tracks << " (" << options.detector << ", "
+         << result.num_observations << " observations)";
+  matching << "matching:   " << frontend::PairingName(pairing.chosen) << " ("
+           << (pairing.requested.mode == frontend::PairingMode::kAuto ? "auto: " : "")
+           << pairing.reason << ")";
+  camera << "camera:     "
+         << (result.camera ? result.camera->Describe() + ", known intrinsics (" +
+                                 options.camera.intrinsics + ")"
+                           : CameraModelName(result.guessed_model) + ", guessed (no --intrinsics)");
+  pairs << "pairs:      " << summary.num_matched_pairs << " within " << result.pair_window
+        << " frames, " << summary.num_verified_pairs << " verified";
+  matches << "matches:    " << summary.num_matches << " raw, " << summary.num_inlier_matches
+          << " verified";
+  return {frames.str(),
+          tracks.str(),
+          matching.str(),
+          camera.str(),
+          pairs.str(),
+          matches.str(),
+          "wrote:      " + options.colmap.colmap_db,
+          "run COLMAP on it with:",
+          "  " + result.mapper_command};
+}
+
+}  // namespace comic::sfm

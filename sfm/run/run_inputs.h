@@ -1,0 +1,44 @@
+// What every detector of a run shares, resolved and validated once before any heavy work: the
+// frames, the ground truth matched to them, the camera (camera_resolution.h), the object regions,
+// the plane of the trajectory plot, the frame pairs matched and the tracker options they give.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frontend/matching/pairing.h"
+#include "frontend/matching/tracker.h"
+#include "io/datasets/ground_truth_cameras.h"
+#include "io/image/image_sequence.h"
+#include "sfm/evaluation/ground_truth.h"
+#include "sfm/evaluation/reconstruction_stats.h"
+#include "sfm/evaluation/trajectory_plot.h"
+#include "sfm/run/camera_resolution.h"
+#include "sfm/run/run_options.h"
+
+namespace comic::sfm {
+
+struct RunInputs {
+  std::unique_ptr<io::ImageSequence> sequence;
+  std::vector<int> source_indices;  // per frame: its index in the folder or video
+  ResolvedCamera camera;
+  std::optional<FrameGroundTruth> ground_truth;
+  io::GroundTruthFormat gt_format = io::GroundTruthFormat::kAuto;
+  std::vector<cv::Mat> region_labels;  // per frame, empty without --regions / --masks
+  PlotPlane plot_plane;
+  bool plot_plane_from_estimate = false;  // auto without ground truth: PCA of our centres
+  frontend::PairingChoice pairing;        // --matching resolved on the frames
+  frontend::TrackerOptions tracker;       // the tracker settings set up for that pairing
+};
+
+// Opens the frames and resolves everything above. Throws comic::Error for unreadable or
+// inconsistent input (frames, ground truth, calibration, regions), naming the file.
+RunInputs ResolveRunInputs(const ReconstructionRunOptions& options);
+
+// The region label of an observation, from the per-frame labels of `inputs` (none without
+// regions).
+RegionLabelFn RegionLabelsOf(const RunInputs& inputs);
+
+}  // namespace comic::sfm

@@ -1,0 +1,152 @@
+#include "sfm/run/run_outputs.h"
+
+#include <algorithm>
+
+#include "io/colmap/colmap_binary_model.h"
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/image/image_io.h"
+#include "io/report/ply.h"
+#include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/colmap/model_set_writer.h"
+#include "sfm/run/colmap_outputs.h"
+#include "sfm/run/run_report.h"
+
+namespace comic::sfm {
+
+namespace {
+
+const char* const kTextModelFiles[] = {"cameras.txt", "images.txt", "points3D.txt"};
+
+// Every model, in the input's pixels: sparse/<k>/ as COLMAP's mapper numbers its models (sparse/0,
+// the largest, is where nerfstudio and the Gaussian-splatting tools look), the largest also as
+// text at the top (sfm/colmap/model_set_writer.h).
+ModelSetWriteOptions ModelWriteOptions(const DetectorRun& run,
+                                       const ReconstructionRunOptions& options) {
+  ModelSetWriteOptions write;
+  write.text = options.model_format != "bin";
+  write.binary = options.model_format != "txt";
+  write.width = run.run.input_size.width;
+  write.height = run.run.input_size.height;
+  return write;
+}
+
+void WriteModel(const DetectorRun& run, const ReconstructionRunOptions& options,
+                const std::string& folder) {
+  WriteModelSet(run.run.mapping, folder, ModelWriteOptions(run, options));
+}
+
+void WritePointCloud(const DetectorRun& run, const ReconstructionRunOptions& options,
+                     const std::string& folder) {
+  std::vector<io::PlyPoint> cloud;
+  for (const auto& [point3D_id, point] : run.run.mapping.reconstruction.points3D()) {
+    cloud.push_back({point.xyz, point.color});
+  }
+  io::WritePly(io::JoinPaths(folder, "points.ply"), cloud, io::ParsePlyFormat(options.ply_format));
+}
+
+void WriteTrajectoryPlot(const DetectorRun& run, const ReconstructionRunOptions& options,
+                         const RunInputs& inputs, const std::string& folder) {
+  io::WriteImageAtomically(
+      io::JoinPaths(folder, "trajectory.png"),
+      RenderRunPlot(inputs, run.run.mapping.reconstruction, run.evaluation,
+                    "comic_sfm --detector " + run.detector + "  " + options.frames));
+}
+
+// No model: the tracks as a COLMAP database (`colmap mapper` or its GUI can be tried on them;
+// docs/footage.md), and the rotation-only path when there is one.
+void WriteWhatWasFound(const DetectorRun& run, const ReconstructionRunOptions& options,
+                       const RunInputs& inputs, const std::string& folder) {
+  WriteTracksDatabase(run, options, inputs, io::JoinPaths(folder, "tracks.db"));
+  if (run.rotation_only && run.rotation_only->num_registered >= 2) {
+    io::WriteColmapTextModel(ToColmapTextModel(run.rotation_only->reconstruction),
+                             io::JoinPaths(folder, "rotation_only"));
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
+                                             const ReconstructionRunOptions& options) {
+  std::vector<std::string> files;
+  if (run.success()) {
+    files = ModelSetFiles(run.run.mapping, ModelWriteOptions(run, options));
+    files.insert(files.end(), {"points.ply", "trajectory.png"});
+  } else if (run.keeps_tracks) {
+    files.push_back("tracks.db");
+    if (run.rotation_only && run.rotation_only->num_registered >= 2) {
+      for (const char* name : kTextModelFiles)
+        files.push_back(std::string("rotation_only/") + name);
+    }
+  }
+  return files;
+}
+
+void WriteDetectorOutputs(const DetectorRun& run, const ReconstructionRunOptions& options,
+                          const RunInputs& inputs, const std::string& folder) {
+  io::EnsureWritableDirectory(folder);
+  if (run.success()) {
+    WriteModel(run, options, folder);
+    WritePointCloud(run, options, folder);
+    WriteTrajectoryPlot(run, options, inputs, folder);
+  } else if (run.keeps_tracks) {
+    WriteWhatWasFound(run, options, inputs, folder);
+  }
+  io::WriteFileAtomically(io::JoinPaths(folder, "report.json"), run.report_json.dump(2) + "\n");
+}
+
+io::ReportTable ComparisonTable(const std::vector<DetectorRun>& runs) {
+  std::vector<SfmRunReport> reports;
+  for (const DetectorRun& run : runs) reports.push_back(run.report);
+  return MakeComparisonTable(reports);
+}
+
+void WriteComparisonOutputs(const io::ReportTable& table, const std::vector<DetectorRun>& runs,
+                            const ReconstructionRunOptions& options, const RunInputs& inputs,
+                            const std::string& folder) {
+  io::WriteFileAtomically(io::JoinPaths(folder, "compare.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(folder, "compare.csv"), table.ToCsv());
+  nlohmann::json json = {{"table", table.ToJson()}, {"runs", nlohmann::json::array()}};
+  for (const DetectorRun& run : runs) json["runs"].push_back(RunReportToJson(run.report));
+  json["options"] = RunOptionsToJson(options, inputs);
+  io::WriteFileAtomically(io::JoinPaths(folder, "compare.json"), json.dump(2) + "\n");
+}
+
+cv::Mat RenderRunPlot(const RunInputs& inputs, const Reconstruction& reconstruction,
+                      const std::optional<TrajectoryEvaluation>& evaluation,
+                      const std::string& title) {
+  const io::ImageSequence& sequence = *inputs.sequence;
+  const auto estimated = RegisteredPosesByName(reconstruction, sequence.FrameNames());
+  std::vector<std::optional<Eigen::Vector3d>> estimated_centers(estimated.size());
+  std::vector<std::optional<Eigen::Vector3d>> true_centers(estimated.size());
+  std::vector<Eigen::Vector3d> all_estimated;
+  for (size_t i = 0; i < estimated.size(); ++i) {
+    if (estimated[i]) {
+      Eigen::Vector3d center = ProjectionCenter(*estimated[i]);
+      if (evaluation) center = evaluation->gt_from_estimated * center;
+      estimated_centers[i] = center;
+      all_estimated.push_back(center);
+    }
+    if (inputs.ground_truth && inputs.ground_truth->cams_from_world[i]) {
+      true_centers[i] = ProjectionCenter(*inputs.ground_truth->cams_from_world[i]);
+    }
+  }
+  // Without an alignment the estimate lives in its own frame: draw it alone.
+  if (!evaluation) std::fill(true_centers.begin(), true_centers.end(), std::nullopt);
+  const PlotPlane plane =
+      inputs.plot_plane_from_estimate ? PlotPlaneFromCenters(all_estimated) : inputs.plot_plane;
+  TrajectoryPlotOptions plot_options;
+  plot_options.title = title;
+  return RenderTrajectoryPlot(estimated_centers, true_centers, plane, plot_options);
+}
+
+PlotPlane ParsePlotPlane(const std::string& name) {
+  if (name == "xz") return PlotPlaneFromAxes(0, 2);
+  if (name == "xy") return PlotPlaneFromAxes(0, 1);
+  if (name == "yz") return PlotPlaneFromAxes(1, 2);
+  throw Error(ErrorKind::kInvalidArgument,
+              "--plot-plane: expected auto, xz, xy or yz, got '" + name + "'");
+}
+
+}  // namespace comic::sfm

@@ -1,0 +1,128 @@
+// RunReconstruction, the run behind comic_sfm and comic.reconstruct: in memory or into a folder,
+// all or nothing, a failure as a result with its report and tracks, progress through callbacks.
+#include "sfm/run/reconstruction_run.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "tests/test_support.h"
+
+namespace comic::sfm {
+namespace {
+
+using comic::test::ExampleDir;
+using comic::test::ScopedTempDir;
+
+ReconstructionRunOptions FiveFrames() {
+  ReconstructionRunOptions options;
+  options.frames = ExampleDir() + "/image_l";
+  options.gt = ExampleDir() + "/poses.txt";
+  options.sequence.last_frame = 4;
+  return options;
+}
+
+TEST(RunReconstruction, InMemoryWritesNothingAndReportsWhatItDid) {
+  std::vector<std::string> events;
+  RunCallbacks callbacks;
+  callbacks.inputs_resolved = [&](const RunInputs& inputs) {
+    events.push_back("inputs " + std::to_string(inputs.sequence->NumFrames()));
+  };
+  callbacks.stage_started = [&](RunStage stage, const std::string& detector) {
+    if (stage == RunStage::kTracking) events.push_back("tracking " + detector);
+  };
+  int frames_done = 0;
+  callbacks.frame_done = [&](size_t, size_t) { ++frames_done; };
+  int registered = 0;
+  callbacks.frame_registered = [&](const std::string&, const MapperProgress&) { ++registered; };
+  callbacks.detector_finished = [&](const DetectorRun& run) {
+    events.push_back("finished " + run.detector);
+  };
+  const ReconstructionRunResult result = RunReconstruction(FiveFrames(), callbacks);
+  ASSERT_TRUE(result.success()) << result.failure;
+  ASSERT_EQ(result.runs.size(), 1u);
+  const DetectorRun& run = result.runs.front();
+  EXPECT_EQ(run.detector, "harris");
+  EXPECT_EQ(run.run.mapping.reconstruction.NumRegisteredImages(), 5u);
+  EXPECT_EQ(events, (std::vector<std::string>{"inputs 5", "tracking harris", "finished harris"}));
+  EXPECT_EQ(frames_done, 5);
+  EXPECT_EQ(registered, 5);
+  // The camera of the ground truth (KITTI's calib.txt beside poses.txt), named as its source.
+  EXPECT_EQ(result.inputs.camera.source, "ground truth " + ExampleDir() + "/poses.txt");
+  EXPECT_EQ(run.report_json["camera"]["source"], result.inputs.camera.source);
+  EXPECT_EQ(run.report_json["status"], "success");
+  EXPECT_FALSE(run.report_json.contains("outputs"));  // nothing was written
+  EXPECT_TRUE(run.evaluation.has_value());
+}
+
+TEST(RunReconstruction, WritesEveryOutputAndCommitsAtTheEnd) {
+  ScopedTempDir dir;
+  ReconstructionRunOptions options = FiveFrames();
+  options.output = dir.File("out");
+  options.model_format = "txt";
+  bool existed_during_run = true;
+  RunCallbacks callbacks;
+  callbacks.detector_finished = [&](const DetectorRun&) {
+    existed_during_run = io::PathExists(options.output);
+  };
+  const ReconstructionRunResult result = RunReconstruction(options, callbacks);
+  ASSERT_TRUE(result.success());
+  EXPECT_FALSE(existed_during_run);  // staged beside it until the run is complete
+  for (const char* name : {"cameras.txt", "images.txt", "points3D.txt", "points.ply",
+                           "trajectory.png", "report.json"}) {
+    EXPECT_TRUE(io::PathExists(io::JoinPaths(options.output, name))) << name;
+  }
+  EXPECT_FALSE(io::PathExists(io::JoinPaths(options.output, "sparse")));
+  EXPECT_EQ(result.runs.front().report_json["outputs"].size(), 5u);
+}
+
+TEST(RunReconstruction, AnErrorLeavesNoOutput) {
+  ScopedTempDir dir;
+  io::WriteFileAtomically(dir.File("small.txt"), "# COLMAP\n1 PINHOLE 640 480 500 500 320 240\n");
+  ReconstructionRunOptions options = FiveFrames();
+  options.output = dir.File("out");
+  options.camera.intrinsics = dir.File("small.txt");
+  try {
+    RunReconstruction(options);
+    ADD_FAILURE() << "a calibration for 640x480 was used on 1226x370 frames";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kInvalidData);
+    EXPECT_NE(std::string(e.what()).find("640x480"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(io::PathExists(options.output));
+  // Nothing else in the folder: no staging folder left behind.
+  const auto entries = std::filesystem::directory_iterator(dir.path());
+  EXPECT_EQ(std::distance(std::filesystem::begin(entries), std::filesystem::end(entries)), 1);
+}
+
+TEST(RunReconstruction, AFailedRunIsAResultWithItsReportAndTracks) {
+  ScopedTempDir dir;
+  // Three copies of one frame: tracks, but no parallax.
+  const std::string frame = io::ReadFileToString(ExampleDir() + "/image_l/000000.png");
+  for (const char* name : {"a.png", "b.png", "c.png"}) {
+    io::EnsureWritableDirectory(dir.File("frames"));
+    io::WriteFileAtomically(dir.File(std::string("frames/") + name), frame);
+  }
+  ReconstructionRunOptions options;
+  options.frames = dir.File("frames");
+  options.output = dir.File("out");
+  const ReconstructionRunResult result = RunReconstruction(options);
+  EXPECT_FALSE(result.success());
+  EXPECT_NE(result.failure.find("; try "), std::string::npos) << result.failure;
+  EXPECT_NE(result.failure.find(dir.File("out") + "/report.json"), std::string::npos);
+  const DetectorRun& run = result.runs.front();
+  EXPECT_TRUE(run.diagnosis.failed);
+  EXPECT_TRUE(run.keeps_tracks);
+  EXPECT_TRUE(io::PathExists(dir.File("out/report.json")));
+  EXPECT_TRUE(io::PathExists(dir.File("out/tracks.db")));
+  EXPECT_FALSE(io::PathExists(dir.File("out/points3D.txt")));
+  EXPECT_EQ(run.report_json["diagnosis"]["message"], run.diagnosis.message);
+}
+
+}  // namespace
+}  // namespace comic::sfm

@@ -1,0 +1,88 @@
+// The tracker settings of a run: a field left unset takes the default as the chosen pairing sets
+// it up, a field given is kept as given; --match-window given makes auto a no-op.
+#include "sfm/run/tracker_settings.h"
+
+#include <gtest/gtest.h>
+
+#include "frontend/matching/track_builder.h"
+#include "io/core/error.h"
+#include "io/image/image_sequence.h"
+#include "tests/test_support.h"
+
+namespace comic::sfm {
+namespace {
+
+frontend::PairingChoice Chosen(frontend::PairingMode mode, int window = 0) {
+  frontend::PairingChoice choice;
+  choice.chosen = {mode, window};
+  return choice;
+}
+
+TEST(TrackerSettings, UnsetFieldsAreTheDefaults) {
+  const frontend::TrackerOptions defaults = DefaultRunTrackerOptions();
+  const frontend::TrackerOptions options = TrackerSettings().ToTrackerOptions();
+  EXPECT_EQ(options.max_features, defaults.max_features);
+  EXPECT_EQ(options.matcher.radius, defaults.matcher.radius);
+  EXPECT_EQ(options.prediction, defaults.prediction);
+  EXPECT_EQ(TrackerSettings().TrackConflictsName(),
+            frontend::TrackConflictRuleName(defaults.conflict_rule));
+}
+
+TEST(TrackerSettings, ThePairingSetsUpWhatWasNotGiven) {
+  TrackerSettings settings;
+  settings.search_radius = 25.0;
+  settings.max_features = 500;
+  const frontend::TrackerOptions options =
+      TrackerOptionsForRun(settings, Chosen(frontend::PairingMode::kExhaustive), 10);
+  // Exhaustive matching: every later frame, verified, turned, coarse-to-fine ...
+  EXPECT_EQ(options.match_window, 9);
+  EXPECT_EQ(options.verify_min_gap, 1);
+  EXPECT_TRUE(options.match_turned_180);
+  EXPECT_EQ(options.prediction, frontend::MotionPrediction::kCoarseToFine);
+  // ... but the radius given wins over the pairing's 40 px.
+  EXPECT_EQ(options.matcher.radius, 25.0);
+  EXPECT_EQ(options.max_features, 500);
+
+  settings.match_turned = false;
+  settings.verify_min_gap = 0;
+  const frontend::TrackerOptions kept =
+      TrackerOptionsForRun(settings, Chosen(frontend::PairingMode::kExhaustive), 10);
+  EXPECT_FALSE(kept.match_turned_180);
+  EXPECT_EQ(kept.verify_min_gap, 0);
+}
+
+TEST(TrackerSettings, MatchWindowGivenLeavesAutoAlone) {
+  const io::ImageSequence sequence =
+      io::ImageSequence::Open(comic::test::ExampleDir() + "/image_l", {});
+  TrackerSettings settings;
+  settings.match_window = 3;
+  const frontend::PairingChoice choice = ChooseRunPairing("auto", settings, sequence);
+  EXPECT_EQ(choice.chosen.mode, frontend::PairingMode::kSequential);
+  EXPECT_FALSE(choice.measured);
+  EXPECT_EQ(TrackerOptionsForRun(settings, choice, 12).match_window, 3);
+  // Without it, auto looks at the frames: the bundled clip is a video.
+  const frontend::PairingChoice measured = ChooseRunPairing("auto", TrackerSettings(), sequence);
+  EXPECT_TRUE(measured.measured);
+  EXPECT_TRUE(measured.looks_like_video);
+}
+
+TEST(TrackerSettings, BadNamesNameTheFlag) {
+  TrackerSettings settings;
+  settings.prediction = "psychic";
+  try {
+    settings.ToTrackerOptions();
+    ADD_FAILURE() << "psychic accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
+    EXPECT_EQ(std::string(e.what()).rfind("--prediction: ", 0), 0u) << e.what();
+  }
+  settings.prediction.reset();
+  settings.track_conflicts = "merge";
+  EXPECT_THROW(settings.ToTrackerOptions(), Error);
+  const io::ImageSequence sequence =
+      io::ImageSequence::Open(comic::test::ExampleDir() + "/image_l", {});
+  EXPECT_THROW(ChooseRunPairing("window:0", TrackerSettings(), sequence), Error);
+}
+
+}  // namespace
+}  // namespace comic::sfm
