@@ -294,6 +294,271 @@ std::set<image_t> ConstantNeighbourImages(const Reconstruction& reconstruction,
   return neighbours;
 }
 
+namespace {
+
+// What enters the problem, in id order: every observation of the config's images, and the
+// observations of their points in other registered images, whose poses stay constant.
+struct ProblemContents {
+  std::set<point3D_t> point_ids;
+  std::set<image_t> neighbour_ids;  // registered images outside the config, poses constant
+  std::vector<image_t> image_ids;   // images with at least one observation in the problem
+  std::set<camera_t> camera_ids;
+  int num_observations = 0;
+};
+
+ProblemContents GatherProblemContents(const Reconstruction& reconstruction,
+                                      const BundleAdjustmentConfig& config) {
+  ProblemContents contents;
+  for (image_t image_id : config.image_ids) {
+    for (const Point2D& point2D : reconstruction.image(image_id).points2D) {
+      if (point2D.HasPoint3D()) contents.point_ids.insert(point2D.point3D_id);
+    }
+  }
+  std::set<image_t> observing_ids(config.image_ids.begin(), config.image_ids.end());
+  contents.neighbour_ids =
+      ConstantNeighbourImages(reconstruction, config.image_ids, contents.point_ids);
+  observing_ids.insert(contents.neighbour_ids.begin(), contents.neighbour_ids.end());
+  for (image_t image_id : observing_ids) {
+    const Image& image = reconstruction.image(image_id);
+    int num_observations = 0;
+    for (const Point2D& point2D : image.points2D) {
+      num_observations += point2D.HasPoint3D() && contents.point_ids.count(point2D.point3D_id);
+    }
+    if (num_observations == 0) continue;
+    contents.num_observations += num_observations;
+    contents.image_ids.push_back(image_id);
+    contents.camera_ids.insert(image.camera_id);
+  }
+  return contents;
+}
+
+// All parameters live in one buffer during the solve (points, then poses as x y z w quaternion
+// and translation, then each camera's parameters in COLMAP's order) and are written back
+// afterwards. Ceres orders the blocks of an ordering group by address, so one buffer filled in id
+// order makes the elimination order, and hence the result, independent of where the heap put
+// things. The maps point into `values`, so the struct is filled in place and never copied.
+struct ParameterBlocks {
+  ParameterBlocks() = default;
+  ParameterBlocks(const ParameterBlocks&) = delete;
+  ParameterBlocks& operator=(const ParameterBlocks&) = delete;
+
+  std::vector<point3D_t> point_ids;
+  std::vector<camera_t> camera_ids;
+  std::vector<double> values;
+  std::map<point3D_t, double*> points;
+  std::map<image_t, double*> poses;
+  std::map<camera_t, double*> cameras;
+  // Per camera, the indices of its parameters that stay constant; the cameras with some
+  // parameter refined.
+  std::map<camera_t, std::vector<int>> constant_camera_params;
+  std::set<camera_t> variable_cameras;
+};
+
+// Indices of the parameters of `camera` (COLMAP's order: focal lengths, principal point,
+// distortion) that the options hold constant.
+std::vector<int> ConstantCameraParams(const Camera& camera,
+                                      const BundleAdjustmentOptions& options) {
+  const int num_params = static_cast<int>(CameraModelNumParams(camera.model));
+  const int num_focal = CameraModelNumFocalParams(camera.model);
+  std::vector<int> constant;
+  for (int i = 0; i < num_params; ++i) {
+    const bool focal = i < num_focal;
+    const bool principal_point = i >= num_focal && i < num_focal + 2;
+    const bool refined = (focal && options.refine_focal_length) ||
+                         (principal_point && options.refine_principal_point) ||
+                         (!focal && !principal_point && options.refine_extra_params);
+    if (!refined) constant.push_back(i);
+  }
+  return constant;
+}
+
+void FillParameterBlocks(const Reconstruction& reconstruction, const ProblemContents& contents,
+                         const BundleAdjustmentOptions& options, ParameterBlocks* blocks) {
+  blocks->point_ids.assign(contents.point_ids.begin(), contents.point_ids.end());
+  blocks->camera_ids.assign(contents.camera_ids.begin(), contents.camera_ids.end());
+  const size_t pose_offset = 3 * blocks->point_ids.size();
+  const size_t camera_offset = pose_offset + 7 * contents.image_ids.size();
+  size_t num_camera_params = 0;
+  for (camera_t camera_id : blocks->camera_ids) {
+    num_camera_params += CameraModelNumParams(reconstruction.camera(camera_id).model);
+  }
+  blocks->values.assign(camera_offset + num_camera_params, 0.0);
+  for (size_t i = 0; i < blocks->point_ids.size(); ++i) {
+    double* block = blocks->values.data() + 3 * i;
+    Eigen::Map<Eigen::Vector3d> xyz(block);
+    xyz = reconstruction.point3D(blocks->point_ids[i]).xyz;
+    blocks->points[blocks->point_ids[i]] = block;
+  }
+  for (size_t i = 0; i < contents.image_ids.size(); ++i) {
+    double* block = blocks->values.data() + pose_offset + 7 * i;
+    const Rigid3d& pose = reconstruction.image(contents.image_ids[i]).cam_from_world;
+    Eigen::Map<Eigen::Vector4d> rotation_coeffs(block);
+    Eigen::Map<Eigen::Vector3d> translation(block + 4);
+    rotation_coeffs = pose.rotation.normalized().coeffs();
+    translation = pose.translation;
+    blocks->poses[contents.image_ids[i]] = block;
+  }
+  size_t camera_block_offset = camera_offset;
+  for (camera_t camera_id : blocks->camera_ids) {
+    double* block = blocks->values.data() + camera_block_offset;
+    const Camera& camera = reconstruction.camera(camera_id);
+    const std::vector<double> camera_values = camera.Params();
+    std::copy(camera_values.begin(), camera_values.end(), block);
+    camera_block_offset += camera_values.size();
+    blocks->cameras[camera_id] = block;
+    std::vector<int>& constant = blocks->constant_camera_params[camera_id];
+    constant = ConstantCameraParams(camera, options);
+    if (constant.size() < camera_values.size()) blocks->variable_cameras.insert(camera_id);
+  }
+}
+
+// The robust loss of the options, owned by the problem it is given to (one object shared by every
+// residual); nullptr for plain least squares.
+ceres::LossFunction* CreateLoss(const BundleAdjustmentOptions& options) {
+  if (options.loss == BundleAdjustmentLoss::kHuber) {
+    return new ceres::HuberLoss(options.loss_scale_px);
+  }
+  if (options.loss == BundleAdjustmentLoss::kSoftL1) {
+    return new ceres::SoftLOneLoss(options.loss_scale_px);
+  }
+  return nullptr;
+}
+
+// One residual per observation of a problem point in `image_id`, with the cost its camera needs:
+// intrinsics refined, fixed with distortion, or fixed without (the analytic Jacobian).
+void AddImageResiduals(const Reconstruction& reconstruction, image_t image_id,
+                       const ParameterBlocks& blocks, ceres::LossFunction* loss,
+                       ceres::Problem* problem) {
+  const Image& image = reconstruction.image(image_id);
+  double* pose = blocks.poses.at(image_id);
+  for (const Point2D& point2D : image.points2D) {
+    if (!point2D.HasPoint3D() || !blocks.points.count(point2D.point3D_id)) continue;
+    const Camera& camera = reconstruction.camera(image.camera_id);
+    double* point = blocks.points.at(point2D.point3D_id);
+    if (blocks.variable_cameras.count(image.camera_id)) {
+      problem->AddResidualBlock(CreateReprojectionCost(camera.model, point2D.xy), loss, pose, point,
+                                blocks.cameras.at(image.camera_id));
+    } else if (camera.HasDistortion()) {
+      problem->AddResidualBlock(FixedDistortedReprojectionCost::Create(
+                                    point2D.xy, camera.model, blocks.cameras.at(image.camera_id)),
+                                loss, pose, point);
+    } else {
+      // Undistorted and fixed: the analytic cost takes fx, fy, cx, cy.
+      const std::array<double, 4> pinhole = {camera.fx, camera.fy, camera.cx, camera.cy};
+      problem->AddResidualBlock(FixedIntrinsicsReprojectionCost::Create(point2D.xy, pinhole.data()),
+                                loss, pose, point);
+    }
+  }
+}
+
+// The pose of `image_id` constant (config or neighbour), with its scale coordinate held, or free
+// on the quaternion manifold. Returns whether the pose is variable.
+bool ParameteriseImagePose(const Image& image, image_t image_id,
+                           const BundleAdjustmentConfig& config, const ProblemContents& contents,
+                           double* pose, ceres::Problem* problem) {
+  if (config.constant_pose_ids.count(image_id) || contents.neighbour_ids.count(image_id)) {
+    problem->SetParameterBlockConstant(pose);
+    return false;
+  }
+  if (config.fixed_scale_image_ids.count(image_id)) {
+    int largest = 0;
+    image.cam_from_world.translation.cwiseAbs().maxCoeff(&largest);
+    problem->SetManifold(
+        pose, new ceres::ProductManifold<ceres::EigenQuaternionManifold, HeldCoordinateManifold>(
+                  ceres::EigenQuaternionManifold(), HeldCoordinateManifold(largest)));
+  } else {
+    problem->SetManifold(
+        pose,
+        new ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>>());
+  }
+  return true;
+}
+
+// The constant points of the config, and the constant parameters of the refined cameras.
+void HoldConstantPointsAndIntrinsics(const Reconstruction& reconstruction,
+                                     const BundleAdjustmentConfig& config,
+                                     const ParameterBlocks& blocks, ceres::Problem* problem) {
+  for (point3D_t point3D_id : config.constant_point_ids) {
+    if (blocks.points.count(point3D_id)) {
+      problem->SetParameterBlockConstant(blocks.points.at(point3D_id));
+    }
+  }
+  for (camera_t camera_id : blocks.variable_cameras) {
+    const std::vector<int>& constant = blocks.constant_camera_params.at(camera_id);
+    if (constant.empty()) continue;
+    problem->SetManifold(
+        blocks.cameras.at(camera_id),
+        new ceres::SubsetManifold(CameraModelNumParams(reconstruction.camera(camera_id).model),
+                                  constant));
+  }
+}
+
+// Schur complement: eliminate the points (group 0) first, then solve for the cameras.
+std::shared_ptr<ceres::ParameterBlockOrdering> SchurOrdering(const ProblemContents& contents,
+                                                             const ParameterBlocks& blocks) {
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (point3D_t point3D_id : blocks.point_ids) {
+    ordering->AddElementToGroup(blocks.points.at(point3D_id), 0);
+  }
+  for (image_t image_id : contents.image_ids) {
+    ordering->AddElementToGroup(blocks.poses.at(image_id), 1);
+  }
+  for (camera_t camera_id : blocks.variable_cameras) {
+    ordering->AddElementToGroup(blocks.cameras.at(camera_id), 1);
+  }
+  return ordering;
+}
+
+ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
+                                     int num_variable_images,
+                                     std::shared_ptr<ceres::ParameterBlockOrdering> ordering) {
+  ceres::Solver::Options solver_options;
+  // Dense Schur is fastest for the few dozen cameras of a video window; larger problems need the
+  // sparse one.
+  constexpr int kMaxDenseImages = 60;
+  solver_options.linear_solver_type =
+      num_variable_images <= kMaxDenseImages ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  if (solver_options.linear_solver_type == ceres::SPARSE_SCHUR &&
+      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) &&
+      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+    solver_options.linear_solver_type = ceres::ITERATIVE_SCHUR;
+  }
+  solver_options.linear_solver_ordering = std::move(ordering);
+  solver_options.max_num_iterations = options.max_num_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
+  solver_options.gradient_tolerance = options.gradient_tolerance;
+  solver_options.parameter_tolerance = options.parameter_tolerance;
+  // One thread, whatever num_threads says: Ceres' threaded residual evaluation sums the cost and
+  // gradient per thread in the order the threads took the blocks, and its Schur eliminator adds
+  // chunk contributions under locks in arrival order, so two threads changed the last bits of the
+  // model from run to run (up to 3e-10 relative on the bundled example). Output must be identical
+  // bit for bit for any thread count (README).
+  solver_options.num_threads = 1;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  return solver_options;
+}
+
+// Copies the solved points, poses (quaternion renormalised) and refined cameras back.
+void WriteBack(const ProblemContents& contents, const ParameterBlocks& blocks,
+               Reconstruction* reconstruction) {
+  for (point3D_t point3D_id : blocks.point_ids) {
+    reconstruction->point3D(point3D_id).xyz =
+        Eigen::Map<const Eigen::Vector3d>(blocks.points.at(point3D_id));
+  }
+  for (image_t image_id : contents.image_ids) {
+    const double* block = blocks.poses.at(image_id);
+    Rigid3d& pose = reconstruction->image(image_id).cam_from_world;
+    pose.rotation = Eigen::Quaterniond(block[3], block[0], block[1], block[2]).normalized();
+    pose.translation = Eigen::Map<const Eigen::Vector3d>(block + 4);
+  }
+  for (camera_t camera_id : blocks.variable_cameras) {
+    reconstruction->camera(camera_id).SetParams(blocks.cameras.at(camera_id));
+  }
+}
+
+}  // namespace
+
 BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) const {
   COMIC_CHECK(reconstruction != nullptr, kInvalidArgument, "bundle adjustment: no reconstruction");
   const auto start = std::chrono::steady_clock::now();
@@ -305,187 +570,33 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
                 "bundle adjustment: image " << image_id << " is unknown or not registered");
   }
 
-  // Gather what enters the problem, in id order: every observation of the config's images, and
-  // the observations of their points in other registered images, whose poses stay constant.
-  std::set<point3D_t> point_id_set;
-  for (image_t image_id : config_.image_ids) {
-    for (const Point2D& point2D : reconstruction->image(image_id).points2D) {
-      if (point2D.HasPoint3D()) point_id_set.insert(point2D.point3D_id);
-    }
-  }
-  std::set<image_t> observing_ids(config_.image_ids.begin(), config_.image_ids.end());
-  const std::set<image_t> neighbour_ids =
-      ConstantNeighbourImages(*reconstruction, config_.image_ids, point_id_set);
-  observing_ids.insert(neighbour_ids.begin(), neighbour_ids.end());
-  std::vector<image_t> image_ids;  // images with at least one observation in the problem
-  std::set<camera_t> camera_id_set;
-  for (image_t image_id : observing_ids) {
-    const Image& image = reconstruction->image(image_id);
-    int num_observations = 0;
-    for (const Point2D& point2D : image.points2D) {
-      num_observations += point2D.HasPoint3D() && point_id_set.count(point2D.point3D_id);
-    }
-    if (num_observations == 0) continue;
-    summary.num_residuals += num_observations;
-    image_ids.push_back(image_id);
-    camera_id_set.insert(image.camera_id);
-  }
+  const ProblemContents contents = GatherProblemContents(*reconstruction, config_);
+  summary.num_residuals = contents.num_observations;
   if (summary.num_residuals == 0) {
     summary.termination = "no observations";
     return summary;
   }
-  summary.num_images = static_cast<int>(image_ids.size());
-  summary.num_points = static_cast<int>(point_id_set.size());
+  summary.num_images = static_cast<int>(contents.image_ids.size());
+  summary.num_points = static_cast<int>(contents.point_ids.size());
 
-  // All parameters live in one buffer during the solve (points, then poses as x y z w quaternion
-  // and translation, then intrinsics fx fy cx cy) and are written back afterwards. Ceres orders
-  // the blocks of an ordering group by address, so one buffer filled in id order makes the
-  // elimination order, and hence the result, independent of where the heap put things.
-  const std::vector<point3D_t> point_ids(point_id_set.begin(), point_id_set.end());
-  const std::vector<camera_t> camera_ids(camera_id_set.begin(), camera_id_set.end());
-  const size_t pose_offset = 3 * point_ids.size();
-  const size_t camera_offset = pose_offset + 7 * image_ids.size();
-  size_t num_camera_params = 0;
-  for (camera_t camera_id : camera_ids) {
-    num_camera_params += CameraModelNumParams(reconstruction->camera(camera_id).model);
-  }
-  std::vector<double> params(camera_offset + num_camera_params);
-  std::map<point3D_t, double*> point_params;
-  std::map<image_t, double*> pose_params;
-  std::map<camera_t, double*> camera_params;
-  for (size_t i = 0; i < point_ids.size(); ++i) {
-    double* block = params.data() + 3 * i;
-    Eigen::Map<Eigen::Vector3d> xyz(block);
-    xyz = reconstruction->point3D(point_ids[i]).xyz;
-    point_params[point_ids[i]] = block;
-  }
-  for (size_t i = 0; i < image_ids.size(); ++i) {
-    double* block = params.data() + pose_offset + 7 * i;
-    const Rigid3d& pose = reconstruction->image(image_ids[i]).cam_from_world;
-    Eigen::Map<Eigen::Vector4d> rotation_coeffs(block);
-    Eigen::Map<Eigen::Vector3d> translation(block + 4);
-    rotation_coeffs = pose.rotation.normalized().coeffs();
-    translation = pose.translation;
-    pose_params[image_ids[i]] = block;
-  }
-  // Per camera: the parameters in COLMAP's order, and which of them stay constant.
-  std::map<camera_t, std::vector<int>> constant_camera_params;
-  std::set<camera_t> variable_cameras;
-  size_t camera_block_offset = camera_offset;
-  for (camera_t camera_id : camera_ids) {
-    double* block = params.data() + camera_block_offset;
-    const Camera& camera = reconstruction->camera(camera_id);
-    const std::vector<double> camera_values = camera.Params();
-    std::copy(camera_values.begin(), camera_values.end(), block);
-    camera_block_offset += camera_values.size();
-    camera_params[camera_id] = block;
-    const int num_focal = CameraModelNumFocalParams(camera.model);
-    std::vector<int>& constant = constant_camera_params[camera_id];
-    for (int i = 0; i < static_cast<int>(camera_values.size()); ++i) {
-      const bool focal = i < num_focal;
-      const bool principal_point = i >= num_focal && i < num_focal + 2;
-      const bool refined = (focal && options_.refine_focal_length) ||
-                           (principal_point && options_.refine_principal_point) ||
-                           (!focal && !principal_point && options_.refine_extra_params);
-      if (!refined) constant.push_back(i);
-    }
-    if (constant.size() < camera_values.size()) variable_cameras.insert(camera_id);
-  }
-  summary.refined_intrinsics = !variable_cameras.empty();
+  ParameterBlocks blocks;
+  FillParameterBlocks(*reconstruction, contents, options_, &blocks);
+  summary.refined_intrinsics = !blocks.variable_cameras.empty();
 
   ceres::Problem problem;
-  // Owned by the problem (one object shared by every residual; nullptr: plain least squares).
-  ceres::LossFunction* loss = nullptr;
-  if (options_.loss == BundleAdjustmentLoss::kHuber) {
-    loss = new ceres::HuberLoss(options_.loss_scale_px);
-  } else if (options_.loss == BundleAdjustmentLoss::kSoftL1) {
-    loss = new ceres::SoftLOneLoss(options_.loss_scale_px);
+  ceres::LossFunction* loss = CreateLoss(options_);
+  for (image_t image_id : contents.image_ids) {
+    AddImageResiduals(*reconstruction, image_id, blocks, loss, &problem);
+    summary.num_variable_images +=
+        ParameteriseImagePose(reconstruction->image(image_id), image_id, config_, contents,
+                              blocks.poses.at(image_id), &problem);
   }
-  for (image_t image_id : image_ids) {
-    const Image& image = reconstruction->image(image_id);
-    double* pose = pose_params.at(image_id);
-    for (const Point2D& point2D : image.points2D) {
-      if (!point2D.HasPoint3D() || !point_params.count(point2D.point3D_id)) continue;
-      const Camera& camera = reconstruction->camera(image.camera_id);
-      if (variable_cameras.count(image.camera_id)) {
-        problem.AddResidualBlock(CreateReprojectionCost(camera.model, point2D.xy), loss, pose,
-                                 point_params.at(point2D.point3D_id),
-                                 camera_params.at(image.camera_id));
-      } else if (camera.HasDistortion()) {
-        problem.AddResidualBlock(FixedDistortedReprojectionCost::Create(
-                                     point2D.xy, camera.model, camera_params.at(image.camera_id)),
-                                 loss, pose, point_params.at(point2D.point3D_id));
-      } else {
-        // Undistorted and fixed: the analytic cost takes fx, fy, cx, cy.
-        const std::array<double, 4> pinhole = {camera.fx, camera.fy, camera.cx, camera.cy};
-        problem.AddResidualBlock(
-            FixedIntrinsicsReprojectionCost::Create(point2D.xy, pinhole.data()), loss, pose,
-            point_params.at(point2D.point3D_id));
-      }
-    }
-    if (config_.constant_pose_ids.count(image_id) || neighbour_ids.count(image_id)) {
-      problem.SetParameterBlockConstant(pose);
-    } else if (config_.fixed_scale_image_ids.count(image_id)) {
-      ++summary.num_variable_images;
-      int largest = 0;
-      image.cam_from_world.translation.cwiseAbs().maxCoeff(&largest);
-      problem.SetManifold(
-          pose, new ceres::ProductManifold<ceres::EigenQuaternionManifold, HeldCoordinateManifold>(
-                    ceres::EigenQuaternionManifold(), HeldCoordinateManifold(largest)));
-    } else {
-      ++summary.num_variable_images;
-      problem.SetManifold(pose, new ceres::ProductManifold<ceres::EigenQuaternionManifold,
-                                                           ceres::EuclideanManifold<3>>());
-    }
-  }
-  for (point3D_t point3D_id : config_.constant_point_ids) {
-    if (point_params.count(point3D_id))
-      problem.SetParameterBlockConstant(point_params.at(point3D_id));
-  }
-  for (camera_t camera_id : variable_cameras) {
-    const std::vector<int>& constant = constant_camera_params.at(camera_id);
-    if (constant.empty()) continue;
-    problem.SetManifold(
-        camera_params.at(camera_id),
-        new ceres::SubsetManifold(CameraModelNumParams(reconstruction->camera(camera_id).model),
-                                  constant));
-  }
+  HoldConstantPointsAndIntrinsics(*reconstruction, config_, blocks, &problem);
+  const ceres::Solver::Options solver_options =
+      SolverOptions(options_, summary.num_variable_images, SchurOrdering(contents, blocks));
 
-  // Schur complement: eliminate the points (group 0) first, then solve for the cameras.
-  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-  for (point3D_t point3D_id : point_ids)
-    ordering->AddElementToGroup(point_params.at(point3D_id), 0);
-  for (image_t image_id : image_ids) ordering->AddElementToGroup(pose_params.at(image_id), 1);
-  for (camera_t camera_id : variable_cameras) {
-    ordering->AddElementToGroup(camera_params.at(camera_id), 1);
-  }
-
-  ceres::Solver::Options solver_options;
-  // Dense Schur is fastest for the few dozen cameras of a video window; larger problems need the
-  // sparse one.
-  constexpr int kMaxDenseImages = 60;
-  solver_options.linear_solver_type =
-      summary.num_variable_images <= kMaxDenseImages ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
-  if (solver_options.linear_solver_type == ceres::SPARSE_SCHUR &&
-      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) &&
-      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
-    solver_options.linear_solver_type = ceres::ITERATIVE_SCHUR;
-  }
-  solver_options.linear_solver_ordering = ordering;
-  solver_options.max_num_iterations = options_.max_num_iterations;
-  solver_options.function_tolerance = options_.function_tolerance;
-  solver_options.gradient_tolerance = options_.gradient_tolerance;
-  solver_options.parameter_tolerance = options_.parameter_tolerance;
-  // One thread, whatever num_threads says: Ceres' threaded residual evaluation sums the cost and
-  // gradient per thread in the order the threads took the blocks, and its Schur eliminator adds
-  // chunk contributions under locks in arrival order, so two threads changed the last bits of the
-  // model from run to run (issue 19: up to 3e-10 relative on the bundled example). Output must
-  // be identical bit for bit for any thread count (README).
-  solver_options.num_threads = 1;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
-
-  summary.initial_rmse_px = RmsReprojectionError(*reconstruction, image_ids, point_id_set);
+  summary.initial_rmse_px =
+      RmsReprojectionError(*reconstruction, contents.image_ids, contents.point_ids);
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(solver_options, &problem, &ceres_summary);
 
@@ -496,22 +607,9 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
   summary.termination =
       std::string(ceres::TerminationTypeToString(ceres_summary.termination_type)) + ": " +
       ceres_summary.message;
-  if (summary.usable) {
-    for (point3D_t point3D_id : point_ids) {
-      reconstruction->point3D(point3D_id).xyz =
-          Eigen::Map<const Eigen::Vector3d>(point_params.at(point3D_id));
-    }
-    for (image_t image_id : image_ids) {
-      const double* block = pose_params.at(image_id);
-      Rigid3d& pose = reconstruction->image(image_id).cam_from_world;
-      pose.rotation = Eigen::Quaterniond(block[3], block[0], block[1], block[2]).normalized();
-      pose.translation = Eigen::Map<const Eigen::Vector3d>(block + 4);
-    }
-    for (camera_t camera_id : variable_cameras) {
-      reconstruction->camera(camera_id).SetParams(camera_params.at(camera_id));
-    }
-  }
-  summary.final_rmse_px = RmsReprojectionError(*reconstruction, image_ids, point_id_set);
+  if (summary.usable) WriteBack(contents, blocks, reconstruction);
+  summary.final_rmse_px =
+      RmsReprojectionError(*reconstruction, contents.image_ids, contents.point_ids);
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.cpu_time_s = ProcessCpuSeconds() - cpu_start;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "frontend/comic/corner_convergence.h"
+#include "frontend/comic/corner_feature.h"
 #include "frontend/comic/initial_corners.h"
-#include "frontend/comic/side_mask.h"
 #include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
 #include "io/core/error.h"
@@ -127,26 +127,11 @@ class StateGrid {
   std::unordered_map<uint64_t, std::vector<State>> cells_;
 };
 
-}  // namespace
-
-FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats) const {
-  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
-              "comic: expected a non-empty 8-bit single-channel image");
-  const ComicDetectorOptions& o = options_;
-  ComicDetectionStats local_stats;
-  if (stats == nullptr) stats = &local_stats;
-  *stats = ComicDetectionStats();
-  if (gray.cols < o.block_size || gray.rows < o.block_size) return {};
-  auto stage_start = std::chrono::steady_clock::now();
-  // Milliseconds since the previous call (or the start).
-  auto lap = [&stage_start] {
-    const auto now = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
-    stage_start = now;
-    return ms;
-  };
-
-  // ---- Initialisation (Algorithm 1 lines 4-6): blocks B x B, stride B/2, scale 2s, δ/2. ----
+// Initialisation (Algorithm 1 lines 4-6): blocks B x B, stride B/2, scale 2s, δ/2; on the image
+// halved by 2x2 means when coarse_initialisation is on. The initial corners in full-resolution
+// coordinates, the most stable first, one per place and polarity among neighbouring levels.
+std::vector<InitialCorner> DetectInitialCorners(const cv::Mat& gray,
+                                                const ComicDetectorOptions& o) {
   const int factor = o.coarse_initialisation ? 2 : 1;
   cv::Mat init_image = gray;
   if (factor == 2) {
@@ -167,6 +152,7 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
   const std::vector<int> ys = BlockOrigins(init_image.rows, init_block, init_stride);
   const int num_blocks = static_cast<int>(xs.size() * ys.size());
   const int num_workers = ResolveNumThreads(o.num_threads, 2 * num_blocks);
+  // Two items per block (one per polarity), each appending to its own list.
   std::vector<std::vector<InitialCorner>> per_item(2 * num_blocks);
   {
     std::vector<InitialCornerDetector> detectors(num_workers);
@@ -205,15 +191,15 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
     if (a.position.x != b.position.x) return a.position.x < b.position.x;
     return a.level < b.level;
   });
-  initial = SuppressNeighbours(
+  return SuppressNeighbours(
       std::move(initial), 1.0, [](const InitialCorner& c) { return c.position; },
       [&](const InitialCorner& a, const InitialCorner& b) {
         return a.polarity == b.polarity && std::abs(a.level - b.level) <= o.delta;
       });
+}
 
-  stats->initialisation_ms = lap();
-
-  // ---- Feature convergence (Algorithm 1 lines 7-17): B/2 blocks, scale s, δ, weights. ----
+// Feature convergence (Algorithm 1 lines 7-17): B/2 blocks, scale s, δ, weights.
+ConvergenceOptions MakeConvergenceOptions(const ComicDetectorOptions& o) {
   ConvergenceOptions convergence;
   convergence.block_size = std::max(8, o.block_size / 2);
   convergence.half_length = o.half_length;
@@ -226,21 +212,31 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
   convergence.corner.arm_end = o.half_length;
   convergence.corner.arm_begin = std::min(4.0, 0.5 * o.half_length);
   convergence.corner.max_vertex_shift = 0.25 * o.half_length;
-  std::vector<ConvergenceWorkspace> workspaces(ResolveNumThreads(o.num_threads, 1 << 20));
-  // Converges every seed; appends the settled corners to `corners` in seed order. All seeds
-  // advance one iteration at a time (each iteration in parallel over the seeds). A seed that
-  // reaches, within stop_tolerance and half a grey level, a state (apex, MSICS) another seed has
-  // been in is suspended: from the same state the iteration goes the same way, to a corner the
-  // final merge would fold into the other's. It resumes if that other seed is lost. Which seeds
-  // are suspended depends only on the seed order, never on the threads.
-  std::vector<ConvergedCorner> corners;
-  StateGrid visited(std::max(1.0, 4 * o.stop_tolerance));
-  std::vector<uint8_t> run_lost;  // per run, both rounds numbered in one sequence
-  auto converge = [&](const std::vector<InitialCorner>& seeds) {
+  return convergence;
+}
+
+// Converges rounds of seeds on one image, remembering across rounds the states every seed has
+// been in. All seeds of a round advance one iteration at a time (each iteration in parallel over
+// the seeds). A seed that reaches, within stop_tolerance and half a grey level, a state (apex,
+// MSICS) another seed has been in is suspended: from the same state the iteration goes the same
+// way, to a corner the final merge would fold into the other's. It resumes if that other seed is
+// lost. Which seeds are suspended depends only on the seed order, never on the threads.
+class SeedConvergence {
+ public:
+  SeedConvergence(const cv::Mat& gray, const ComicDetectorOptions& options)
+      : gray_(gray),
+        options_(options),
+        convergence_(MakeConvergenceOptions(options)),
+        workspaces_(ResolveNumThreads(options.num_threads, 1 << 20)),
+        visited_(std::max(1.0, 4 * options.stop_tolerance)) {}
+
+  // Converges every seed; appends the settled corners to `corners` in seed order.
+  void Converge(const std::vector<InitialCorner>& seeds, ComicDetectionStats* stats,
+                std::vector<ConvergedCorner>* corners) {
     using Status = CornerConvergence::Status;
     const int n = static_cast<int>(seeds.size());
-    const int first_run = static_cast<int>(run_lost.size());
-    run_lost.resize(first_run + n, 0);
+    const int first_run = static_cast<int>(run_lost_.size());
+    run_lost_.resize(first_run + n, 0);
     std::vector<CornerConvergence> runs(n);
     std::vector<Status> status(n, Status::kRunning);
     std::vector<std::vector<int>> waiting(n);  // seeds suspended on each seed
@@ -250,26 +246,26 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
       active[i] = i;
     }
     while (!active.empty()) {
-      ParallelFor(static_cast<int>(active.size()), o.num_threads, [&](int a, int worker) {
+      ParallelFor(static_cast<int>(active.size()), options_.num_threads, [&](int a, int worker) {
         const int i = active[a];
-        status[i] = runs[i].Step(gray, convergence, &workspaces[worker]);
+        status[i] = runs[i].Step(gray_, convergence_, &workspaces_[worker]);
       });
       std::vector<int> next;
       for (int i : active) {
         if (status[i] == Status::kLost) {
-          run_lost[first_run + i] = 1;
+          run_lost_[first_run + i] = 1;
           for (int w : waiting[i]) next.push_back(w);  // resume the seeds that followed it
           continue;
         }
-        if (!o.skip_duplicate_paths) {
+        if (!options_.skip_duplicate_paths) {
           if (status[i] == Status::kRunning) next.push_back(i);
           continue;
         }
         const ConvergedCorner& state =
             status[i] == Status::kSettled ? runs[i].result() : runs[i].current();
         if (status[i] == Status::kRunning) {
-          const int other = visited.Find(state.apex, state.threshold, first_run + i,
-                                         o.stop_tolerance, 0.5, run_lost);
+          const int other = visited_.Find(state.apex, state.threshold, first_run + i,
+                                          options_.stop_tolerance, 0.5, run_lost_);
           if (other >= first_run) {  // on the path of a seed of this round: wait for its outcome
             waiting[other - first_run].push_back(i);
             continue;
@@ -277,7 +273,7 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
           if (other >= 0) continue;  // on the path to a corner the first round settled
           next.push_back(i);
         }
-        visited.Insert(state.apex, state.threshold, first_run + i);
+        visited_.Insert(state.apex, state.threshold, first_run + i);
       }
       std::sort(next.begin(), next.end());
       active.swap(next);
@@ -287,38 +283,55 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
       stats->num_iterations += runs[i].iteration();
       if (status[i] == Status::kSettled) {
         ++stats->num_settled;
-        corners.push_back(std::move(runs[i].result()));
+        corners->push_back(std::move(runs[i].result()));
       }
     }
-  };
-  converge(initial);
-  if (o.seed_neighbouring_corners) {
-    // One more round from the other corners on the converged MSICSs that no corner found yet.
-    std::vector<InitialCorner> neighbours;
-    for (const ConvergedCorner& corner : corners) {
-      for (const cv::Point2f& apex : corner.other_corners) {
-        InitialCorner seed;
-        seed.position = apex;
-        seed.level = corner.level;
-        seed.polarity = corner.polarity;
-        seed.curve = corner.curve;
-        neighbours.push_back(std::move(seed));
-      }
-    }
-    std::vector<InitialCorner> found(corners.size());
-    for (size_t i = 0; i < corners.size(); ++i) found[i].position = corners[i].position;
-    for (InitialCorner& seed : neighbours) found.push_back(std::move(seed));
-    // Suppression in this order drops the seeds near a corner already found, and duplicates.
-    found = SuppressNeighbours(
-        std::move(found), std::max(1.0, o.merge_radius),
-        [](const InitialCorner& c) { return c.position; },
-        [](const InitialCorner&, const InitialCorner&) { return true; });
-    std::vector<InitialCorner> new_seeds;
-    for (InitialCorner& seed : found) {
-      if (!seed.curve.empty()) new_seeds.push_back(std::move(seed));
-    }
-    converge(new_seeds);
   }
+
+ private:
+  const cv::Mat& gray_;
+  const ComicDetectorOptions& options_;
+  const ConvergenceOptions convergence_;
+  std::vector<ConvergenceWorkspace> workspaces_;
+  StateGrid visited_;
+  std::vector<uint8_t> run_lost_;  // per run, all rounds numbered in one sequence
+};
+
+// Seeds of the second round: the other corners on the converged MSICSs that no corner found yet
+// (corners closer together than the initialisation scale 2s can share one initial corner, and
+// Algorithm 1 would keep only the nearest), without duplicates.
+std::vector<InitialCorner> NeighbouringCornerSeeds(const std::vector<ConvergedCorner>& corners,
+                                                   double merge_radius) {
+  std::vector<InitialCorner> neighbours;
+  for (const ConvergedCorner& corner : corners) {
+    for (const cv::Point2f& apex : corner.other_corners) {
+      InitialCorner seed;
+      seed.position = apex;
+      seed.level = corner.level;
+      seed.polarity = corner.polarity;
+      seed.curve = corner.curve;
+      neighbours.push_back(std::move(seed));
+    }
+  }
+  std::vector<InitialCorner> found(corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) found[i].position = corners[i].position;
+  for (InitialCorner& seed : neighbours) found.push_back(std::move(seed));
+  // Suppression in this order drops the seeds near a corner already found, and duplicates.
+  found = SuppressNeighbours(
+      std::move(found), std::max(1.0, merge_radius),
+      [](const InitialCorner& c) { return c.position; },
+      [](const InitialCorner&, const InitialCorner&) { return true; });
+  std::vector<InitialCorner> new_seeds;
+  for (InitialCorner& seed : found) {
+    if (!seed.curve.empty()) new_seeds.push_back(std::move(seed));
+  }
+  return new_seeds;
+}
+
+// The settled corners at least min_stability stable, one per place: seeds converging to the same
+// corner keep the most stable (ties broken by position, level).
+std::vector<ConvergedCorner> MergeSettledCorners(std::vector<ConvergedCorner> corners,
+                                                 const ComicDetectorOptions& o) {
   corners.erase(std::remove_if(corners.begin(), corners.end(),
                                [&](const ConvergedCorner& c) {
                                  // On the response as stored (float), so that a threshold equals a
@@ -326,7 +339,6 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
                                  return static_cast<float>(c.stability) < o.min_stability;
                                }),
                 corners.end());
-  // Seeds converging to the same corner: keep the most stable (ties broken by position, level).
   std::sort(corners.begin(), corners.end(), [](const ConvergedCorner& a, const ConvergedCorner& b) {
     if (a.stability != b.stability) return a.stability > b.stability;
     if (a.position.y != b.position.y) return a.position.y < b.position.y;
@@ -334,29 +346,62 @@ FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats
     if (a.threshold != b.threshold) return a.threshold < b.threshold;
     return a.cornerness > b.cornerness;
   });
-  corners = SuppressNeighbours(
+  return SuppressNeighbours(
       std::move(corners), o.merge_radius, [](const ConvergedCorner& c) { return c.position; },
       [](const ConvergedCorner&, const ConvergedCorner&) { return true; });
+}
 
-  stats->convergence_ms = lap();
-
-  // ---- Output: one feature per corner, with the side mask of its patch. ----
+// Output: one feature per corner, with the side mask of its patch, strongest first.
+FeatureSet CornerFeatures(const cv::Mat& gray, const std::vector<ConvergedCorner>& corners,
+                          const ComicDetectorOptions& o) {
   FeatureSet features(corners.size());
   ParallelFor(static_cast<int>(corners.size()), o.num_threads, [&](int i, int) {
     const ConvergedCorner& c = corners[i];
-    Feature& f = features[i];
-    f.x = c.position.x;
-    f.y = c.position.y;
-    f.scale = static_cast<float>(o.scale);
-    f.response = static_cast<float>(c.stability);
-    f.cornerness = static_cast<float>(c.cornerness);
-    f.level = c.level;
-    f.polarity = c.polarity;
-    f.curve = c.segment;
-    const cv::Point centre(static_cast<int>(std::lround(f.x)), static_cast<int>(std::lround(f.y)));
-    f.side_mask = ComputeSideMask(gray, c.threshold, c.apex, centre);
+    CornerOnCurve corner;
+    corner.position = c.position;
+    corner.stability = c.stability;
+    corner.cornerness = c.cornerness;
+    corner.level = c.level;
+    corner.polarity = c.polarity;
+    corner.apex = c.apex;
+    corner.curve_threshold = c.threshold;
+    features[i] = MakeCornerFeature(gray, o.scale, corner, c.segment);
   });
   SortByResponse(&features);
+  return features;
+}
+
+}  // namespace
+
+FeatureSet ComicDetector::Detect(const cv::Mat& gray, ComicDetectionStats* stats) const {
+  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
+              "comic: expected a non-empty 8-bit single-channel image");
+  ComicDetectionStats local_stats;
+  if (stats == nullptr) stats = &local_stats;
+  *stats = ComicDetectionStats();
+  if (gray.cols < options_.block_size || gray.rows < options_.block_size) return {};
+  auto stage_start = std::chrono::steady_clock::now();
+  // Milliseconds since the previous call (or the start).
+  auto lap = [&stage_start] {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
+    stage_start = now;
+    return ms;
+  };
+
+  const std::vector<InitialCorner> initial = DetectInitialCorners(gray, options_);
+  stats->initialisation_ms = lap();
+
+  std::vector<ConvergedCorner> corners;
+  SeedConvergence convergence(gray, options_);
+  convergence.Converge(initial, stats, &corners);
+  if (options_.seed_neighbouring_corners) {
+    convergence.Converge(NeighbouringCornerSeeds(corners, options_.merge_radius), stats, &corners);
+  }
+  corners = MergeSettledCorners(std::move(corners), options_);
+  stats->convergence_ms = lap();
+
+  FeatureSet features = CornerFeatures(gray, corners, options_);
   stats->output_ms = lap();
   return features;
 }

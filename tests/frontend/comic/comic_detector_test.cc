@@ -1,6 +1,7 @@
-// The CoMIC detector end to end on images with known answers: rendered polygons (sub-pixel
-// vertices, Gaussian blur) on flat and textured backgrounds, geometric and photometric changes,
-// degenerate inputs, determinism, and the bundled and shared real images.
+// The CoMIC detector (Algorithm 1) end to end on images with known answers: rendered polygons
+// (sub-pixel vertices, Gaussian blur) on flat and textured backgrounds, geometric and photometric
+// changes, degenerate inputs, and the bundled and shared real images. The contract both searches
+// keep (input types, fields, order, threads, threshold) is in comic_search_contract_test.cc.
 #include "frontend/comic/comic_detector.h"
 
 #include <gtest/gtest.h>
@@ -12,64 +13,25 @@
 
 #include "io/core/error.h"
 #include "io/image/image_io.h"
-#include "tests/frontend/synthetic_images.h"
+#include "tests/frontend/comic/polygon_scenes.h"
 #include "tests/test_support.h"
 
 namespace comic::frontend {
 namespace {
 
+using test::Distance;
+using test::ExpectIdentical;
+using test::FlatScene;
+using test::kSceneSize;
+using test::Nearest;
 using test::Polygon;
-
-// A square, an L, a T and a triangle (21 vertices: convex, reflex, acute) at sub-pixel positions.
-std::vector<Polygon> Shapes(double dx = 0.0, double dy = 0.0) {
-  std::vector<Polygon> shapes = {
-      test::MakeSquare({30.3, 35.6}, 40, 200), test::MakeL({110.2, 30.7}, 60, 25, 190),
-      test::MakeTriangle({40.4, 170.2}, {100.6, 160.3}, {60.1, 100.8}, 215),
-      test::MakeT({115.3, 110.4}, 60, 18, 20, 60, 180)};
-  for (Polygon& p : shapes) p = test::Translated(p, dx, dy);
-  return shapes;
-}
-
-std::vector<cv::Point2d> Vertices(const std::vector<Polygon>& shapes) {
-  std::vector<cv::Point2d> vertices;
-  for (const Polygon& p : shapes)
-    vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
-  return vertices;
-}
-
-const Feature* Nearest(const FeatureSet& features, const cv::Point2d& point) {
-  const Feature* best = nullptr;
-  double best_distance = 1e300;
-  for (const Feature& f : features) {
-    const double d = std::hypot(f.x - point.x, f.y - point.y);
-    if (d < best_distance) {
-      best_distance = d;
-      best = &f;
-    }
-  }
-  return best;
-}
-
-double Distance(const Feature* f, const cv::Point2d& point) {
-  return f == nullptr ? 1e300 : std::hypot(f->x - point.x, f->y - point.y);
-}
-
-const cv::Size kSceneSize(200, 200);
+using test::Shapes;
+using test::TexturedScene;
+using test::Vertices;
 
 // Prints a measured quantity (quoted in docs/comic_detector.md).
 void Report(const std::string& what, double value) {
   std::cout << "[ measured ] " << what << ": " << value << "\n";
-}
-
-cv::Mat FlatScene(double dx = 0.0, double dy = 0.0) {
-  return test::RenderPolygons(test::FlatBackground(kSceneSize, 50), Shapes(dx, dy), 1.0);
-}
-
-// Random texture of 90 grey levels at an 8 px scale behind the shapes. Finer texture right at a
-// blurred boundary moves a level line by up to ~0.5 px along it (docs/comic_detector.md).
-cv::Mat TexturedScene(uint64_t seed) {
-  return test::RenderPolygons(test::TexturedBackground(kSceneSize, seed, 20, 110, 8), Shapes(),
-                              1.0);
 }
 
 TEST(ComicDetector, NameAndOptionValidation) {
@@ -124,19 +86,6 @@ TEST(ComicDetector, LargestAcceptedOptionsRunOnASmallImage) {
     EXPECT_LT(f.x, image.cols);
     EXPECT_GE(f.y, 0);
     EXPECT_LT(f.y, image.rows);
-  }
-}
-
-TEST(ComicDetector, RejectsImagesThatAreNotEightBitGrey) {
-  const ComicDetector detector;
-  for (const cv::Mat& image : {cv::Mat(), cv::Mat(120, 120, CV_8UC3, cv::Scalar::all(9)),
-                               cv::Mat(120, 120, CV_16UC1, cv::Scalar(9))}) {
-    try {
-      detector.Detect(image);
-      ADD_FAILURE() << "no error for type " << image.type();
-    } catch (const Error& e) {
-      EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
-    }
   }
 }
 
@@ -411,90 +360,6 @@ TEST(ComicDetector, SideMaskSplitsThePatchAlongTheShapeBoundary) {
     }
     EXPECT_GT(checked, 400);
   }
-}
-
-TEST(ComicDetector, FillsEveryFieldAndSortsByResponse) {
-  ComicDetectorOptions options;
-  const ComicDetector detector(options);
-  const cv::Mat image = TexturedScene(7);
-  const FeatureSet features = detector.Detect(image);
-  ASSERT_GT(features.size(), 30u);
-  for (size_t i = 0; i < features.size(); ++i) {
-    const Feature& f = features[i];
-    if (i > 0) {
-      EXPECT_GE(features[i - 1].response, f.response);
-    }
-    EXPECT_GE(f.x, 0);
-    EXPECT_GE(f.y, 0);
-    EXPECT_LT(f.x, image.cols);
-    EXPECT_LT(f.y, image.rows);
-    EXPECT_FLOAT_EQ(f.scale, static_cast<float>(options.scale));
-    EXPECT_GT(f.response, 0);
-    EXPECT_GE(f.cornerness, options.min_cornerness - 1e-6);
-    EXPECT_LE(f.cornerness, 0.25f);
-    EXPECT_GE(f.level, 0);
-    EXPECT_LT(f.level, 255);
-    EXPECT_NE(f.polarity, Polarity::kNone);
-    EXPECT_TRUE(f.HasSideMask());
-    EXPECT_EQ(f.curve.size(), static_cast<size_t>(2 * options.half_length + 1));
-    double nearest = 1e300;
-    for (const cv::Point2f& p : f.curve) nearest = std::min(nearest, cv::norm(p - f.Position()));
-    // The MSICS passes by the corner: the vertex lies off it by at most the vertex refinement's
-    // bound (0.25 k = 3 px), plus half a sample.
-    EXPECT_LT(nearest, 0.25 * options.half_length + 0.6);
-    // A patch inside the image holds both sides.
-    const int plus =
-        static_cast<int>(std::count(f.side_mask.begin(), f.side_mask.end(), PatchSide::kPlus));
-    const int minus =
-        static_cast<int>(std::count(f.side_mask.begin(), f.side_mask.end(), PatchSide::kMinus));
-    if (PatchFits(f, image.size())) {
-      EXPECT_GT(plus, 20);
-      EXPECT_GT(minus, 20);
-    }
-  }
-}
-
-TEST(ComicDetector, StabilityThresholdCutsTheResponse) {
-  const cv::Mat image = TexturedScene(8);
-  const FeatureSet all = ComicDetector().Detect(image);
-  ASSERT_GT(all.size(), 20u);
-  ComicDetectorOptions options;
-  options.min_stability = all[all.size() / 2].response;
-  const FeatureSet strong = ComicDetector(options).Detect(image);
-  FeatureSet expected;
-  for (const Feature& f : all) {
-    if (f.response >= options.min_stability) expected.push_back(f);
-  }
-  ASSERT_EQ(strong.size(), expected.size());
-  for (size_t i = 0; i < strong.size(); ++i) {
-    EXPECT_EQ(strong[i].x, expected[i].x);
-    EXPECT_EQ(strong[i].y, expected[i].y);
-  }
-}
-
-void ExpectIdentical(const FeatureSet& a, const FeatureSet& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].x, b[i].x);
-    EXPECT_EQ(a[i].y, b[i].y);
-    EXPECT_EQ(a[i].response, b[i].response);
-    EXPECT_EQ(a[i].cornerness, b[i].cornerness);
-    EXPECT_EQ(a[i].level, b[i].level);
-    EXPECT_EQ(a[i].polarity, b[i].polarity);
-    EXPECT_EQ(a[i].side_mask, b[i].side_mask);
-    EXPECT_EQ(a[i].curve, b[i].curve);
-  }
-}
-
-TEST(ComicDetector, OutputIsIdenticalWithOneAndTwoThreads) {
-  const cv::Mat image = TexturedScene(10);
-  ComicDetectorOptions one, two;
-  one.num_threads = 1;
-  two.num_threads = 2;
-  const FeatureSet a = ComicDetector(one).Detect(image);
-  ASSERT_GT(a.size(), 30u);
-  ExpectIdentical(a, ComicDetector(two).Detect(image));
-  ExpectIdentical(a, ComicDetector(one).Detect(image));
 }
 
 TEST(ComicDetector, StatisticsAccountForEverySeedAndLeaveTheFeaturesUnchanged) {
