@@ -138,6 +138,64 @@ int NextGap(int gap, const IncrementalMapper::Options& options) {
   return std::max(gap + 1, static_cast<int>(std::lround(gap * options.init_gap_growth)));
 }
 
+// MergeModel's point pairs: the points two models give to one physical point.
+struct ModelPointPair {
+  image_t image_id;           // a frame of this model observing it
+  Eigen::Vector2d xy;         // the feature in that frame
+  Eigen::Vector3d other_xyz;  // the point of the other model
+  Eigen::Vector3d xyz;        // the point of this model
+};
+
+// The similarity taking the other model's points onto this model's, by RANSAC over triples
+// (deterministic) and a refit on the pairs `consistent` accepts until that set stops growing (twice
+// at most); none unless at least min_num_inliers and min_inlier_ratio of the pairs agree.
+template <typename Consistent>
+std::optional<Sim3d> EstimateMergeSimilarity(const std::vector<ModelPointPair>& pairs,
+                                             const Consistent& consistent, int min_num_inliers,
+                                             double min_inlier_ratio) {
+  const auto count_inliers = [&](const Sim3d& sim, std::vector<Eigen::Vector3d>* src,
+                                 std::vector<Eigen::Vector3d>* dst) {
+    src->clear();
+    dst->clear();
+    for (const ModelPointPair& pair : pairs) {
+      if (!consistent(sim, pair)) continue;
+      src->push_back(pair.other_xyz);
+      dst->push_back(pair.xyz);
+    }
+    return src->size();
+  };
+  std::mt19937 random(1);
+  std::uniform_int_distribution<size_t> pick(0, pairs.size() - 1);
+  std::vector<Eigen::Vector3d> best_src, best_dst, src, dst;
+  constexpr int kNumIterations = 500;
+  for (int iteration = 0; iteration < kNumIterations; ++iteration) {
+    const size_t a = pick(random), b = pick(random), c = pick(random);
+    if (a == b || b == c || a == c) continue;
+    const auto sim =
+        EstimateSim3dUmeyama({pairs[a].other_xyz, pairs[b].other_xyz, pairs[c].other_xyz},
+                             {pairs[a].xyz, pairs[b].xyz, pairs[c].xyz});
+    if (!sim || !(sim->scale > 0)) continue;
+    if (count_inliers(*sim, &src, &dst) > best_src.size()) {
+      best_src.swap(src);
+      best_dst.swap(dst);
+    }
+  }
+  std::optional<Sim3d> sim;
+  for (int round = 0; round < 2 && best_src.size() >= 3; ++round) {
+    sim = EstimateSim3dUmeyama(best_src, best_dst);
+    if (!sim) return std::nullopt;
+    if (count_inliers(*sim, &src, &dst) < best_src.size()) break;
+    best_src.swap(src);
+    best_dst.swap(dst);
+  }
+  const double num_inliers = static_cast<double>(best_src.size());
+  if (!sim || num_inliers < min_num_inliers ||
+      num_inliers < min_inlier_ratio * static_cast<double>(pairs.size())) {
+    return std::nullopt;
+  }
+  return sim;
+}
+
 }  // namespace
 
 std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair(
@@ -498,13 +556,7 @@ size_t IncrementalMapper::TriangulateAllTracks() {
 size_t IncrementalMapper::MergeModel(const Reconstruction& other,
                                      const std::vector<FeatureLink>& links) {
   // Point pairs: the points the two models give to one physical point.
-  struct PointPair {
-    image_t image_id;           // a frame of this model observing it
-    Eigen::Vector2d xy;         // the feature in that frame
-    Eigen::Vector3d other_xyz;  // the point of `other`
-    Eigen::Vector3d xyz;        // the point of this model
-  };
-  std::vector<PointPair> pairs;
+  std::vector<ModelPointPair> pairs;
   std::set<std::pair<point3D_t, point3D_t>> paired;  // (this, other) point ids
   const auto add_pair = [&](image_t image_id, point2D_t idx, point3D_t other_point3D_id) {
     const Point2D& point2D = reconstruction_.image(image_id).points2D[idx];
@@ -558,7 +610,7 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other,
   }
   if (static_cast<int>(pairs.size()) < options_.merge_min_num_inliers) return 0;
 
-  const auto consistent = [&](const Sim3d& sim, const PointPair& pair) {
+  const auto consistent = [&](const Sim3d& sim, const ModelPointPair& pair) {
     const Image& image = reconstruction_.image(pair.image_id);
     const Eigen::Vector3d mapped = sim * pair.other_xyz;
     const double depth = (image.cam_from_world * pair.xyz).z();
@@ -570,49 +622,9 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other,
     return projection &&
            (*projection - pair.xy).norm() <= options_.filter_max_reprojection_error_px;
   };
-  const auto count_inliers = [&](const Sim3d& sim, std::vector<Eigen::Vector3d>* src,
-                                 std::vector<Eigen::Vector3d>* dst) {
-    src->clear();
-    dst->clear();
-    for (const PointPair& pair : pairs) {
-      if (!consistent(sim, pair)) continue;
-      src->push_back(pair.other_xyz);
-      dst->push_back(pair.xyz);
-    }
-    return src->size();
-  };
-
-  // RANSAC over triples, deterministic.
-  std::mt19937 random(1);
-  std::uniform_int_distribution<size_t> pick(0, pairs.size() - 1);
-  std::vector<Eigen::Vector3d> best_src, best_dst, src, dst;
-  constexpr int kNumIterations = 500;
-  for (int iteration = 0; iteration < kNumIterations; ++iteration) {
-    const size_t a = pick(random), b = pick(random), c = pick(random);
-    if (a == b || b == c || a == c) continue;
-    const auto sim =
-        EstimateSim3dUmeyama({pairs[a].other_xyz, pairs[b].other_xyz, pairs[c].other_xyz},
-                             {pairs[a].xyz, pairs[b].xyz, pairs[c].xyz});
-    if (!sim || !(sim->scale > 0)) continue;
-    if (count_inliers(*sim, &src, &dst) > best_src.size()) {
-      best_src.swap(src);
-      best_dst.swap(dst);
-    }
-  }
-  // Refit on the consistent pairs until the set stops growing (twice at most).
-  std::optional<Sim3d> sim;
-  for (int round = 0; round < 2 && best_src.size() >= 3; ++round) {
-    sim = EstimateSim3dUmeyama(best_src, best_dst);
-    if (!sim) return 0;
-    if (count_inliers(*sim, &src, &dst) < best_src.size()) break;
-    best_src.swap(src);
-    best_dst.swap(dst);
-  }
-  const double num_inliers = static_cast<double>(best_src.size());
-  if (!sim || num_inliers < options_.merge_min_num_inliers ||
-      num_inliers < options_.merge_min_inlier_ratio * static_cast<double>(pairs.size())) {
-    return 0;
-  }
+  const std::optional<Sim3d> sim = EstimateMergeSimilarity(
+      pairs, consistent, options_.merge_min_num_inliers, options_.merge_min_inlier_ratio);
+  if (!sim) return 0;
   for (image_t image_id : new_image_ids) {
     Image& image = reconstruction_.image(image_id);
     image.cam_from_world = sim->TransformPose(other.image(image_id).cam_from_world);
@@ -620,6 +632,11 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other,
     registration_order_.push_back(image_id);
   }
   TriangulateAllTracks();
+  FuseLinkedPoints(links);
+  return new_image_ids.size();
+}
+
+void IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links) {
   // The tracks do not know that the two ends of a link are one point: tell the model.
   for (const FeatureLink& link : links) {
     if (!reconstruction_.ExistsImage(link.image_id) ||
@@ -636,7 +653,6 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other,
     const point3D_t b = other_image.points2D[link.other_point2D_idx].point3D_id;
     if (a != kInvalidPoint3DId && b != kInvalidPoint3DId && a != b) FusePoints(a, b);
   }
-  return new_image_ids.size();
 }
 
 void IncrementalMapper::FusePoints(point3D_t a, point3D_t b) {

@@ -275,6 +275,9 @@ class IncrementalMapper {
   // Makes the points `a` and `b` (of one physical point) one: b's observations that a's position
   // explains (within complete_max_reprojection_error_px) move to a, and b is deleted.
   void FusePoints(point3D_t a, point3D_t b);
+  // The tracks do not know that the two ends of a link are one point: fuses the points of each
+  // link whose two frames are registered (after a merge).
+  void FuseLinkedPoints(const std::vector<FeatureLink>& links);
   // Sets the gauge of a problem: the first initial image constant, the second's scale fixed.
   void FixGauge(BundleAdjustmentConfig* config) const;
 

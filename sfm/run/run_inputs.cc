@@ -26,6 +26,7 @@ void OpenFrames(const ReconstructionRunOptions& options, RunInputs* inputs) {
     working.resize_height = working_height;
     inputs->sequence =
         std::make_unique<io::ImageSequence>(io::ImageSequence::Open(options.frames, working));
+    inputs->at_working_size = true;
   }
   for (size_t k = 0; k < inputs->sequence->NumFrames(); ++k) {
     inputs->source_indices.push_back(options.sequence.first_frame +

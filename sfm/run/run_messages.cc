@@ -20,8 +20,12 @@ std::string WithoutFinalNewline(std::string text) {
 std::vector<std::string> RunInputsLines(const RunInputs& inputs, const std::string& program) {
   std::ostringstream frames;
   frames << program << ": " << inputs.sequence->NumFrames() << " frames "
-         << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
-         << ", camera " << inputs.camera.camera.Describe() << " (" << inputs.camera.source << ")";
+         << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height;
+  if (inputs.at_working_size) {
+    frames << " (working size; stored " << inputs.sequence->SourceFrameSize().width << "x"
+           << inputs.sequence->SourceFrameSize().height << ", the models are written at it)";
+  }
+  frames << ", camera " << inputs.camera.camera.Describe() << " (" << inputs.camera.source << ")";
   if (inputs.ground_truth) {
     frames << ", ground truth for " << inputs.ground_truth->num_matched << " frames";
   }
