@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <iomanip>
 #include <iostream>
@@ -38,23 +39,32 @@ namespace {
 struct Timing {
   double median_ms = 0;
   double min_ms = 0;
+  // Process CPU time (every thread's, std::clock): on a loaded machine it moves less than the
+  // wall time, which counts the time other processes hold the cores.
+  double median_cpu_ms = 0;
   size_t features = 0;
 };
 
-// Runs `detect` once to warm up, then `runs` times; returns the median and minimum wall time.
+// Runs `detect` once to warm up, then `runs` times; returns the median and minimum wall time and
+// the median process CPU time.
 Timing Time(int runs, const std::function<size_t()>& detect) {
   Timing timing;
   timing.features = detect();
   std::vector<double> ms;
+  std::vector<double> cpu_ms;
   for (int i = 0; i < runs; ++i) {
+    const std::clock_t cpu_start = std::clock();
     const auto start = std::chrono::steady_clock::now();
     timing.features = detect();
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                      .count());
+    cpu_ms.push_back(1000.0 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
   }
   std::sort(ms.begin(), ms.end());
+  std::sort(cpu_ms.begin(), cpu_ms.end());
   timing.median_ms = ms[ms.size() / 2];
   timing.min_ms = ms.front();
+  timing.median_cpu_ms = cpu_ms[cpu_ms.size() / 2];
   return timing;
 }
 
@@ -165,7 +175,8 @@ LossSplit SplitLosses(const comic::frontend::FeatureSet& base,
 // the same number of features, by one response cut chosen on the frame and applied unchanged to
 // the changed frames: its `count` strongest (0: as many as CoMIC finds). Repeatability falls with
 // the count for every detector, so it is comparable only at equal counts.
-void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
+void PrintPerturbations(const cv::Mat& gray, int threads, int count,
+                        const std::vector<std::string>& detectors) {
   cv::Mat noise(gray.size(), CV_32F);
   cv::RNG rng(7);
   rng.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
@@ -186,7 +197,7 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
       {"comic: lost to", "noise 1 grey level, points", "0.5 px shift, points"});
   losses.SetPrecision("noise 1 grey level, points", 1);
   losses.SetPrecision("0.5 px shift, points", 1);
-  for (const std::string name : {"comic", "comic-paper", "harris", "hessian", "fast"}) {
+  for (const std::string& name : detectors) {
     comic::frontend::DetectorOptions options;
     options.name = name;
     options.comic.num_threads = threads;
@@ -237,8 +248,10 @@ void PrintPerturbations(const cv::Mat& gray, int threads, int count) {
   std::cout << "\nRepeatability on the same frame (features kept: "
             << (count > 0 ? "the " + std::to_string(count) + " strongest" : "CoMIC's count")
             << "):\n\n"
-            << table.ToMarkdown() << "\nWhere comic's losses go (points of repeatability):\n\n"
-            << losses.ToMarkdown();
+            << table.ToMarkdown();
+  if (std::find(detectors.begin(), detectors.end(), "comic") != detectors.end()) {
+    std::cout << "\nWhere comic's losses go (points of repeatability):\n\n" << losses.ToMarkdown();
+  }
 }
 
 // Matcher speed (issue 15): ms per frame pair for the patch matcher with the radius gate
@@ -331,6 +344,7 @@ int Run(int argc, char** argv) {
   int threads = 0;
   bool perturbations = false;
   std::string counts_list;
+  std::string detector_list;
   std::string match_pair;
   int match_features = 2000;
   bool match_only = false;
@@ -352,8 +366,8 @@ int Run(int argc, char** argv) {
   comic::apps::AddJsonFlag(parser, &json_path);
   parser.AddFlag(
       "perturbations",
-      "also report, for comic, comic-paper, Harris, Hessian and FAST at CoMIC's\n"
-      "                              count (or --keep), the\n"
+      "also report, for comic, comic-paper, Harris, Hessian and FAST (or --detectors)\n"
+      "                              at CoMIC's count (or --keep), the\n"
       "                              share of features found again within 1 px after noise\n"
       "                              of 1 grey level and after a 0.5 px shift",
       &perturbations);
@@ -365,6 +379,7 @@ int Run(int argc, char** argv) {
       "                              table per N of the comma-separated LIST (default: "
       "CoMIC's count)",
       &counts_list);
+  comic::apps::AddDetectorListFlag(parser, &detector_list);
   parser.AddOption("match-pair", "IMAGE2",
                    "also time the patch matcher between IMAGE and IMAGE2 (same size) for every "
                    "cost",
@@ -401,6 +416,13 @@ int Run(int argc, char** argv) {
   }
   COMIC_CHECK(!match_only || !match_pair.empty(), kInvalidArgument,
               "--match-only needs --match-pair");
+  // --detectors: the detectors of the --perturbations tables (comic's losses need comic).
+  const std::vector<std::string> perturbation_detectors =
+      detector_list.empty()
+          ? std::vector<std::string>{"comic", "comic-paper", "harris", "hessian", "fast"}
+          : comic::frontend::ParseDetectorList(detector_list);
+  COMIC_CHECK(detector_list.empty() || perturbations, kInvalidArgument,
+              "--detectors needs --perturbations");
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
 
   const cv::Mat gray = comic::io::LoadImage(input, resize_height).gray;
@@ -475,12 +497,14 @@ int Run(int argc, char** argv) {
                        return count;
                      })});
 
-  comic::io::ReportTable table({"detector", "threads", "median ms", "min ms", "features"});
+  comic::io::ReportTable table(
+      {"detector", "threads", "median ms", "min ms", "median CPU ms", "features"});
   table.SetPrecision("median ms", 1);
   table.SetPrecision("min ms", 1);
+  table.SetPrecision("median CPU ms", 1);
   for (const Entry& e : entries) {
     table.AddRow({e.name, int64_t{e.threads}, e.timing.median_ms, e.timing.min_ms,
-                  static_cast<int64_t>(e.timing.features)});
+                  e.timing.median_cpu_ms, static_cast<int64_t>(e.timing.features)});
   }
   std::cout << table.ToMarkdown() << "\n";
   const double mser_ms = entries[2].timing.median_ms;
@@ -489,6 +513,8 @@ int Run(int argc, char** argv) {
             << " threads): " << entries[1].timing.median_ms / mser_ms << "\nCoMIC speed-up with "
             << many << " threads: " << entries[0].timing.median_ms / entries[1].timing.median_ms
             << "\n";
+  std::cout << "CoMIC / MSER (median CPU time, 1 thread): "
+            << entries[0].timing.median_cpu_ms / entries[2].timing.median_cpu_ms << "\n";
   std::cout << "CoMIC-paper / MSER (median, 1 thread): " << entries[5].timing.median_ms / mser_ms
             << "\n";
   // Where each one-thread time goes: medians of each stage over the timed runs (the warm-up
@@ -525,7 +551,7 @@ int Run(int argc, char** argv) {
   }
   if (perturbations) {
     if (counts.empty()) counts.push_back(0);
-    for (int count : counts) PrintPerturbations(gray, many, count);
+    for (int count : counts) PrintPerturbations(gray, many, count, perturbation_detectors);
   }
   if (!gray2.empty()) PrintMatcherTimes(gray, gray2, match_features, runs);
   return 0;

@@ -3,7 +3,8 @@
 #
 #   cmake -DSOURCE_DIR=<tree to check> -P cmake/CheckIncludeOrder.cmake
 #
-# Every #include "x/y.h" in a .h/.cc under io/, frontend/, sfm/, apps/ or python/ is looked up: the
+# Every #include "x/y.h" in a .h/.cc under io/, render/, frontend/, sfm/, apps/ or python/ is looked
+# up: the
 # including file's layer (longest matching path prefix below) must list the included file's layer.
 # Fails with one line per violation. In the spirit of Chromium's DEPS include_rules / checkdeps.
 
@@ -16,7 +17,7 @@ endif()
 set(layers
   frontend/detector_factory frontend/comic frontend/baselines frontend/matching
   frontend/evaluation frontend sfm/evaluation sfm/colmap sfm/run sfm apps python
-  io/core io/image io/colmap io/report io/datasets io)
+  io/core io/image io/colmap io/report io/datasets io render)
 
 # What each layer may include (besides itself).
 # io/'s rooms: core (errors, files, staged outputs) under everything; image, colmap and report
@@ -43,9 +44,11 @@ set(allowed_sfm/evaluation ${io_all} ${frontend_all} sfm)
 set(allowed_sfm/colmap ${io_all} ${frontend_all} sfm sfm/evaluation)
 # sfm/run: the runs behind the apps and the Python module, over every other library folder.
 set(allowed_sfm/run ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap)
-set(allowed_apps ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap sfm/run)
+# The renderer stands on io/ alone, beside frontend/ and sfm/ (neither includes it).
+set(allowed_render ${io_all})
+set(allowed_apps ${io_all} render ${frontend_all} sfm sfm/evaluation sfm/colmap sfm/run)
 # The Python bindings sit where the apps do: over every library, under nothing.
-set(allowed_python ${io_all} ${frontend_all} sfm sfm/evaluation sfm/colmap sfm/run)
+set(allowed_python ${io_all} render ${frontend_all} sfm sfm/evaluation sfm/colmap sfm/run)
 
 function(layer_of path out)
   foreach(layer ${layers})
@@ -64,6 +67,7 @@ endfunction()
 
 file(GLOB_RECURSE sources RELATIVE ${SOURCE_DIR}
   ${SOURCE_DIR}/io/*.h ${SOURCE_DIR}/io/*.cc
+  ${SOURCE_DIR}/render/*.h ${SOURCE_DIR}/render/*.cc
   ${SOURCE_DIR}/frontend/*.h ${SOURCE_DIR}/frontend/*.cc
   ${SOURCE_DIR}/sfm/*.h ${SOURCE_DIR}/sfm/*.cc
   ${SOURCE_DIR}/apps/*.h ${SOURCE_DIR}/apps/*.cc

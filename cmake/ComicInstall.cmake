@@ -1,15 +1,16 @@
 # `cmake --install build --prefix P` installs the CMake package comic:
-#   P/lib/libcomic_{io,frontend,sfm}.a        the static libraries (position-independent)
-#   P/include/comic/{io,frontend,sfm}/...     their headers, under comic/ so that they never shadow
+#   P/lib/libcomic_{io,render,frontend,sfm}.a the static libraries (position-independent)
+#   P/include/comic/{io,render,frontend,sfm}/ their headers, under comic/ so that they never shadow
 #                                             a consumer's own io/... or sfm/... headers
 #   P/bin/comic_*                             the apps
-#   P/lib/cmake/comic/comicConfig.cmake       find_package(comic) -> comic::io, comic::frontend,
-#                                             comic::sfm (with their dependencies found again)
+#   P/lib/cmake/comic/comicConfig.cmake       find_package(comic) -> comic::io, comic::render,
+#                                             comic::frontend, comic::sfm (with their dependencies
+#                                             found again)
 #
 # In the tree our headers include each other as "io/core/error.h"; the installed copies must say
 # "comic/io/core/error.h". Rather than spell every include in the tree with a comic/ prefix, the
 # install step copies the headers and then rewrites, in the installed copies only, the
-# project-relative includes ("io/", "frontend/", "sfm/") to "comic/...": see
+# project-relative includes ("io/", "render/", "frontend/", "sfm/") to "comic/...": see
 # cmake/RewriteInstalledIncludes.cmake. The installed headers then need nothing but
 # -I<prefix>/include, which the targets carry.
 include(GNUInstallDirs)
@@ -20,13 +21,14 @@ set(COMIC_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/comic)
 set_target_properties(comic_io PROPERTIES EXPORT_NAME io)
 set_target_properties(comic_frontend PROPERTIES EXPORT_NAME frontend)
 set_target_properties(comic_sfm PROPERTIES EXPORT_NAME sfm)
-install(TARGETS comic_io comic_frontend comic_sfm
+set_target_properties(comic_render PROPERTIES EXPORT_NAME render)
+install(TARGETS comic_io comic_render comic_frontend comic_sfm
   EXPORT comicTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
-foreach(module io frontend sfm)
+foreach(module io render frontend sfm)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/comic/${module}
     FILES_MATCHING PATTERN "*.h")

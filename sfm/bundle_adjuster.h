@@ -1,8 +1,8 @@
-// Bundle adjustment of a Reconstruction on Ceres (the only place the project uses Ceres; its types
-// stay in bundle_adjuster.cc). One reprojection cost per observation with a Huber loss, Schur
-// elimination with points eliminated first, intrinsics held fixed or with any of focal length,
-// principal point and distortion refined, and the gauge fixed by constant poses chosen in the
-// config.
+// Bundle adjustment of a Reconstruction on Ceres (with sfm/pose_graph.cc the only places the
+// project uses Ceres; its types stay in the .cc files). One reprojection cost per observation with
+// a Huber loss, Schur elimination with points eliminated first, intrinsics held fixed or with any
+// of focal length, principal point and distortion refined, and the gauge fixed by constant poses
+// chosen in the config.
 //
 //   BundleAdjustmentConfig config;
 //   for (image_t id : reconstruction.RegisteredImageIds()) config.image_ids.insert(id);

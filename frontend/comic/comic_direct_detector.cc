@@ -9,10 +9,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include "frontend/comic/component_tree.h"
 #include "frontend/comic/curve_cornerness.h"
+#include "frontend/comic/image_component_tree.h"
 #include "frontend/comic/iso_curve.h"
 #include "frontend/comic/iso_curve_stability.h"
+#include "frontend/comic/segment_stability.h"
 #include "frontend/comic/side_mask.h"
 #include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
@@ -81,45 +82,30 @@ struct CurveJob {
   int tree;
   int node;
   int level;
+  // The node's canonical pixel: jobs are ordered as the nodes of ComponentTree, whose ids these
+  // pixels are (the order decides which of two equal κ maxima is kept, LinkAcrossLevels).
+  int key;
   bool operator<(const CurveJob& o) const {
     if (tree != o.tree) return tree < o.tree;
-    if (node != o.node) return node < o.node;
+    if (key != o.key) return key < o.key;
     return level < o.level;
   }
   bool operator==(const CurveJob& o) const {
-    return tree == o.tree && node == o.node && level == o.level;
+    return tree == o.tree && key == o.key && level == o.level;
   }
 };
 
-// The component tree of one polarity and, per node, its first pixel in raster order (the
-// topmost, then leftmost): the pixel above it (or, on the first row, to its left) is outside the
-// component and not in one of its holes, so the edge between them lies on the outer boundary.
+// The component tree of one polarity, its stable lineage maxima and the curves they ask for.
 struct PolarityTree {
-  ComponentTree tree;
-  std::vector<int> first_pixel;
+  ImageComponentTree tree;
   std::vector<int> stable_level;
   std::vector<CurveJob> jobs;
 };
 
 void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDetectorOptions& o,
                        PolarityTree* out) {
-  ComponentTree& tree = out->tree;
+  ImageComponentTree& tree = out->tree;
   tree.Build(image, tree_index == 1);
-  const int padded = tree.Stride() * (tree.height() + 2);
-  out->first_pixel.assign(padded, INT_MAX);
-  for (int y = 0; y < tree.height(); ++y) {
-    for (int x = 0; x < tree.width(); ++x) {
-      const int p = tree.PixelIndex(x, y);
-      int& first = out->first_pixel[tree.NodeOfPixel(p)];
-      first = std::min(first, p);
-    }
-  }
-  for (int node : tree.Nodes()) {  // descendants first
-    const int parent = tree.Parent(node);
-    if (parent >= 0) {
-      out->first_pixel[parent] = std::min(out->first_pixel[parent], out->first_pixel[node]);
-    }
-  }
   // Stable lineage maxima (the unweighted ρ of §3 on the tree): the iso-curves that can hold a
   // feature. Their segment must be complete, so the boundary needs 2k + 1 edges at least.
   const int k = o.half_length;
@@ -130,7 +116,7 @@ void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDe
   // between two stable maxima of one lineage are traced too when they are close: a corner's run
   // must not break at a level no maximum happened to be near.
   std::vector<int>& stable_level = out->stable_level;
-  stable_level.assign(padded, -1);
+  stable_level.assign(tree.NumNodes(), -1);
   for (const StableComponent& component : stable) stable_level[component.node] = component.level;
   {
     const std::vector<int>& nodes = tree.Nodes();
@@ -146,7 +132,7 @@ void BuildPolarityTree(const cv::Mat& image, int tree_index, const ComicDirectDe
     const int node = level >= tree.Level(from_node) ? tree.AncestorAtLevel(from_node, level)
                                                     : tree.MainDescendantAtLevel(from_node, level);
     if (node < 0 || node == root || tree.Perimeter(node) < 2 * k + 1) return;
-    out->jobs.push_back({tree_index, node, level});
+    out->jobs.push_back({tree_index, node, level, tree.CanonicalPixel(node)});
   };
   for (const StableComponent& component : stable) {
     const int parent = tree.Parent(component.node);
@@ -171,18 +157,17 @@ struct CurveWorkspace {
   std::vector<double> arc_lengths;
   std::vector<double> kappa;
   CornernessWorkspace cornerness;
-  WeightedStabilityEvaluator evaluator;
 };
 
 // Traces the outer boundary of `job` and appends its κ maxima to `corners`.
 void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const CurveJob& job,
                     const ComicDirectDetectorOptions& o, const CurveCornerOptions& corner_options,
                     CurveWorkspace* ws, std::vector<LevelCorner>* corners) {
-  const ComponentTree& tree = tree_data.tree;
+  const ImageComponentTree& tree = tree_data.tree;
   const bool upper = job.tree == 1;
-  const int first = tree_data.first_pixel[job.node];
-  const int x = tree.PixelX(first);
-  const int y = tree.PixelY(first);
+  const int first = tree.FirstPixel(job.node);
+  const int x = first % tree.width();
+  const int y = first / tree.width();
   cv::Point in_pixel(x, y);
   cv::Point out_pixel;
   if (y > 0) {
@@ -192,7 +177,9 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
   } else {
     // The component holds the top-left pixel: walk the first row to its first outside pixel.
     int end = 0;
-    while (end < tree.width() && tree.Value(tree.PixelIndex(end, 0)) <= job.level) ++end;
+    const uint8_t* row = image.ptr<uint8_t>(0);
+    const uint8_t flip = upper ? 255 : 0;
+    while (end < tree.width() && (row[end] ^ flip) <= job.level) ++end;
     if (end == tree.width()) return;
     in_pixel = cv::Point(end - 1, 0);
     out_pixel = cv::Point(end, 0);
@@ -203,7 +190,7 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
   const double threshold = upper ? 254.5 - job.level : job.level + 0.5;
   const IsoCurveTracer tracer(image, cv::Rect(0, 0, image.cols, image.rows), threshold);
   const CurveEdge seed = upper ? CurveEdge{out_pixel, in_pixel} : CurveEdge{in_pixel, out_pixel};
-  tracer.Trace(seed, 4 * (image.cols + image.rows) + tree.Perimeter(job.node), &ws->curve);
+  tracer.TracePoints(seed, 4 * (image.cols + image.rows) + tree.Perimeter(job.node), &ws->curve);
   const IsoCurve& curve = ws->curve;
   const int k = o.half_length;
   if (static_cast<int>(curve.points.size()) < 2 * k + 1) return;
@@ -219,7 +206,7 @@ void CornersOfCurve(const cv::Mat& image, const PolarityTree& tree_data, const C
   const int n = static_cast<int>(samples.size());
   if (n < 2 * k + 1) return;
   const double sigma = o.scale / kSqrt2;
-  CurveCornerness(samples, curve.closed, sigma, k, &ws->cornerness, &ws->kappa);
+  CurveCornernessCumulative(samples, curve.closed, sigma, k, &ws->cornerness, &ws->kappa);
   const int nms_radius = std::max(1, static_cast<int>(std::lround(sigma)));
   for (int index : CornernessMaxima(ws->kappa, curve.closed, nms_radius, o.min_cornerness)) {
     const CurveCorner refined =
@@ -388,46 +375,30 @@ struct RunFeature {
   int record = -1;  // index in ComicDirectDetectionStats::runs (when recorded)
 };
 
-}  // namespace
+// The runs of linked κ maxima that span min_run_levels grey levels: their members concatenated,
+// run r in members[begin[r], begin[r + 1]), runs in the order of their first member.
+struct RunList {
+  std::vector<int> members;
+  std::vector<int> begin;
+};
 
-FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
-                                       ComicDirectDetectionStats* stats) const {
-  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
-              "comic: expected a non-empty 8-bit single-channel image");
-  const ComicDirectDetectorOptions& o = options_;
-  ComicDirectDetectionStats local_stats;
-  if (stats == nullptr) stats = &local_stats;
-  const bool record_runs = stats->record_runs;
-  *stats = ComicDirectDetectionStats();
-  stats->record_runs = record_runs;
-  using Fate = ComicDirectRunRecord::Fate;
-  const int k = o.half_length;
-  if (gray.cols < 2 * k + 1 || gray.rows < 2 * k + 1) return {};
-  auto stage_start = std::chrono::steady_clock::now();
-  auto lap = [&stage_start] {
-    const auto now = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
-    stage_start = now;
-    return ms;
-  };
-
-  // ---- Trees of both polarities and their stable lineage maxima. ----
-  // A new buffer: `gray` is the caller's and must not be written.
+// Stage 1: the image every later stage reads (a new buffer: `gray` is the caller's and must not
+// be written).
+cv::Mat PresmoothedImage(const cv::Mat& gray, const ComicDirectDetectorOptions& o) {
+  if (!(o.presmoothing_sigma > 0)) return gray;
+  // 8-bit Gaussian filtering is bit-exact in OpenCV (fixed point), whatever the threads.
   cv::Mat image;
-  if (o.presmoothing_sigma > 0) {
-    // 8-bit Gaussian filtering is bit-exact in OpenCV (fixed point), whatever the threads.
-    cv::GaussianBlur(gray, image, cv::Size(0, 0), o.presmoothing_sigma, o.presmoothing_sigma,
-                     cv::BORDER_REPLICATE);
-  } else {
-    image = gray;
-  }
-  PolarityTree trees[2];
-  ParallelFor(2, o.num_threads, [&](int t, int) { BuildPolarityTree(image, t, o, &trees[t]); });
-  std::vector<CurveJob> jobs = trees[0].jobs;
-  jobs.insert(jobs.end(), trees[1].jobs.begin(), trees[1].jobs.end());
-  stats->trees_ms = lap();
+  cv::GaussianBlur(gray, image, cv::Size(0, 0), o.presmoothing_sigma, o.presmoothing_sigma,
+                   cv::BORDER_REPLICATE);
+  return image;
+}
 
-  // ---- κ maxima on every curve to trace (Algorithm 1's segment and corner at scale s). ----
+// Stage 3: κ maxima on every curve to trace (Algorithm 1's segment and corner at scale s), in job
+// order whatever the threads.
+std::vector<LevelCorner> CornersOfCurves(const cv::Mat& image, const PolarityTree (&trees)[2],
+                                         const std::vector<CurveJob>& jobs,
+                                         const ComicDirectDetectorOptions& o) {
+  const int k = o.half_length;
   CurveCornerOptions corner_options;
   corner_options.arm_end = k;
   corner_options.arm_begin = std::min(4.0, 0.5 * k);
@@ -444,12 +415,14 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   for (auto& list : per_job) {
     for (LevelCorner& c : list) corners.push_back(std::move(c));
   }
-  per_job.clear();
-  stats->num_curves = static_cast<int>(jobs.size());
-  stats->num_maxima = static_cast<int>(corners.size());
-  stats->curves_ms = lap();
+  return corners;
+}
 
-  // ---- Runs: one corner seen at consecutive levels. ----
+// Stage 4: one corner seen at consecutive levels is a run. A run must span min_run_levels grey
+// levels: a κ maximum seen at a few levels only is a wiggle of a curve (noise, texture), not a
+// corner of the level lines, and one grey level of noise removes it.
+RunList LinkRuns(const std::vector<LevelCorner>& corners, const ComicDirectDetectorOptions& o,
+                 int* num_runs) {
   std::vector<uint8_t> duplicate;
   const std::vector<int> next =
       LinkAcrossLevels(corners, o.link_radius, o.level_step, o.max_level_gap, &duplicate);
@@ -457,54 +430,49 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
   for (int j : next) {
     if (j >= 0) has_previous[j] = 1;
   }
-  // Members of each run, runs in the order of their first member. A run must span
-  // min_run_levels grey levels: a κ maximum seen at a few levels only is a wiggle of a curve
-  // (noise, texture), not a corner of the level lines, and one grey level of noise removes it.
-  std::vector<int> run_members;  // concatenated
-  std::vector<int> run_begin;    // run r is run_members[run_begin[r], run_begin[r + 1])
+  RunList runs;
   for (int start = 0; start < static_cast<int>(corners.size()); ++start) {
     if (has_previous[start]) continue;
-    ++stats->num_runs;
-    const size_t first = run_members.size();
-    for (int i = start; i >= 0; i = next[i]) run_members.push_back(i);
-    const int span = std::abs(corners[run_members.back()].level - corners[start].level) + 1;
+    ++*num_runs;
+    const size_t first = runs.members.size();
+    for (int i = start; i >= 0; i = next[i]) runs.members.push_back(i);
+    const int span = std::abs(corners[runs.members.back()].level - corners[start].level) + 1;
     if (span < o.min_run_levels) {
-      run_members.resize(first);
+      runs.members.resize(first);
       continue;
     }
-    run_begin.push_back(static_cast<int>(first));
+    runs.begin.push_back(static_cast<int>(first));
   }
-  run_begin.push_back(static_cast<int>(run_members.size()));
+  runs.begin.push_back(static_cast<int>(runs.members.size()));
+  return runs;
+}
 
-  // ---- ρ_w of every member of a run (Eq. 1, §2.1 weights), on its own segment. ----
-  WeightedStabilityOptions stability_options;
-  stability_options.half_length = k;
+// Stage 5: ρ_w of every member of a run (Eq. 1, §2.1 weights), on its own segment.
+void EvaluateRunStability(const cv::Mat& image, const RunList& runs,
+                          const ComicDirectDetectorOptions& o, std::vector<LevelCorner>* corners) {
+  SegmentStabilityOptions stability_options;
+  stability_options.half_length = o.half_length;
   stability_options.sigma = o.scale / kSqrt2;
   stability_options.delta = o.delta;
-  ParallelFor(static_cast<int>(run_members.size()), o.num_threads, [&](int i, int worker) {
-    LevelCorner& c = corners[run_members[i]];
-    WeightedStabilityEvaluator& evaluator = workspaces[worker].evaluator;
-    c.stability = 0.0;
-    if (c.segment_centre < 1 || c.segment_centre + 1 >= static_cast<int>(c.segment.size())) return;
-    // One level per maximum: neither the middle level nor the neighbouring levels' crossings
-    // that Algorithm 1's level choice reads are needed (same ρ_w, bit for bit).
-    if (!evaluator.PrepareWithoutMiddleLevel(image, c.segment, c.segment_centre,
-                                             stability_options)) {
-      return;
-    }
-    const int l = c.level - evaluator.first_level();
-    if (l >= 0 && l < evaluator.NumLevels()) {
-      c.stability = std::max(0.0, evaluator.SingleLevelStability(l));
-    }
+  const SegmentStabilityEvaluator evaluator(stability_options);
+  ParallelFor(static_cast<int>(runs.members.size()), o.num_threads, [&](int i, int) {
+    LevelCorner& c = (*corners)[runs.members[i]];
+    c.stability = evaluator.Evaluate(image, c.segment, c.segment_centre, c.level + 0.5);
   });
+}
 
-  // ---- One feature per run. ----
+// Stage 6: one feature per run (its smoothed ρ_w peak, at the consensus window's mean vertex);
+// with stats->record_runs, one record per run.
+std::vector<RunFeature> FeaturesOfRuns(const std::vector<LevelCorner>& corners, const RunList& runs,
+                                       const ComicDirectDetectorOptions& o,
+                                       ComicDirectDetectionStats* stats) {
+  using Fate = ComicDirectRunRecord::Fate;
   std::vector<RunFeature> features_of_runs;
   std::vector<int> run;
   std::vector<double> smoothed;
-  for (size_t r_index = 0; r_index + 1 < run_begin.size(); ++r_index) {
-    run.assign(run_members.begin() + run_begin[r_index],
-               run_members.begin() + run_begin[r_index + 1]);
+  for (size_t r_index = 0; r_index + 1 < runs.begin.size(); ++r_index) {
+    run.assign(runs.members.begin() + runs.begin[r_index],
+               runs.members.begin() + runs.begin[r_index + 1]);
     const int m = static_cast<int>(run.size());
     // ρ_w smoothed across levels ([1 2 1] / 4, ends replicated): one grey level of noise moves a
     // single level's ρ_w, not the run's peak.
@@ -519,7 +487,7 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
       if (smoothed[r] > smoothed[peak]) peak = r;
     }
     ComicDirectRunRecord* record = nullptr;
-    if (record_runs) {
+    if (stats->record_runs) {
       stats->runs.emplace_back();
       record = &stats->runs.back();
       record->tree = corners[run[0]].tree;
@@ -568,9 +536,17 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
     if (static_cast<float>(f.stability) < o.min_stability) continue;
     features_of_runs.push_back(f);
   }
-  stats->stability_ms = lap();
+  return features_of_runs;
+}
 
-  // ---- Merge duplicates (both polarities, neighbouring runs), side masks, order. ----
+// Stage 7: duplicates merged (both polarities, neighbouring runs), side masks, features outside
+// the image or with a thin side dropped, ordered by response.
+FeatureSet OutputFeatures(const cv::Mat& gray, const cv::Mat& image,
+                          const std::vector<LevelCorner>& corners,
+                          std::vector<RunFeature> features_of_runs,
+                          const ComicDirectDetectorOptions& o, ComicDirectDetectionStats* stats) {
+  using Fate = ComicDirectRunRecord::Fate;
+  const bool record_runs = stats->record_runs;
   std::sort(features_of_runs.begin(), features_of_runs.end(),
             [&](const RunFeature& a, const RunFeature& b) {
               if (a.stability != b.stability) return a.stability > b.stability;
@@ -629,6 +605,50 @@ FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
                                 [&](const Feature& f) { return outside(f) || thin_side(f); }),
                  features.end());
   SortByResponse(&features);
+  return features;
+}
+
+}  // namespace
+
+FeatureSet ComicDirectDetector::Detect(const cv::Mat& gray,
+                                       ComicDirectDetectionStats* stats) const {
+  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
+              "comic: expected a non-empty 8-bit single-channel image");
+  const ComicDirectDetectorOptions& o = options_;
+  ComicDirectDetectionStats local_stats;
+  if (stats == nullptr) stats = &local_stats;
+  const bool record_runs = stats->record_runs;
+  *stats = ComicDirectDetectionStats();
+  stats->record_runs = record_runs;
+  const int k = o.half_length;
+  if (gray.cols < 2 * k + 1 || gray.rows < 2 * k + 1) return {};
+  auto stage_start = std::chrono::steady_clock::now();
+  auto lap = [&stage_start] {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - stage_start).count();
+    stage_start = now;
+    return ms;
+  };
+
+  // Stages 1-2: trees of both polarities and their stable lineage maxima.
+  const cv::Mat image = PresmoothedImage(gray, o);
+  PolarityTree trees[2];
+  ParallelFor(2, o.num_threads, [&](int t, int) { BuildPolarityTree(image, t, o, &trees[t]); });
+  std::vector<CurveJob> jobs = trees[0].jobs;
+  jobs.insert(jobs.end(), trees[1].jobs.begin(), trees[1].jobs.end());
+  stats->trees_ms = lap();
+
+  std::vector<LevelCorner> corners = CornersOfCurves(image, trees, jobs, o);
+  stats->num_curves = static_cast<int>(jobs.size());
+  stats->num_maxima = static_cast<int>(corners.size());
+  stats->curves_ms = lap();
+
+  const RunList runs = LinkRuns(corners, o, &stats->num_runs);
+  EvaluateRunStability(image, runs, o, &corners);
+  std::vector<RunFeature> features_of_runs = FeaturesOfRuns(corners, runs, o, stats);
+  stats->stability_ms = lap();
+
+  FeatureSet features = OutputFeatures(gray, image, corners, std::move(features_of_runs), o, stats);
   stats->output_ms = lap();
   return features;
 }

@@ -40,9 +40,10 @@ struct ComicDirectDetectorOptions {
   double min_cornerness = 0.03;
   // The vertex correction (curve_cornerness.h, RefineCurveCorner) fades out as the arms' RMS
   // distance from their fitted lines grows from 0.03 px to this (px). Above RefineCurveCorner's
-  // 0.1: the arms of an acute corner on a textured background wiggle by ~0.1 px around the run's
-  // middle levels while the apex lies ~2 px inside the vertex.
-  double max_arm_rms = 0.15;
+  // 0.1: the arms of an acute corner on a textured background wiggle by ~0.1-0.2 px around the
+  // run's middle levels while the apex lies ~2 px inside the vertex (more so under the
+  // pre-smoothing below, which rounds the apex further).
+  double max_arm_rms = 0.2;
   // Levels traced on either side of each stable lineage maximum of the tree: the levels whose
   // curves can carry the same corner as the component's MSICS (a run's ρ_w peak may lie a few
   // levels from the component's, since ρ of a segment peaks where its own edge is steepest).
@@ -75,8 +76,10 @@ struct ComicDirectDetectorOptions {
   // symmetric about the middle of those levels.
   double consensus_fraction = 0.85;
   // Standard deviation of the Gaussian pre-smoothing of the image, px (0: none). Harris and
-  // Hessian smooth internally too; it keeps one grey level of noise off the iso-curves.
-  double presmoothing_sigma = 1.0;
+  // Hessian smooth internally too; it keeps one grey level of noise off the iso-curves and keeps
+  // a half-pixel shift from breaking runs. Larger values repeat better still but round acute
+  // corners beyond what the vertex correction recovers (docs/comic_detector.md).
+  double presmoothing_sigma = 1.25;
   // Features closer than this (px) are duplicates; the one with the higher ρ_w is kept.
   double merge_radius = 2.0;
   // Stability threshold on ρ_w (Eq. 1): features below it are not returned (0: all).

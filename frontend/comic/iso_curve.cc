@@ -34,85 +34,136 @@ cv::Point2f IsoCurveTracer::Crossing(const CurveEdge& edge) const {
           static_cast<float>(edge.inside.y + t * (edge.outside.y - edge.inside.y))};
 }
 
-// Inlined into Trace's loops: it runs once per point of every traced curve.
-[[gnu::always_inline]] inline bool IsoCurveTracer::Step(const CurveEdge& edge, bool forward,
-                                                        CurveEdge* next) const {
-  // Direction of travel with the inside on the left: the inside->outside vector turned by -90°
-  // (image coordinates, y down).
+namespace {
+
+// The four directions of a pixel pair (outside - inside): +x, +y, -x, -y. Turning a direction by
+// -90° (image coordinates, y down) is (d + 3) & 3, by +90° (d + 1) & 3, reversing it (d + 2) & 3.
+constexpr int kDx[4] = {1, 0, -1, 0};
+constexpr int kDy[4] = {0, 1, 0, -1};
+
+int DirectionOf(const CurveEdge& edge) {
   const cv::Point d = edge.outside - edge.inside;
-  cv::Point t(d.y, -d.x);
-  if (!forward) t = -t;
-  const cv::Point a = edge.inside + t;   // ahead of the inside pixel
-  const cv::Point b = edge.outside + t;  // ahead of the outside pixel
-  // The edge's pixels are in the domain and t is perpendicular to d, so a and b share the one
-  // coordinate that moved: a single compare decides whether both are in.
-  const bool ahead_in_domain =
-      t.x != 0 ? static_cast<unsigned>(a.x - domain_.x) < static_cast<unsigned>(domain_.width)
-               : static_cast<unsigned>(a.y - domain_.y) < static_cast<unsigned>(domain_.height);
-  if (!ahead_in_domain) return false;
-  const bool a_inside = IsInside(a);
-  const bool b_inside = IsInside(b);
-  if (!a_inside) {
-    // Saddle (inside pixels on a diagonal): the cell centre, the mean of its four pixels as in
-    // the bilinear interpolant, decides whether the two inside pixels are joined.
-    const bool joined = b_inside && Value(edge.inside) + Value(edge.outside) + Value(a) + Value(b) <
-                                        4.0 * threshold_;
-    *next = joined ? CurveEdge{b, edge.outside} : CurveEdge{edge.inside, a};
-  } else if (!b_inside) {
-    *next = CurveEdge{a, b};
-  } else {
-    *next = CurveEdge{b, edge.outside};
-  }
-  return true;
+  return d.x == 1 ? 0 : d.y == 1 ? 1 : d.x == -1 ? 2 : 3;
 }
 
+}  // namespace
+
 void IsoCurveTracer::Trace(const CurveEdge& seed, int max_points_each_way, IsoCurve* curve) const {
+  TraceImpl<true>(seed, max_points_each_way, curve);
+}
+
+void IsoCurveTracer::TracePoints(const CurveEdge& seed, int max_points_each_way,
+                                 IsoCurve* curve) const {
+  TraceImpl<false>(seed, max_points_each_way, curve);
+}
+
+template <bool kWithEdges>
+void IsoCurveTracer::TraceImpl(const CurveEdge& seed, int max_points_each_way,
+                               IsoCurve* curve) const {
   COMIC_CHECK(IsCrossing(seed), kInvalidArgument, "IsoCurveTracer: seed is not a crossing");
+  // A crossing is walked as its inside pixel (coordinates and address) and its direction; this
+  // runs once per point of every traced curve, so it reads pixels by address.
+  const ptrdiff_t offset[4] = {1, step_, -1, -step_};
+  struct Walk {
+    int x, y, direction;
+    const uint8_t* inside;
+  };
+  const Walk start{seed.inside.x, seed.inside.y, DirectionOf(seed),
+                   data_ + seed.inside.y * step_ + seed.inside.x};
+  const double four_thresholds = 4.0 * threshold_;
+  // One step along the curve: forward keeps the inside on the left. Marching squares on the cell
+  // ahead of the pair: a, b the pixels ahead of the inside and outside pixel.
+  auto step = [&](Walk* w, bool forward) {
+    const int turn = forward ? (w->direction + 3) & 3 : (w->direction + 1) & 3;
+    // The pair's pixels are in the domain and `turn` is perpendicular to their direction: a and b
+    // share the one coordinate that moved, so a single compare decides whether both are in.
+    const bool ahead_in_domain =
+        (turn & 1) == 0 ? static_cast<unsigned>(w->x + kDx[turn] - domain_.x) <
+                              static_cast<unsigned>(domain_.width)
+                        : static_cast<unsigned>(w->y + kDy[turn] - domain_.y) <
+                              static_cast<unsigned>(domain_.height);
+    if (!ahead_in_domain) return false;
+    const uint8_t* a = w->inside + offset[turn];
+    const uint8_t* b = a + offset[w->direction];
+    const bool a_inside = *a < inside_bound_;
+    const bool b_inside = *b < inside_bound_;
+    const int back = (turn + 2) & 3;
+    if (!a_inside) {
+      // Saddle (inside pixels on a diagonal): the cell centre, the mean of its four pixels as in
+      // the bilinear interpolant, decides whether the two inside pixels are joined.
+      const bool joined =
+          b_inside && *w->inside + w->inside[offset[w->direction]] + *a + *b < four_thresholds;
+      if (joined) {
+        w->x += kDx[turn] + kDx[w->direction];
+        w->y += kDy[turn] + kDy[w->direction];
+        w->inside = b;
+        w->direction = back;
+      } else {
+        w->direction = turn;
+      }
+    } else if (!b_inside) {
+      w->x += kDx[turn];
+      w->y += kDy[turn];
+      w->inside = a;
+    } else {
+      w->x += kDx[turn] + kDx[w->direction];
+      w->y += kDy[turn] + kDy[w->direction];
+      w->inside = b;
+      w->direction = back;
+    }
+    return true;
+  };
+  auto same = [](const Walk& p, const Walk& q) {
+    return p.x == q.x && p.y == q.y && p.direction == q.direction;
+  };
+  // The crossing of a pair, linearly interpolated between the pixel centres.
+  auto crossing = [&](const Walk& w) {
+    const double v_in = *w.inside;
+    const double v_out = w.inside[offset[w.direction]];
+    const double t = (threshold_ - v_in) / (v_out - v_in);
+    return cv::Point2f(static_cast<float>(w.x + t * kDx[w.direction]),
+                       static_cast<float>(w.y + t * kDy[w.direction]));
+  };
+  auto edge_of = [](const Walk& w) {
+    return CurveEdge{{w.x, w.y}, {w.x + kDx[w.direction], w.y + kDy[w.direction]}};
+  };
+  std::vector<cv::Point2f>& points = curve->points;
   std::vector<CurveEdge>& edges = curve->edges;
+  points.clear();
   edges.clear();
   curve->closed = false;
+  auto emit = [&](const Walk& w) {
+    points.push_back(crossing(w));
+    if (kWithEdges) edges.push_back(edge_of(w));
+  };
   // Backward part first (collected reversed), then the seed, then the forward part.
-  CurveEdge edge = seed;
-  CurveEdge next;
-  for (int n = 0; n < max_points_each_way && Step(edge, false, &next); ++n) {
-    if (next == seed) {
+  Walk walk = start;
+  for (int n = 0; n < max_points_each_way && step(&walk, false); ++n) {
+    if (same(walk, start)) {
       curve->closed = true;
       break;
     }
-    edges.push_back(next);
-    edge = next;
+    emit(walk);
   }
   if (curve->closed) {
     // A closed curve, in the natural order: the seed, then going forward. A step is reversible
     // (both directions pair the crossings of a cell alike, saddles included, by the same four
     // values), so the backward walk already visited every crossing of the loop: reversed, it is
     // the forward walk, and the loop need not be traced a second time.
-    edges.push_back(seed);
-    std::reverse(edges.begin(), edges.end());
+    emit(start);
+    std::reverse(points.begin(), points.end());
+    if (kWithEdges) std::reverse(edges.begin(), edges.end());
     curve->seed_index = 0;
-  } else {
-    std::reverse(edges.begin(), edges.end());
-    curve->seed_index = static_cast<int>(edges.size());
-    edges.push_back(seed);
-    edge = seed;
-    for (int n = 0; n < max_points_each_way && Step(edge, true, &next); ++n) {
-      if (next == seed) break;  // cannot happen for an open curve; guards the loop
-      edges.push_back(next);
-      edge = next;
-    }
+    return;
   }
-  // The crossings (Crossing's expression, inlined: it runs once per point of every curve).
-  const size_t count = edges.size();
-  curve->points.resize(count);
-  cv::Point2f* points = curve->points.data();
-  const CurveEdge* e = edges.data();
-  for (size_t i = 0; i < count; ++i) {
-    const double v_in = Value(e[i].inside);
-    const double v_out = Value(e[i].outside);
-    const double t = (threshold_ - v_in) / (v_out - v_in);
-    points[i] =
-        cv::Point2f(static_cast<float>(e[i].inside.x + t * (e[i].outside.x - e[i].inside.x)),
-                    static_cast<float>(e[i].inside.y + t * (e[i].outside.y - e[i].inside.y)));
+  std::reverse(points.begin(), points.end());
+  if (kWithEdges) std::reverse(edges.begin(), edges.end());
+  curve->seed_index = static_cast<int>(points.size());
+  emit(start);
+  walk = start;
+  for (int n = 0; n < max_points_each_way && step(&walk, true); ++n) {
+    if (same(walk, start)) break;  // cannot happen for an open curve; guards the loop
+    emit(walk);
   }
 }
 

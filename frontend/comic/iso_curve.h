@@ -67,14 +67,17 @@ class IsoCurveTracer {
   // Traces the curve through `seed` both ways until it closes, leaves the domain, or has
   // `max_points_each_way` points on a side. `seed` must satisfy IsCrossing.
   void Trace(const CurveEdge& seed, int max_points_each_way, IsoCurve* curve) const;
+  // The same points, closed flag and seed index, without `curve->edges` (left empty), for a
+  // caller that needs the polyline only.
+  void TracePoints(const CurveEdge& seed, int max_points_each_way, IsoCurve* curve) const;
 
   // The crossing of this threshold nearest to `point` among the 4-neighbour pairs whose pixels
   // lie within `radius` pixels of it (inclusive, Chebyshev). Returns false if there is none.
   bool FindNearestCrossing(const cv::Point2f& point, int radius, CurveEdge* edge) const;
 
  private:
-  // One step along the curve: forward keeps the inside on the left.
-  bool Step(const CurveEdge& edge, bool forward, CurveEdge* next) const;
+  template <bool kWithEdges>
+  void TraceImpl(const CurveEdge& seed, int max_points_each_way, IsoCurve* curve) const;
 
   const cv::Mat& image_;
   cv::Rect domain_;

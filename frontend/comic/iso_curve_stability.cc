@@ -22,16 +22,21 @@ int DownLevel(double threshold, double delta) {
 // ---------------------------------------------------------------------------------------------
 // Initialisation stage.
 
-double ComponentStability(const ComponentTree& tree, int node, int level, double delta) {
+namespace {
+
+// The same rules on ComponentTree (per block) and ImageComponentTree (the whole image).
+template <class Tree>
+double StabilityOf(const Tree& tree, int node, int level, double delta) {
   const double threshold = level + 0.5;
   const int up = tree.Area(tree.AncestorAtLevel(node, UpLevel(threshold, delta)));
   const int down = tree.MainDescendantArea(node, DownLevel(threshold, delta));
   return tree.Perimeter(node) / static_cast<double>(std::max(1, up - down));
 }
 
-std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& tree, double delta,
-                                                           int min_perimeter, double min_stability,
-                                                           int level_radius) {
+template <class Tree>
+std::vector<StableComponent> MaximallyStableComponents(const Tree& tree, double delta,
+                                                       int min_perimeter, double min_stability,
+                                                       int level_radius) {
   std::vector<StableComponent> result;
   const int root = tree.Root();
   for (int node : tree.Nodes()) {
@@ -44,7 +49,7 @@ std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& 
     int run_end = first;
     bool in_run = false;
     for (int level = first; level <= last; ++level) {
-      const double rho = ComponentStability(tree, node, level, delta);
+      const double rho = StabilityOf(tree, node, level, delta);
       if (rho > best) {
         best = rho;
         run_begin = run_end = level;
@@ -62,17 +67,39 @@ std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& 
     for (int level = first - 1; is_max && level >= run_begin - level_radius; --level) {
       const int below = tree.MainDescendantAtLevel(node, level);
       if (below < 0) break;
-      is_max = best > ComponentStability(tree, below, level, delta);
+      is_max = best > StabilityOf(tree, below, level, delta);
     }
     for (int level = last + 1; is_max && level <= run_end + level_radius && level <= 255; ++level) {
       const int above = tree.AncestorAtLevel(node, level);
       if (above == root) break;
-      is_max = best >= ComponentStability(tree, above, level, delta);
+      is_max = best >= StabilityOf(tree, above, level, delta);
     }
     if (!is_max) continue;
     result.push_back({node, (run_begin + run_end) / 2, best});
   }
   return result;
+}
+
+}  // namespace
+
+double ComponentStability(const ComponentTree& tree, int node, int level, double delta) {
+  return StabilityOf(tree, node, level, delta);
+}
+
+double ComponentStability(const ImageComponentTree& tree, int node, int level, double delta) {
+  return StabilityOf(tree, node, level, delta);
+}
+
+std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& tree, double delta,
+                                                           int min_perimeter, double min_stability,
+                                                           int level_radius) {
+  return MaximallyStableComponents(tree, delta, min_perimeter, min_stability, level_radius);
+}
+
+std::vector<StableComponent> FindMaximallyStableComponents(const ImageComponentTree& tree,
+                                                           double delta, int min_perimeter,
+                                                           double min_stability, int level_radius) {
+  return MaximallyStableComponents(tree, delta, min_perimeter, min_stability, level_radius);
 }
 
 // ---------------------------------------------------------------------------------------------

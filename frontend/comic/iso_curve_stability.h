@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "frontend/comic/component_tree.h"
+#include "frontend/comic/image_component_tree.h"
 
 namespace comic::frontend {
 
@@ -49,6 +50,8 @@ int DownLevel(double threshold, double delta);
 // Unweighted ρ of tree node `node` at level `level` (Level(node) <= level < Level(parent)):
 // Perimeter(node) / max(1, ΔA). The block's own grey values are used (inverted for upper sets).
 double ComponentStability(const ComponentTree& tree, int node, int level, double delta);
+// The same on the tree of a whole image (the direct search).
+double ComponentStability(const ImageComponentTree& tree, int node, int level, double delta);
 
 struct StableComponent {
   int node = -1;
@@ -64,6 +67,10 @@ struct StableComponent {
 // the `level_radius` levels above it (level_radius = 1: the paper's I ± 1). In processing order.
 std::vector<StableComponent> FindMaximallyStableComponents(const ComponentTree& tree, double delta,
                                                            int min_perimeter, double min_stability,
+                                                           int level_radius = 1);
+std::vector<StableComponent> FindMaximallyStableComponents(const ImageComponentTree& tree,
+                                                           double delta, int min_perimeter,
+                                                           double min_stability,
                                                            int level_radius = 1);
 
 // ---------------------------------------------------------------------------------------------

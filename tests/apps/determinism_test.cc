@@ -267,4 +267,17 @@ TEST(Determinism, ComicInspectTwice) {
   ExpectSameOutputs(dir.File("a"), dir.File("b"), 1);
 }
 
+TEST(Determinism, ComicRenderTwiceWithEveryEffect) {
+  ScopedTempDir dir;
+  for (const char* run : {"a", "b"}) {
+    RunInto(dir,
+            AppPath("comic_render") + " " + comic::test::SourceDir() +
+                "/scenes/test_street.json --photos " + ExampleDir() +
+                "/image_l --frames 3 --noise 2 --shot-noise 0.5 --exposure-drift 0.2 "
+                "--shutter 0.5 --blur-samples 3 --stereo-pairs 1 -q --output {out}",
+            run);
+  }
+  ExpectSameOutputs(dir.File("a"), dir.File("b"), 20);
+}
+
 }  // namespace

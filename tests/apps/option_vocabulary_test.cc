@@ -51,6 +51,10 @@ const std::map<std::string, std::string> kDefaultsDifferOnPurpose = {
     {"output", "each app's default folder is named after it (out/sfm, stereo_eval, track_eval)"},
     {"max-features", "comic_detect shows every feature of its image; the trackers keep 2000"},
     {"detector", "comic_detect shows CoMIC (comic); the SfM apps default to harris"},
+    {"boundary-band",
+     "comic_render_eval's region is the exact occlusion boundary (4 px: where a corner "
+     "detector's window meets it); the others' an annotated region (11 px: the patch straddles "
+     "its edge)"},
 };
 
 std::vector<std::string> AppNames() {

@@ -21,16 +21,18 @@ endfunction()
 run_step("cmake --install" ${CMAKE_COMMAND_PATH} --install ${COMIC_BINARY_DIR} --prefix ${prefix})
 
 # The installed layout: libraries, the package files, headers under include/comic/, the apps.
-foreach(file lib/libcomic_io.a lib/libcomic_frontend.a lib/libcomic_sfm.a
+foreach(file lib/libcomic_io.a lib/libcomic_render.a lib/libcomic_frontend.a lib/libcomic_sfm.a
              lib/cmake/comic/comicConfig.cmake lib/cmake/comic/comicConfigVersion.cmake
              lib/cmake/comic/comicTargets.cmake include/comic/io/core/error.h
              include/comic/frontend/detector_factory.h include/comic/sfm/reconstruction.h
+             include/comic/render/rasterizer.h
              bin/comic_detect bin/comic_sfm)
   if(NOT EXISTS ${prefix}/${file})
     message(FATAL_ERROR "not installed: ${prefix}/${file}")
   endif()
 endforeach()
-if(EXISTS ${prefix}/include/io OR EXISTS ${prefix}/include/frontend OR EXISTS ${prefix}/include/sfm)
+if(EXISTS ${prefix}/include/io OR EXISTS ${prefix}/include/frontend OR EXISTS ${prefix}/include/sfm
+   OR EXISTS ${prefix}/include/render)
   message(FATAL_ERROR "headers installed outside include/comic/")
 endif()
 file(GLOB_RECURSE headers ${prefix}/include/comic/*.h)
@@ -39,7 +41,7 @@ if(header_count LESS 50)
   message(FATAL_ERROR "only ${header_count} headers installed under include/comic/")
 endif()
 foreach(header ${headers})
-  file(STRINGS ${header} bad REGEX "#include \"(io|frontend|sfm)/")
+  file(STRINGS ${header} bad REGEX "#include \"(io|render|frontend|sfm)/")
   if(bad)
     message(FATAL_ERROR "${header} still includes a project header without comic/: ${bad}")
   endif()

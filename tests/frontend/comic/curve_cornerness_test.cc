@@ -64,6 +64,46 @@ TEST(CurveCornerness, RightAngleHasItsMaximumAtTheVertex) {
   for (int i = 0; i < 12; ++i) EXPECT_EQ(kappa[i], -1.0);
 }
 
+// The cumulative-sum form against the three box passes: equal up to rounding wherever the
+// windows are whole (every sample of a closed curve, 3r from an open one's ends), long curves
+// (several blocks, far from the origin) included; near an open curve's ends it truncates the
+// window once instead of after each pass, which moves κ a little but keeps its validity.
+TEST(CurveCornerness, CumulativeFormEqualsTheBoxPasses) {
+  CornernessWorkspace workspace;
+  const double sigma = 8.4 / std::sqrt(2.0);
+  const int r = BoxRadiusForGaussian(sigma);
+  std::vector<std::vector<cv::Point2f>> curves;
+  // A wiggly closed loop of 1500 samples far from the origin, a polygon, a short loop.
+  std::vector<cv::Point2f> loop;
+  for (int i = 0; i < 1500; ++i) {
+    const double a = 2 * kPi * i / 1500;
+    const double radius = 230 + 9 * std::sin(23 * a) + 4 * std::cos(61 * a);
+    loop.emplace_back(static_cast<float>(900 + radius * std::cos(a)),
+                      static_cast<float>(650 + radius * std::sin(a)));
+  }
+  curves.push_back(loop);
+  curves.push_back(Sampled({{300, 20}, {340, 25}, {332, 70}, {290, 64}, {300, 20}}));
+  curves.push_back(std::vector<cv::Point2f>(loop.begin(), loop.begin() + 700));
+  for (size_t c = 0; c < curves.size(); ++c) {
+    for (bool closed : {true, false}) {
+      std::vector<double> expected, kappa;
+      CurveCornerness(curves[c], closed, sigma, 12, &workspace, &expected);
+      CurveCornernessCumulative(curves[c], closed, sigma, 12, &workspace, &kappa);
+      const int n = static_cast<int>(expected.size());
+      ASSERT_EQ(static_cast<int>(kappa.size()), n);
+      for (int i = 0; i < n; ++i) {
+        const bool whole = closed || (i >= 3 * r && i < n - 3 * r);
+        EXPECT_EQ(kappa[i] < 0, expected[i] < 0) << c << " " << closed << " " << i;
+        if (whole) {
+          EXPECT_NEAR(kappa[i], expected[i], 1e-9) << c << " " << closed << " " << i;
+        } else if (expected[i] >= 0) {
+          EXPECT_NEAR(kappa[i], expected[i], 0.02) << c << " " << closed << " " << i;
+        }
+      }
+    }
+  }
+}
+
 TEST(CurveCornerness, CornernessIsRotationInvariant) {
   const auto corner = Sampled({{30, -10}, {0, 0}, {10, 35}});
   const auto a = CurveCornerness(corner, false, 6.0, 12);

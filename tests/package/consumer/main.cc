@@ -3,6 +3,7 @@
 // back as comic::Error. Exits non-zero, with one line on stderr, on any wrong result.
 #include <comic/frontend/detector_factory.h>
 #include <comic/io/core/error.h>
+#include <comic/render/rasterizer.h>
 #include <comic/sfm/rigid3d.h>
 
 #include <algorithm>
@@ -62,6 +63,25 @@ int main() {
                                            Eigen::Vector3d(0, 0, 2));
   if ((comic::sfm::ProjectionCenter(cam_from_world) - Eigen::Vector3d(0, 0, -2)).norm() > 1e-12) {
     return Fail("wrong projection centre");
+  }
+  // And comic::render: a grey card filling the view renders as its grey.
+  comic::render::Scene scene;
+  scene.textures.push_back(comic::render::Texture::Solid({90.0f, 90.0f, 90.0f}, "grey"));
+  comic::render::Piece card;
+  card.origin = {-10.0, -10.0, 5.0};
+  card.s_axis = {20.0, 0.0, 0.0};
+  card.t_axis = {0.0, 20.0, 0.0};
+  card.object_id = scene.AddObject("card", true);
+  scene.pieces.push_back(card);
+  comic::render::Lens lens;
+  lens.width = 40;
+  lens.height = 30;
+  const comic::render::RenderedView view =
+      comic::render::Rasterizer(lens, comic::render::RasterOptions())
+          .Render(scene, comic::render::Pose());
+  if (std::abs(view.color.at<cv::Vec3f>(15, 20)[0] - 90.0f) > 1e-3f ||
+      std::abs(view.depth.at<float>(15, 20) - 5.0f) > 1e-5f) {
+    return Fail("comic::render drew the card wrong");
   }
   std::cout << "comic_consumer: " << features.size() << " CoMIC features, the square's 4 corners "
             << "found within 2 px\n";

@@ -1,0 +1,118 @@
+#include "render/json_fields.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/core/error.h"
+
+namespace comic::render {
+
+JsonFields::JsonFields(const nlohmann::json& object, std::string where)
+    : object_(object), where_(std::move(where)) {
+  COMIC_CHECK(object_.is_object(), kInvalidArgument, where_ << ": expected a JSON object");
+}
+
+void JsonFields::Fail(const std::string& key, const std::string& message) const {
+  throw Error(ErrorKind::kInvalidArgument, where_ + ": \"" + key + "\": " + message);
+}
+
+const nlohmann::json& JsonFields::At(const std::string& key) const {
+  if (!object_.contains(key)) Fail(key, "missing");
+  return object_.at(key);
+}
+
+double JsonFields::Number(const std::string& key, double fallback) const {
+  if (!object_.contains(key)) return fallback;
+  const nlohmann::json& value = object_.at(key);
+  if (!value.is_number() || !std::isfinite(value.get<double>())) Fail(key, "expected a number");
+  return value.get<double>();
+}
+
+double JsonFields::RequiredNumber(const std::string& key) const {
+  At(key);
+  return Number(key, 0.0);
+}
+
+int JsonFields::Integer(const std::string& key, int fallback) const {
+  if (!object_.contains(key)) return fallback;
+  const nlohmann::json& value = object_.at(key);
+  if (!value.is_number_integer()) Fail(key, "expected a whole number");
+  return value.get<int>();
+}
+
+bool JsonFields::Bool(const std::string& key, bool fallback) const {
+  if (!object_.contains(key)) return fallback;
+  const nlohmann::json& value = object_.at(key);
+  if (!value.is_boolean()) Fail(key, "expected true or false");
+  return value.get<bool>();
+}
+
+std::string JsonFields::String(const std::string& key, const std::string& fallback) const {
+  if (!object_.contains(key)) return fallback;
+  const nlohmann::json& value = object_.at(key);
+  if (!value.is_string()) Fail(key, "expected a string");
+  return value.get<std::string>();
+}
+
+std::string JsonFields::RequiredString(const std::string& key) const {
+  At(key);
+  return String(key, "");
+}
+
+Range JsonFields::NumberRange(const std::string& key, Range fallback) const {
+  if (!object_.contains(key)) return fallback;
+  const nlohmann::json& value = object_.at(key);
+  if (value.is_number()) {
+    const double v = Number(key, 0.0);
+    return {v, v};
+  }
+  if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
+    Fail(key, "expected a number or [low, high]");
+  }
+  const Range range{value[0].get<double>(), value[1].get<double>()};
+  if (!(range.low <= range.high) || !std::isfinite(range.low) || !std::isfinite(range.high)) {
+    Fail(key, "expected [low, high] with low <= high");
+  }
+  return range;
+}
+
+Eigen::Vector2d JsonFields::Vector2(const std::string& key, const Eigen::Vector2d& fallback) const {
+  if (!object_.contains(key)) return fallback;
+  const nlohmann::json& value = object_.at(key);
+  if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
+    Fail(key, "expected [x, z]");
+  }
+  return {value[0].get<double>(), value[1].get<double>()};
+}
+
+Eigen::Vector3d JsonFields::Vector3(const std::string& key, const Eigen::Vector3d& fallback) const {
+  if (!object_.contains(key)) return fallback;
+  const nlohmann::json& value = object_.at(key);
+  if (!value.is_array() || value.size() != 3 ||
+      !std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_number(); })) {
+    Fail(key, "expected three numbers");
+  }
+  return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+}
+
+std::vector<int> JsonFields::Integers(const std::string& key) const {
+  if (!object_.contains(key)) return {};
+  const nlohmann::json& value = object_.at(key);
+  if (!value.is_array() || !std::all_of(value.begin(), value.end(),
+                                        [](const auto& v) { return v.is_number_integer(); })) {
+    Fail(key, "expected a list of whole numbers");
+  }
+  return value.get<std::vector<int>>();
+}
+
+void JsonFields::CheckKnown(std::initializer_list<const char*> known) const {
+  for (const auto& [key, value] : object_.items()) {
+    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
+      std::string list;
+      for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+      Fail(key, "unknown key (known: " + list + ")");
+    }
+  }
+}
+
+}  // namespace comic::render

@@ -1,0 +1,138 @@
+// Rendering a sequence into files (render/sequence_renderer.h): same scene, photographs, seed and
+// options give the same bytes in every file; the truth is written in the formats the apps read,
+// and reads back as what was rendered.
+#include "render/sequence_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+
+#include "io/colmap/colmap_text_model.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/datasets/ground_truth_cameras.h"
+#include "io/image/depth_map.h"
+#include "io/image/mask_folder.h"
+#include "tests/test_support.h"
+
+namespace comic::render {
+namespace {
+
+BuiltScene TestStreet(int frames) {
+  SceneBuildOptions options;
+  options.num_frames = frames;
+  return BuildScene(
+      test::SourceDir() + "/scenes/test_street.json",
+      {test::ExampleDir() + "/image_l/000000.png", test::ExampleDir() + "/image_l/000005.png"}, 11,
+      options);
+}
+
+std::vector<std::string> FilesUnder(const std::string& folder) {
+  std::vector<std::string> files;
+  for (const std::string& name : io::ListFiles(folder)) files.push_back(name);
+  for (const char* sub : {"images", "depth", "ids", "boundaries", "masks", "colmap"}) {
+    const std::string path = io::JoinPaths(folder, sub);
+    if (!io::IsDirectory(path)) continue;
+    for (const std::string& name : io::ListFiles(path))
+      files.push_back(std::string(sub) + "/" + name);
+  }
+  return files;
+}
+
+TEST(SequenceRenderer, SameSeedAndOptionsGiveTheSameBytesInEveryFile) {
+  const BuiltScene built = TestStreet(3);
+  SequenceRenderOptions options;
+  options.sensor.read_noise = 2.0;
+  options.sensor.shot_noise = 0.3;
+  options.sensor.exposure_drift = 0.2;
+  options.sensor.shutter = 0.5;
+  options.sensor.blur_samples = 3;
+  test::ScopedTempDir a, b, c;
+  RenderSequence(built, 11, options, a.path());
+  RenderSequence(TestStreet(3), 11, options, b.path());
+  RenderSequence(built, 12, options, c.path());  // another sensor seed: other noise
+  const std::vector<std::string> files = FilesUnder(a.path());
+  EXPECT_EQ(files, FilesUnder(b.path()));
+  EXPECT_EQ(files.size(), 3u + 5 * 3 + 3);  // poses, calib, scene; 5 folders x 3; colmap
+  for (const std::string& file : files) {
+    EXPECT_EQ(io::ReadFileToString(io::JoinPaths(a.path(), file)),
+              io::ReadFileToString(io::JoinPaths(b.path(), file)))
+        << file;
+  }
+  EXPECT_NE(io::ReadFileToString(a.File("images/000001.png")),
+            io::ReadFileToString(c.File("images/000001.png")));
+  EXPECT_EQ(io::ReadFileToString(a.File("depth/000001.png")),
+            io::ReadFileToString(c.File("depth/000001.png")));
+}
+
+TEST(SequenceRenderer, TheTruthReadsBackAsRendered) {
+  const BuiltScene built = TestStreet(4);
+  SequenceRenderOptions options;
+  options.depth_format = "pfm";
+  test::ScopedTempDir dir;
+  const SequenceRenderSummary summary = RenderSequence(built, 11, options, dir.path());
+  EXPECT_EQ(summary.num_frames, 4);
+  EXPECT_GT(summary.render_cpu_s, 0.0);
+
+  // KITTI poses + calib, as comic_sfm --gt reads them.
+  const io::GroundTruthCameras truth =
+      io::ReadKittiGroundTruth(dir.File("poses.txt"), dir.File("calib.txt"));
+  ASSERT_EQ(truth.cameras.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    const Pose pose = built.path.At(k);
+    EXPECT_LT((truth.cameras[k].cam_from_world_rotation - pose.rotation).norm(), 1e-9);
+    EXPECT_LT((truth.cameras[k].cam_from_world_translation - pose.translation).norm(), 1e-8);
+    ASSERT_TRUE(truth.cameras[k].has_intrinsics);
+    EXPECT_DOUBLE_EQ(truth.cameras[k].K(0, 0), built.lens.fx);
+    EXPECT_DOUBLE_EQ(truth.cameras[k].K(0, 2), built.lens.cx);
+  }
+  // The COLMAP model of the true cameras.
+  const io::ColmapTextModel model = io::ReadColmapTextModel(dir.File("colmap"));
+  ASSERT_EQ(model.images.size(), 4u);
+  EXPECT_EQ(model.cameras[0].model, "PINHOLE");
+  EXPECT_DOUBLE_EQ(model.cameras[0].params[2], built.lens.cx + 0.5);
+  EXPECT_EQ(model.images[2].name, "000002.png");
+  EXPECT_TRUE(model.points3D.empty());
+  // Depth, masks and ids as the frame's view.
+  const Rasterizer rasterizer(built.lens, options.raster);
+  const RenderedFrame frame = RenderFrame(built, rasterizer, 11, options.sensor, 2);
+  EXPECT_EQ(
+      cv::norm(io::ReadDepthMap(dir.File("depth/000002.pfm")), frame.view.depth, cv::NORM_INF),
+      0.0);
+  const io::MaskFolder masks = io::MaskFolder::Open(dir.File("masks"));
+  masks.CheckCount(4);
+  const cv::Mat mask = masks.Read(2, cv::Size(built.lens.width, built.lens.height));
+  EXPECT_EQ(cv::norm(mask, ForegroundMask(built.scene, frame.view), cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::countNonZero(mask), 1000);  // poles, trees, fences and boxes are seen
+  const cv::Mat ids = cv::imread(dir.File("ids/000002.png"), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(ids.type(), CV_16UC1);
+  EXPECT_EQ(cv::norm(ids, ObjectIds(built.scene, frame.view), cv::NORM_INF), 0.0);
+  const cv::Mat boundaries = cv::imread(dir.File("boundaries/000002.png"), cv::IMREAD_UNCHANGED);
+  EXPECT_GT(cv::countNonZero(boundaries), 2000);
+  EXPECT_LT(cv::countNonZero(boundaries), built.lens.width * built.lens.height / 3);
+  // scene.json: the scene as drawn and how.
+  const nlohmann::json scene = nlohmann::json::parse(io::ReadFileToString(dir.File("scene.json")));
+  EXPECT_EQ(scene["seed"], 11);
+  EXPECT_EQ(scene["render_options"]["depth_format"], "pfm");
+  EXPECT_EQ(scene["scene"]["pieces"].size(), built.scene.pieces.size());
+}
+
+TEST(SequenceRenderer, BadOptionsFailBeforeAnythingIsWritten) {
+  const BuiltScene built = TestStreet(2);
+  SequenceRenderOptions options;
+  options.depth_format = "exr";
+  test::ScopedTempDir dir;
+  EXPECT_THROW(RenderSequence(built, 1, options, dir.File("out")), Error);
+  EXPECT_FALSE(io::PathExists(dir.File("out")));
+  options = SequenceRenderOptions();
+  options.sensor.shutter = 2.0;
+  EXPECT_THROW(RenderSequence(built, 1, options, dir.File("out")), Error);
+  options = SequenceRenderOptions();
+  options.raster.supersampling = 9;
+  EXPECT_THROW(RenderSequence(built, 1, options, dir.File("out")), Error);
+  EXPECT_FALSE(io::PathExists(dir.File("out")));
+}
+
+}  // namespace
+}  // namespace comic::render
