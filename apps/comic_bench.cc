@@ -31,7 +31,9 @@
 #include "frontend/parallel_for.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/protected_inputs.h"
 #include "io/image/image_io.h"
+#include "io/report/json_text.h"
 #include "io/report/report_table.h"
 
 namespace {
@@ -392,9 +394,7 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(match_features >= 1, kInvalidArgument, "--match-features must be >= 1");
   COMIC_CHECK(match_pair.empty() || comic::io::PathExists(match_pair), kNotFound,
               match_pair << ": no such file (--match-pair)");
-  COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
-              "--resize-height must be >= 0 and <= " << comic::io::kMaxResizeHeight
-                                                     << " (0 = original), got " << resize_height);
+  comic::io::CheckResizeHeight(resize_height);
   COMIC_CHECK(runs >= 1 && runs <= 1000, kInvalidArgument,
               "--runs must be >= 1 and <= 1000, got " << runs);
   comic::apps::CheckThreadCount("--threads", threads);
@@ -416,6 +416,8 @@ int Run(int argc, char** argv) {
   }
   COMIC_CHECK(!match_only || !match_pair.empty(), kInvalidArgument,
               "--match-only needs --match-pair");
+  comic::io::CheckOutputsAvoidInputs({{"--json", json_path}},
+                                     {{"IMAGE", input}, {"--match-pair", match_pair}});
   // --detectors: the detectors of the --perturbations tables (comic's losses need comic).
   const std::vector<std::string> perturbation_detectors =
       detector_list.empty()
@@ -547,7 +549,7 @@ int Run(int argc, char** argv) {
             << " iterations, " << paper_counts.num_settled << " settled), side masks and output "
             << median_of(paper_stages, &PaperStats::output_ms) << " ms\n";
   if (!json_path.empty()) {
-    comic::io::WriteFileAtomically(json_path, table.ToJson().dump(1) + "\n");
+    comic::io::WriteFileAtomically(json_path, comic::io::JsonText(table.ToJson(), 1));
   }
   if (perturbations) {
     if (counts.empty()) counts.push_back(0);

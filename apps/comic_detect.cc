@@ -17,8 +17,10 @@
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
 #include "io/core/pixel_budget.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_files.h"
 #include "io/image/image_io.h"
+#include "io/report/json_text.h"
 
 namespace {
 
@@ -191,9 +193,7 @@ int Run(int argc, char** argv) {
       "into\n"
       "the darker side; the line through each circle is its maximally stable iso-curve segment.\n");
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  COMIC_CHECK(resize_height >= 0 && resize_height <= comic::io::kMaxResizeHeight, kInvalidArgument,
-              "--resize-height must be >= 0 and <= " << comic::io::kMaxResizeHeight
-                                                     << " (0 = original), got " << resize_height);
+  comic::io::CheckResizeHeight(resize_height);
   comic::io::CheckMaxPixels(max_pixels);
   COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
   options.coarse_initialisation = !full_resolution_init;
@@ -214,9 +214,13 @@ int Run(int argc, char** argv) {
   options.Check();
   if (!paper) direct.Check();
   comic::apps::CheckThreadCount("--threads", options.num_threads);
+  // Inputs are sacred: `--json img.png` must not replace the image (issue 29).
+  comic::io::CheckOutputsAvoidInputs({{"--overlay", overlay_path}, {"--json", json_path}},
+                                     {{"IMAGE", input}});
   // Both outputs are checked now and renamed into place together at the end (all or nothing).
   comic::io::StagedFiles outputs;
   if (!overlay_path.empty()) outputs.Stage(overlay_path);
+  if (!overlay_path.empty()) comic::io::CheckImageOutputFormat(overlay_path, "--overlay");
   if (!json_path.empty()) outputs.Stage(json_path);
 
   const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height, max_pixels);
@@ -276,7 +280,7 @@ int Run(int argc, char** argv) {
                                  {"detector", detector->Name()},
                                  {"options", options_json},
                                  {"features", features_json}};
-    outputs.WriteFile(json_path, root.dump(1) + "\n");
+    outputs.WriteFile(json_path, comic::io::JsonText(root, 1));
   }
   outputs.Commit();
   if (!overlay_path.empty()) std::cout << "overlay:  " << overlay_path << "\n";

@@ -97,6 +97,7 @@ int Run(int argc, char** argv) {
     if (progress) progress->Update(done, total);
   };
   const sfm::ColmapExportRunResult result = sfm::RunColmapExport(options, callbacks);
+  comic::apps::PrintWarning("comic_export_colmap", result.warning);
   for (const std::string& line : sfm::ColmapExportReportLines(options, result)) {
     std::cout << line << "\n";
   }

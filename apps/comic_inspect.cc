@@ -10,6 +10,8 @@
 #include "apps/common/shared_flags.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/protected_inputs.h"
+#include "io/image/image_io.h"
 #include "io/image/image_sequence.h"
 
 namespace {
@@ -31,14 +33,15 @@ int Run(int argc, char** argv) {
                    &sheet_frames);
   comic::apps::AddAllowTruncatedFlag(parser, &options.allow_truncated);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  comic::io::CheckResizeHeight(options.resize_height);  // by its flag's name
   COMIC_CHECK(sheet_frames >= 1 && sheet_frames <= 100, kInvalidArgument,
               "--sheet-frames must be >= 1 and <= 100, got " << sheet_frames);
+  comic::io::CheckOutputsAvoidInputs({{"--contact-sheet", sheet_path}}, {{"FRAMES", input}});
   if (!sheet_path.empty()) comic::io::CheckWritableFile(sheet_path);
+  if (!sheet_path.empty()) comic::io::CheckImageOutputFormat(sheet_path, "--contact-sheet");
 
   const auto sequence = comic::io::ImageSequence::Open(input, options);
-  if (!sequence.warning().empty()) {
-    std::cerr << "comic_inspect: warning: " << sequence.warning() << std::endl;
-  }
+  comic::apps::PrintWarning("comic_inspect", sequence.warning());
   std::cout << "source:      " << input << (sequence.IsVideo() ? " (video)" : " (images)") << "\n"
             << "frames:      " << sequence.NumFrames() << "\n"
             << "stored size: " << sequence.SourceFrameSize().width << "x"

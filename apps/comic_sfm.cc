@@ -171,9 +171,7 @@ class ConsoleProgress {
   sfm::RunCallbacks Callbacks() {
     sfm::RunCallbacks callbacks;
     callbacks.inputs_resolved = [](const sfm::RunInputs& inputs) {
-      if (!inputs.sequence->warning().empty()) {
-        std::cerr << "comic_sfm: warning: " << inputs.sequence->warning() << std::endl;
-      }
+      apps::PrintWarning("comic_sfm", inputs.sequence->warning());
       for (const std::string& line : sfm::RunInputsLines(inputs, "comic_sfm")) {
         std::cout << line << std::endl;
       }

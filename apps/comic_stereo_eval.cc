@@ -11,15 +11,19 @@
 #include "apps/common/list_flags.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
+#include "frontend/evaluation/evaluation_page.h"
 #include "frontend/evaluation/stereo_evaluation.h"
 #include "frontend/evaluation/stereo_evaluation_report.h"
 #include "frontend/evaluation/stereo_match_figure.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/datasets/middlebury.h"
 #include "io/image/image_io.h"
+#include "io/report/html_page.h"
+#include "io/report/json_text.h"
 
 namespace {
 
@@ -144,7 +148,8 @@ int Run(int argc, char** argv) {
   parser.AddEpilog(
       "Outputs in DIR: stereo_eval.md (every table, readable), stereo_eval.json, protocol.csv,\n"
       "pairs.csv, detections.csv, scores.csv, matched_precision.csv, repeatability.csv,\n"
-      "paper_comparison.csv and matches_<pair>.png (first count of --counts).\n"
+      "paper_comparison.csv, matches_<pair>.png (first count of --counts) and report.html (the\n"
+      "tables, charts and figures with their legends, one self-contained page).\n"
       "--target-precision P in (0, 1] fixes the matched-precision target; 0 (the default) takes\n"
       "--precision-reference's overall precision at T. --resize-height is the working height\n"
       "(paper: 700).\n\n"
@@ -167,11 +172,7 @@ int Run(int argc, char** argv) {
   const std::vector<fe::StereoMethod> drawn = fe::ParseStereoMethods(figure_methods);
   options.Check();
   comic::apps::CheckThreadCount("--threads", options.detectors.comic.num_threads);
-  COMIC_CHECK(options.working_height >= 0 && options.working_height <= io::kMaxResizeHeight,
-              kInvalidArgument,
-              "--resize-height must be >= 0 and <= " << io::kMaxResizeHeight
-                                                     << " (0 = original size), got "
-                                                     << options.working_height);
+  io::CheckResizeHeight(options.working_height);
 
   // Inputs next: every pair is loaded (and so checked) before any output is touched.
   const bool pair_mode = !left.empty() || !right.empty();
@@ -205,6 +206,18 @@ int Run(int argc, char** argv) {
     }
   }
 
+  std::vector<io::NamedPath> inputs = {{"LEFT", left},
+                                       {"RIGHT", right},
+                                       {"--disparity", disparity},
+                                       {"--disc", disc},
+                                       {"--nonocc", nonocc}};
+  if (!middlebury.empty()) {
+    for (const std::string& folder : comic::apps::SplitList(middlebury, "middlebury")) {
+      inputs.push_back({"--middlebury", folder});
+    }
+  }
+  io::CheckOutputsAvoidInputs({{"--output", out_dir}}, inputs);
+
   // Outputs: checked up front, written into a staging folder beside --out and moved into place
   // together at the end (all or nothing; --out itself is created only then).
   io::StagedFolder out(out_dir);
@@ -218,6 +231,8 @@ int Run(int argc, char** argv) {
   for (const io::MiddleburyPair& pair : pairs) {
     outputs.push_back(io::JoinPaths(out.path(), "matches_" + Safe(pair.name) + ".png"));
   }
+  const std::string page = io::JoinPaths(out.path(), "report.html");
+  outputs.push_back(page);
   for (const std::string& path : outputs) io::CheckWritableFile(path);
 
   const fe::StereoProgress progress = [quiet](const std::string& message) {
@@ -232,16 +247,24 @@ int Run(int argc, char** argv) {
   }
 
   const fe::StereoReport report = fe::BuildStereoReport(results, options);
-  io::WriteFileAtomically(outputs[0], fe::StereoReportMarkdown(report, results, options));
-  io::WriteFileAtomically(outputs[1], report.ToJson().dump(2) + "\n");
-  const io::ReportTable* csv[] = {
-      &report.protocol,          &report.pairs,         &report.detections,      &report.scores,
-      &report.matched_precision, &report.repeatability, &report.paper_comparison};
-  for (size_t t = 0; t < tables.size(); ++t)
-    io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
-  }
+  // Errors while writing (a full disk) name --output, not the staging folder.
+  out.NamingTarget([&] {
+    io::WriteFileAtomically(outputs[0], fe::StereoReportMarkdown(report, results, options));
+    io::WriteFileAtomically(outputs[1], io::JsonText(report.ToJson(), 2));
+    const io::ReportTable* csv[] = {
+        &report.protocol,          &report.pairs,         &report.detections,      &report.scores,
+        &report.matched_precision, &report.repeatability, &report.paper_comparison};
+    for (size_t t = 0; t < tables.size(); ++t)
+      io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
+    std::vector<fe::EvaluationFigure> page_figures;
+    for (size_t p = 0; p < pairs.size(); ++p) {
+      io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
+      page_figures.push_back({io::FileName(outputs[2 + tables.size() + p]), figures[p]});
+    }
+    io::WriteHtmlPage(
+        page, fe::StereoEvaluationPage(report, results, options, page_figures,
+                                       comic::apps::CommandLine("comic_stereo_eval", argc, argv)));
+  });
   out.Commit();
   if (!quiet) std::cout << "wrote " << outputs.size() << " files to " << out_dir << "\n";
   return 0;

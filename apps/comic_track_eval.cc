@@ -20,36 +20,35 @@
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
 #include "frontend/evaluation/epipolar_check.h"
+#include "frontend/evaluation/evaluation_page.h"
 #include "frontend/evaluation/track_drawing.h"
 #include "frontend/evaluation/track_evaluation.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
 #include "io/core/pixel_budget.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/datasets/kitti_odometry.h"
 #include "io/datasets/region_annotations.h"
+#include "io/image/image_io.h"
 #include "io/image/image_sequence.h"
 #include "io/image/mask_folder.h"
 #include "io/report/bar_chart.h"
+#include "io/report/html_page.h"
+#include "io/report/json_text.h"
 
 namespace {
 
 using comic::io::ReportTable;
 namespace fe = comic::frontend;
 
-std::string JoinArgs(int argc, char** argv) {
-  std::string command = "comic_track_eval";
-  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
-  return command;
-}
-
 // Writes a table as name.md, name.csv and name.json in `out`.
 void WriteTable(const std::string& out, const std::string& name, const ReportTable& table) {
   comic::io::WriteFileAtomically(comic::io::JoinPaths(out, name + ".md"), table.ToMarkdown());
   comic::io::WriteFileAtomically(comic::io::JoinPaths(out, name + ".csv"), table.ToCsv());
   comic::io::WriteFileAtomically(comic::io::JoinPaths(out, name + ".json"),
-                                 table.ToJson().dump(2) + "\n");
+                                 comic::io::JsonText(table.ToJson(), 2));
 }
 
 // M_score and ResM panels of one n, stacked.
@@ -60,7 +59,9 @@ cv::Mat ScoreChart(const fe::TrackEvaluation& evaluation, size_t k, const std::s
                              : std::vector<std::string>{"overall"};
   comic::io::BarChart score_chart, res_chart;
   score_chart.title = title + ": M_score(" + std::to_string(n) + ") %";
+  score_chart.y_label = "M_score(" + std::to_string(n) + ") (% of N)";
   res_chart.title = title + ": ResM_" + std::to_string(n);
+  res_chart.y_label = "ResM_" + std::to_string(n) + " (features)";
   score_chart.groups = res_chart.groups = groups;
   for (const fe::EvaluationRow& row : evaluation.rows) {
     const fe::MatchingScores& s = row.scores[k];
@@ -214,7 +215,8 @@ int Run(int argc, char** argv) {
       "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
       "precision_n<n>.{md,csv,json} with --poses, precision_equal_count.{md,csv,json} with\n"
       "--poses and a matcher other than full, evaluation.json (everything, with\n"
-      "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png.\n"
+      "every start frame's counts), report.md (all tables and the command), tracks_<frame>.png,\n"
+      "report.html (tables, charts and overlays with their legends, one self-contained page).\n"
       "--target-precision: with --poses, the matchers are also compared at this epipolar\n"
       "precision (0-1). --resize-height: the paper works at 700.\n\n"
       "Example:\n"
@@ -230,10 +232,16 @@ int Run(int argc, char** argv) {
               "give either --masks or --regions, not both");
   COMIC_CHECK(poses_file.empty() == calib_file.empty(), kInvalidArgument,
               "--poses and --calib go together");
+  comic::io::CheckOutputsAvoidInputs({{"--output", out_dir}}, {{"FRAMES", frames_path},
+                                                               {"--regions", boxes_file},
+                                                               {"--masks", masks_dir},
+                                                               {"--poses", poses_file},
+                                                               {"--calib", calib_file}});
   COMIC_CHECK(n >= 1, kInvalidArgument, "--n must be >= 1, got " << n);
   COMIC_CHECK(overlay_frames >= 0, kInvalidArgument, "--overlay-frames must be >= 0");
   comic::apps::CheckThreadCount("--threads", threads);
   comic::io::CheckMaxPixels(max_pixels);
+  comic::io::CheckResizeHeight(sequence_options.resize_height);  // by its flag's name
   sequence_options.max_pixels = max_pixels;
   options.detectors = detector_list.empty() ? comic::frontend::DetectorNames()
                                             : comic::frontend::ParseDetectorList(detector_list);
@@ -315,9 +323,7 @@ int Run(int argc, char** argv) {
     ground_truth = truth;
   }
 
-  if (!sequence.warning().empty()) {
-    std::cerr << "comic_track_eval: warning: " << sequence.warning() << std::endl;
-  }
+  comic::apps::PrintWarning("comic_track_eval", sequence.warning());
   comic::io::StagedFolder out(out_dir);
   std::cout << "comic_track_eval: " << num_frames << " frames of " << frames_path << " at "
             << frame_size.width << "x" << frame_size.height << ", detectors " << detector_list
@@ -328,72 +334,83 @@ int Run(int argc, char** argv) {
   const fe::TrackEvaluation evaluation =
       fe::EvaluateTracking(sequence, regions, ground_truth, options, progress.Callback());
 
-  // Tables, charts, report.
-  const std::string command = JoinArgs(argc, argv);
-  std::ostringstream report;
-  report << "# comic_track_eval report\n\n```\n"
-         << command << "\n```\n\n"
-         << "- frames: " << num_frames << " (" << evaluation.frame_names.front() << " .. "
-         << evaluation.frame_names.back() << "), evaluated at " << frame_size.width << "x"
-         << frame_size.height << "\n"
-         << "- object region: "
-         << (!masks_dir.empty() ? "masks " + masks_dir
-                                : (!boxes_file.empty() ? "regions " + boxes_file : "none"))
-         << "; boundary band " << band << " px\n"
-         << "- N = " << evaluation.reference_count << " features in frame 0's object region ("
-         << (evaluation.reference_source == "comic" ? "CoMIC's count" : "requested") << ")\n"
-         << "- matching: r = " << radius << " px, T = " << max_cost
-         << " (mean squared difference), min side overlap " << min_side_overlap << " px\n\n";
-  for (size_t k = 0; k < options.ns.size(); ++k) {
-    const int nk = options.ns[k];
-    const ReportTable table = fe::ScoreTable(evaluation, nk);
-    const std::string name = "scores_n" + std::to_string(nk);
-    WriteTable(out.path(), name, table);
-    comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), name + ".png"),
-                                    ScoreChart(evaluation, k, comic::io::FileName(frames_path)));
-    report << "## M_score(" << nk << ") and ResM_" << nk << "\n\n" << table.ToMarkdown() << "\n";
-    const ReportTable sweep = fe::ThresholdSweepTable(evaluation, nk);
-    WriteTable(out.path(), "threshold_sweep_n" + std::to_string(nk), sweep);
-    report << "## M_score(" << nk << ") and ResM_" << nk
-           << " at other SSD thresholds T (same matches, re-thresholded)\n\n"
-           << sweep.ToMarkdown() << "\n";
+  // Errors while writing (a full disk) name --output, not the staging folder.
+  out.NamingTarget([&] {
+    // Tables, charts, report.
+    const std::string command = comic::apps::CommandLine("comic_track_eval", argc, argv);
+    std::ostringstream report;
+    report << "# comic_track_eval report\n\n```\n"
+           << command << "\n```\n\n"
+           << "- frames: " << num_frames << " (" << evaluation.frame_names.front() << " .. "
+           << evaluation.frame_names.back() << "), evaluated at " << frame_size.width << "x"
+           << frame_size.height << "\n"
+           << "- object region: "
+           << (!masks_dir.empty() ? "masks " + masks_dir
+                                  : (!boxes_file.empty() ? "regions " + boxes_file : "none"))
+           << "; boundary band " << band << " px\n"
+           << "- N = " << evaluation.reference_count << " features in frame 0's object region ("
+           << (evaluation.reference_source == "comic" ? "CoMIC's count" : "requested") << ")\n"
+           << "- matching: r = " << radius << " px, T = " << max_cost
+           << " (mean squared difference), min side overlap " << min_side_overlap << " px\n\n";
+    for (size_t k = 0; k < options.ns.size(); ++k) {
+      const int nk = options.ns[k];
+      const ReportTable table = fe::ScoreTable(evaluation, nk);
+      const std::string name = "scores_n" + std::to_string(nk);
+      WriteTable(out.path(), name, table);
+      comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), name + ".png"),
+                                      ScoreChart(evaluation, k, comic::io::FileName(frames_path)));
+      report << "## M_score(" << nk << ") and ResM_" << nk << "\n\n" << table.ToMarkdown() << "\n";
+      const ReportTable sweep = fe::ThresholdSweepTable(evaluation, nk);
+      WriteTable(out.path(), "threshold_sweep_n" + std::to_string(nk), sweep);
+      report << "## M_score(" << nk << ") and ResM_" << nk
+             << " at other SSD thresholds T (same matches, re-thresholded)\n\n"
+             << sweep.ToMarkdown() << "\n";
+      if (ground_truth) {
+        const ReportTable precision = fe::PrecisionTable(evaluation, nk);
+        WriteTable(out.path(), "precision_n" + std::to_string(nk), precision);
+        report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
+               << "\n\n"
+               << precision.ToMarkdown() << "\n";
+      }
+    }
     if (ground_truth) {
-      const ReportTable precision = fe::PrecisionTable(evaluation, nk);
-      WriteTable(out.path(), "precision_n" + std::to_string(nk), precision);
-      report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
-             << "\n\n"
-             << precision.ToMarkdown() << "\n";
+      const ReportTable equal_count = fe::EqualCountPrecisionTable(evaluation);
+      if (equal_count.NumRows() > 0) {
+        WriteTable(out.path(), "precision_equal_count", equal_count);
+        report << "## Epipolar precision at the full patch's number of accepted matches per pair "
+                  "(tolerance "
+               << epipolar_tolerance << " px)\n\n"
+               << equal_count.ToMarkdown() << "\n";
+      }
     }
-  }
-  if (ground_truth) {
-    const ReportTable equal_count = fe::EqualCountPrecisionTable(evaluation);
-    if (equal_count.NumRows() > 0) {
-      WriteTable(out.path(), "precision_equal_count", equal_count);
-      report << "## Epipolar precision at the full patch's number of accepted matches per pair "
-                "(tolerance "
-             << epipolar_tolerance << " px)\n\n"
-             << equal_count.ToMarkdown() << "\n";
-    }
-  }
-  nlohmann::json json = fe::EvaluationToJson(evaluation);
-  json["command"] = command;
-  comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "evaluation.json"),
-                                 json.dump(2) + "\n");
+    nlohmann::json json = fe::EvaluationToJson(evaluation);
+    json["command"] = command;
+    comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "evaluation.json"),
+                                   comic::io::JsonText(json, 2));
 
-  // Overlays on frames spread over the sequence, late enough to show some history.
-  const size_t overlays = std::min<size_t>(overlay_frames, num_frames);
-  for (size_t o = 0; o < overlays; ++o) {
-    const size_t first_shown = std::min<size_t>(5, num_frames - 1);
-    const size_t index = overlays == 1
-                             ? first_shown
-                             : first_shown + o * (num_frames - 1 - first_shown) / (overlays - 1);
-    const comic::io::Frame frame = sequence.ReadFrame(index);
-    const cv::Mat labels = regions ? fe::LabelRegion(regions(index), band) : cv::Mat();
-    const std::string stem = frame.name.substr(0, frame.name.find_last_of('.'));
-    comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), "tracks_" + stem + ".png"),
-                                    OverlayMosaic(evaluation, frame, index, labels));
-  }
-  comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "report.md"), report.str());
+    // Overlays on frames spread over the sequence, late enough to show some history.
+    std::vector<fe::EvaluationFigure> figures;
+    const size_t overlays = std::min<size_t>(overlay_frames, num_frames);
+    for (size_t o = 0; o < overlays; ++o) {
+      const size_t first_shown = std::min<size_t>(5, num_frames - 1);
+      const size_t index = overlays == 1
+                               ? first_shown
+                               : first_shown + o * (num_frames - 1 - first_shown) / (overlays - 1);
+      const comic::io::Frame frame = sequence.ReadFrame(index);
+      const cv::Mat labels = regions ? fe::LabelRegion(regions(index), band) : cv::Mat();
+      const std::string stem = frame.name.substr(0, frame.name.find_last_of('.'));
+      figures.push_back(
+          {"tracks_" + stem + ".png", OverlayMosaic(evaluation, frame, index, labels)});
+      comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), figures.back().caption),
+                                      figures.back().image);
+    }
+    const std::string region_words = !masks_dir.empty()
+                                         ? "masks " + masks_dir
+                                         : (!boxes_file.empty() ? "regions " + boxes_file : "none");
+    comic::io::WriteHtmlPage(comic::io::JoinPaths(out.path(), "report.html"),
+                             fe::TrackEvaluationPage(evaluation, {command, region_words, figures}));
+    comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "report.md"), report.str());
+  });
   out.Commit();
   std::cout << fe::ScoreTable(evaluation, n).ToMarkdown() << "wrote " << out_dir << "/\n";
   return 0;

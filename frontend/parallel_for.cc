@@ -4,6 +4,7 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -49,7 +50,16 @@ void ParallelFor(int num_items, int num_threads, const std::function<void(int, i
   };
   std::vector<std::thread> threads;
   threads.reserve(workers - 1);
-  for (int worker = 1; worker < workers; ++worker) threads.emplace_back(run, worker);
+  for (int worker = 1; worker < workers; ++worker) {
+    // A thread the system refuses (std::system_error: too many threads) is not an abort: the
+    // workers already started, and this one, take every item (issue 29: a joinable thread
+    // destroyed while the exception unwound called std::terminate).
+    try {
+      threads.emplace_back(run, worker);
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
   run(0);
   for (std::thread& thread : threads) thread.join();
   if (error) std::rethrow_exception(error);

@@ -12,6 +12,7 @@
 
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -29,11 +30,16 @@
 #include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/pixel_budget.h"
+#include "io/core/printable_text.h"
+#include "io/core/thread_count.h"
 #include "io/core/version.h"
 #include "io/image/image_io.h"
 #include "io/image/image_sequence.h"
+#include "io/report/json_text.h"
 #include "io/report/ply.h"
 #include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/option_vocabulary.h"
 #include "sfm/run/colmap_export_run.h"
 #include "sfm/run/reconstruction_run.h"
 #include "sfm/run/run_messages.h"
@@ -52,6 +58,32 @@ using frontend::kPatchSize;
 using Setter = std::function<void(py::handle)>;
 using OptionTable = std::map<std::string, Setter>;
 
+// A Python int `value` holds a T exactly.
+template <typename T>
+bool FitsIn(py::handle value) {
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if constexpr (std::is_unsigned_v<T>) {
+    if (overflow > 0) {  // above long long: an unsigned long long may still hold it
+      const unsigned long long u = PyLong_AsUnsignedLongLong(value.ptr());
+      if (PyErr_Occurred()) {
+        PyErr_Clear();
+        return false;
+      }
+      return u <= std::numeric_limits<T>::max();
+    }
+  }
+  if (overflow != 0 || (v == -1 && PyErr_Occurred())) {
+    PyErr_Clear();
+    return false;
+  }
+  if constexpr (std::is_signed_v<T>) {
+    return v >= std::numeric_limits<T>::min() && v <= std::numeric_limits<T>::max();
+  } else {
+    return v >= 0 && static_cast<unsigned long long>(v) <= std::numeric_limits<T>::max();
+  }
+}
+
 template <typename T>
 Setter Field(T* field) {
   return [field](py::handle value) {
@@ -61,6 +93,14 @@ Setter Field(T* field) {
       if (!py::isinstance<py::bool_>(value)) throw py::type_error("expects a bool");
     } else if constexpr (std::is_arithmetic_v<T>) {
       if (py::isinstance<py::bool_>(value)) throw py::type_error("expects a number, not a bool");
+      // An int beyond the field's range is a bad value, not a wrong type (threads=10**20).
+      if constexpr (std::is_integral_v<T>) {
+        if (py::isinstance<py::int_>(value) && !FitsIn<T>(value)) {
+          throw py::value_error("= " + py::cast<std::string>(py::str(value)) +
+                                " is beyond the range of a " + std::to_string(8 * sizeof(T)) +
+                                "-bit integer");
+        }
+      }
     } else if constexpr (std::is_same_v<T, std::string>) {
       // A path or a name: str (os.PathLike is turned into str by comic/__init__.py).
       if (!py::isinstance<py::str>(value)) throw py::type_error("expects a str");
@@ -103,6 +143,8 @@ void ApplyOptions(const py::dict& options, const OptionTable& table, const std::
                            py::cast<std::string>(py::str(value.get_type())) + ")");
     } catch (const py::type_error& e) {
       throw py::type_error(context + ": option '" + name + "' " + e.what());
+    } catch (const py::value_error& e) {
+      throw Error(ErrorKind::kInvalidArgument, context + ": option '" + name + "' " + e.what());
     }
   }
 }
@@ -184,6 +226,9 @@ frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py:
   if (!threads) table.erase("threads");
   ApplyOptions(options, table, "detector '" + name + "'");
   detector_options.Check();
+  // The apps' bound on threads (issue 29: threads=10**6 aborted the interpreter).
+  io::CheckThreadCount("--threads", detector_options.comic.num_threads);
+  io::CheckThreadCount("--threads", detector_options.comic_paper.num_threads);
   return detector_options;
 }
 
@@ -230,8 +275,9 @@ void AddSequenceOptions(io::ImageSequenceOptions* s, OptionTable* table) {
 // ---- images and features ----------------------------------------------------------------------
 
 // An 8-bit numpy image, H x W (grey) or H x W x 3 (BGR, as cv2 reads it), copied into a grey
-// cv::Mat.
-cv::Mat GrayFromArray(const py::array& image, const std::string& what) {
+// cv::Mat; more than `max_pixels` pixels are refused before the copy (the apps' budget).
+cv::Mat GrayFromArray(const py::array& image, const std::string& what,
+                      int64_t max_pixels = io::kDefaultMaxPixels) {
   COMIC_CHECK(image.dtype().is(py::dtype::of<uint8_t>()), kInvalidArgument,
               what << ": expected a uint8 image, got dtype "
                    << py::cast<std::string>(py::str(image.dtype())));
@@ -239,6 +285,7 @@ cv::Mat GrayFromArray(const py::array& image, const std::string& what) {
               what << ": expected an H x W (grey) or H x W x 3 (BGR) image, got " << image.ndim()
                    << " dimensions");
   COMIC_CHECK(image.shape(0) > 0 && image.shape(1) > 0, kInvalidArgument, what << ": empty image");
+  io::CheckPixelBudget(what, image.shape(1), image.shape(0), max_pixels);
   const auto contiguous =
       py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image);
   const int rows = static_cast<int>(image.shape(0));
@@ -455,8 +502,23 @@ sfm::RunCallbacks RunCallbacksFor(const py::object& callback, bool quiet,
 
 // ---- the functions ----------------------------------------------------------------------------
 
-py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool color) {
-  const io::LoadedImage image = io::LoadImage(path, resize_height);
+// A keyword argument as an option of `context` (a T, an int beyond T's range a ValueError).
+template <typename T>
+T Argument(const py::object& value, const std::string& name, const std::string& context) {
+  T result{};
+  py::dict options;
+  options[py::str(name)] = value;
+  ApplyOptions(options, {{name, Field(&result)}}, context);
+  return result;
+}
+
+py::array_t<uint8_t> ImRead(const std::string& path, const py::object& resize_height_argument,
+                            bool color, const py::object& max_pixels_argument) {
+  const int resize_height = Argument<int>(resize_height_argument, "resize_height", "imread");
+  const int64_t max_pixels = Argument<int64_t>(max_pixels_argument, "max_pixels", "imread");
+  io::CheckResizeHeight(resize_height, "resize_height");
+  io::CheckMaxPixels(max_pixels);
+  const io::LoadedImage image = io::LoadImage(path, resize_height, max_pixels);
   const cv::Mat& mat = color ? image.color : image.gray;
   std::vector<py::ssize_t> shape = {mat.rows, mat.cols};
   if (color) shape.push_back(3);
@@ -468,9 +530,12 @@ py::array_t<uint8_t> ImRead(const std::string& path, int resize_height, bool col
   return array;
 }
 
-py::dict Detect(const py::array& image, const std::string& detector_name, const py::dict& options) {
+py::dict Detect(const py::array& image, const std::string& detector_name, const py::dict& options,
+                const py::object& max_pixels_argument) {
   const frontend::DetectorOptions detector_options = MakeDetectorOptions(detector_name, options);
-  const cv::Mat gray = GrayFromArray(image, "detect");
+  const int64_t max_pixels = Argument<int64_t>(max_pixels_argument, "max_pixels", "detect");
+  io::CheckMaxPixels(max_pixels);
+  const cv::Mat gray = GrayFromArray(image, "detect", max_pixels);
   FeatureSet features;
   {
     py::gil_scoped_release release;
@@ -509,6 +574,7 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
   AddTrackerOptions(&tracker, &table);
   const bool from_path = py::isinstance<py::str>(frames);
   if (from_path) AddSequenceOptions(&sequence_options, &table);
+  table["max_pixels"] = Field(&sequence_options.max_pixels);  // paths and arrays alike
   ApplyOptions(options, table, "track");
   tracker.Check();
   sequence_options.Check();
@@ -526,7 +592,8 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
       COMIC_CHECK(py::isinstance<py::array>(frame), kInvalidArgument,
                   "track: frames must be a path or a sequence of uint8 numpy images");
       grays.push_back(GrayFromArray(py::reinterpret_borrow<py::array>(frame),
-                                    "track: frame " + std::to_string(grays.size())));
+                                    "track: frame " + std::to_string(grays.size()),
+                                    sequence_options.max_pixels));
       COMIC_CHECK(grays.back().size() == grays.front().size(), kInvalidArgument,
                   "track: frame " << grays.size() - 1 << " differs in size from frame 0");
     }
@@ -663,7 +730,7 @@ void AddRunTrackerSettings(sfm::TrackerSettings* t, OptionTable* table) {
 // --first, --last, --stride, --resize-height, --max-pixels.
 void AddRunSequenceOptions(io::ImageSequenceOptions* s, OptionTable* table) {
   AddSequenceOptions(s, table);
-  table->insert({{"max_pixels", Field(&s->max_pixels)}});
+  (*table)["max_pixels"] = Field(&s->max_pixels);
 }
 
 // --colmap-db and its flags (apps/common/colmap_db_flags.h).
@@ -734,7 +801,7 @@ PyReconstruction FromDetectorRun(const sfm::DetectorRun& run, const std::string&
   PyReconstruction result;
   if (run.success()) result.model = sfm::ToColmapTextModel(run.run.mapping.reconstruction);
   result.status = sfm::ReconstructionStatusName(run.run.mapping.status);
-  result.report_json = run.report_json.dump(2) + "\n";
+  result.report_json = io::JsonText(run.report_json, 2);
   result.path = run.success() ? path : "";
   return result;
 }
@@ -863,20 +930,33 @@ PYBIND11_MODULE(_core, m) {
   m.attr("detector_names") = comic::frontend::DetectorNames();
   m.attr("patch_size") = comic::frontend::kPatchSize;
 
+  // Every C++ error is a Python exception with the command line's one line (RunMain's): the
+  // option named as the flag, printable, never an abort and never a raw multi-line library text.
   py::register_exception_translator([](std::exception_ptr pointer) {
     try {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const comic::Error& e) {
+      const std::string message =
+          comic::io::PrintableOneLine(comic::sfm::WithUserOptionNames(e.what()));
       if (e.kind() == comic::ErrorKind::kInvalidArgument) {
-        PyErr_SetString(PyExc_ValueError, e.what());
+        PyErr_SetString(PyExc_ValueError, message.c_str());
       } else {
-        PyErr_SetString(PyExc_RuntimeError, e.what());
+        PyErr_SetString(PyExc_RuntimeError, message.c_str());
       }
+    } catch (const cv::Exception& e) {
+      PyErr_SetString(
+          PyExc_RuntimeError,
+          ("OpenCV: " + comic::io::PrintableOneLine(e.err) + " (" + e.func + ")").c_str());
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(PyExc_MemoryError, "out of memory");
     }
   });
 
-  m.def("imread", &ImRead, py::arg("path"), py::arg("resize_height"), py::arg("color"));
-  m.def("detect", &Detect, py::arg("image"), py::arg("detector"), py::arg("options"));
+  m.attr("default_max_pixels") = comic::io::kDefaultMaxPixels;
+  m.def("imread", &ImRead, py::arg("path"), py::arg("resize_height"), py::arg("color"),
+        py::arg("max_pixels"));
+  m.def("detect", &Detect, py::arg("image"), py::arg("detector"), py::arg("options"),
+        py::arg("max_pixels"));
   m.def("match", &Match, py::arg("image1"), py::arg("features1"), py::arg("side_masks1"),
         py::arg("image2"), py::arg("features2"), py::arg("side_masks2"), py::arg("options"));
   m.def("track", &Track, py::arg("frames"), py::arg("detector"), py::arg("detector_options"),

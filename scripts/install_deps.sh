@@ -11,7 +11,7 @@ PACKAGES=(
   make
   cmake
   pkg-config
-  libopencv-dev  # core, imgproc, imgcodecs, videoio, features2d, calib3d
+  libopencv-dev  # core, imgproc, imgcodecs, videoio, video, features2d, calib3d
   libceres-dev   # bundle adjustment
   libeigen3-dev
   libsqlite3-dev # COLMAP database
@@ -28,6 +28,8 @@ PACKAGES=(
   python3-wheel
   clang          # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
   libfuzzer-14-dev
+  libjs-three    # three.js, inlined into report.html's 3-D view (io/report/html_page.h)
+  chromium       # headless browser: the tests render report.html and check it draws
 )
 
 missing=()

@@ -23,7 +23,7 @@ export LSAN_OPTIONS=suppressions=$PWD/scripts/sanitizers/lsan.supp:print_suppres
 
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" -E '^(apps|layout|package|python)/' | tee "$log"
+ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" -E '^(apps|layout|package|python)/|_browser\.' | tee "$log"
 tests_run=$(sed -n 's/.*tests failed out of \([0-9]*\).*/\1/p' "$log" | tail -1)
 
 example_out=$(mktemp -d)

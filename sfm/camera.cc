@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "io/core/error.h"
 
@@ -150,6 +151,39 @@ void Camera::Check() const {
               kInvalidArgument,
               CameraModelName(model) << " (" << CameraModelParamsInfo(model)
                                      << ") cannot hold the distortion coefficients given");
+}
+
+void CheckCameraValuesPlausible(const Camera& camera) {
+  try {
+    camera.Check();
+  } catch (const Error& e) {
+    throw Error(ErrorKind::kInvalidData, e.what());
+  }
+  const double size = std::max(camera.width, camera.height);
+  for (const auto& [name, value] : {std::pair<const char*, double>{"fx", camera.fx},
+                                    std::pair<const char*, double>{"fy", camera.fy}}) {
+    COMIC_CHECK(value >= kMinFocalFactor * size && value <= kMaxFocalFactor * size, kInvalidData,
+                "focal length " << name << " = " << value << " px is outside ["
+                                << kMinFocalFactor * size << ", " << kMaxFocalFactor * size
+                                << "] px, what a lens on " << camera.width << "x" << camera.height
+                                << " images can have");
+  }
+  COMIC_CHECK(camera.cx >= -camera.width && camera.cx <= 2.0 * camera.width, kInvalidData,
+              "principal point cx = " << camera.cx << " px is outside [" << -camera.width << ", "
+                                      << 2 * camera.width << "] px for images " << camera.width
+                                      << " px wide");
+  COMIC_CHECK(camera.cy >= -camera.height && camera.cy <= 2.0 * camera.height, kInvalidData,
+              "principal point cy = " << camera.cy << " px is outside [" << -camera.height << ", "
+                                      << 2 * camera.height << "] px for images " << camera.height
+                                      << " px high");
+  for (const auto& [name, value] : {std::pair<const char*, double>{"k1", camera.k1},
+                                    std::pair<const char*, double>{"k2", camera.k2},
+                                    std::pair<const char*, double>{"p1", camera.p1},
+                                    std::pair<const char*, double>{"p2", camera.p2}}) {
+    COMIC_CHECK(std::abs(value) <= kMaxDistortion, kInvalidData,
+                "distortion coefficient " << name << " = " << value << " is outside ["
+                                          << -kMaxDistortion << ", " << kMaxDistortion << "]");
+  }
 }
 
 }  // namespace comic::sfm

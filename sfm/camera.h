@@ -64,4 +64,17 @@ struct Camera {
   void Check() const;
 };
 
+// The range of values a real camera of its size has, checked on calibrations read from files
+// (issue 29: cx = 1e300 ran to 0 verified pairs and exit 0; fx = 1e308 ended in "USAC threshold
+// must be > 0"): focal lengths in [kMinFocalFactor, kMaxFocalFactor] · max(width, height) (a
+// 180° lens to a 0.6° telephoto), the principal point within one image size around the image,
+// distortion coefficients within ±kMaxDistortion.
+inline constexpr double kMinFocalFactor = 0.01;
+inline constexpr double kMaxFocalFactor = 100.0;
+inline constexpr double kMaxDistortion = 100.0;
+
+// Camera::Check, then the ranges above. Throws comic::Error(kInvalidData) naming the value, its
+// range and the camera's size; callers put the file's name in front.
+void CheckCameraValuesPlausible(const Camera& camera);
+
 }  // namespace comic::sfm

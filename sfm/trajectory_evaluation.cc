@@ -71,6 +71,7 @@ std::optional<TrajectoryEvaluation> EvaluateTrajectory(
                               estimated[frame]->RotationMatrix());
   }
   const Eigen::Quaterniond gt_from_estimated_rotation(ChordalMean(world_rotations));
+  evaluation.gt_from_estimated_rotation = gt_from_estimated_rotation;
 
   double sum_squared = 0.0, sum = 0.0, sum_rotation = 0.0, sum_rotation_sim3 = 0.0;
   for (size_t k = 0; k < evaluation.frames.size(); ++k) {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <optional>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct TrajectoryEvaluation {
   double mean_rotation_error_deg = 0.0;
   // The same, with the Sim(3)'s rotation (well defined only for a path that is not a line).
   double mean_rotation_error_sim3_deg = 0.0;
+  // That rotation alignment: the chordal mean over the evaluated frames of the rotation taking
+  // the estimated world to the true one (defined whatever the shape of the path).
+  Eigen::Quaterniond gt_from_estimated_rotation = Eigen::Quaterniond::Identity();
 };
 
 // `estimated` and `ground_truth` are cam_from_world poses indexed by frame (std::nullopt where

@@ -11,6 +11,7 @@
 #include "io/core/library_messages.h"
 #include "io/core/printable_text.h"
 #include "io/core/version.h"
+#include "sfm/option_vocabulary.h"
 
 namespace comic::apps {
 
@@ -216,6 +217,11 @@ std::string ArgParser::Help() const {
   return out.str();
 }
 
+void PrintWarning(const std::string& program, const std::string& text) {
+  if (text.empty()) return;
+  std::cerr << program << ": warning: " << io::PrintableOneLine(text) << std::endl;
+}
+
 int RunMain(const std::string& program, const std::function<int()>& body) {
   // One line, ours: OpenCV's own log stays quiet, and every message is made one printable line
   // (a file's binary garbage quoted in a parse error is escaped, never echoed raw).
@@ -223,7 +229,9 @@ int RunMain(const std::string& program, const std::function<int()>& body) {
   try {
     return body();
   } catch (const Error& e) {
-    std::cerr << program << ": error: " << io::PrintableOneLine(e.what()) << "\n";
+    // Options by the flags' names, not the library fields' (sfm/option_vocabulary.h).
+    std::cerr << program << ": error: " << io::PrintableOneLine(sfm::WithUserOptionNames(e.what()))
+              << "\n";
     return e.kind() == ErrorKind::kInvalidArgument ? 2 : 1;
   } catch (const cv::Exception& e) {
     std::cerr << program << ": error: OpenCV: " << io::PrintableOneLine(e.err) << " (" << e.func
@@ -233,6 +241,12 @@ int RunMain(const std::string& program, const std::function<int()>& body) {
     std::cerr << program << ": error: " << io::PrintableOneLine(e.what()) << "\n";
     return 1;
   }
+}
+
+std::string CommandLine(const std::string& program, int argc, char** argv) {
+  std::string command = program;
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  return command;
 }
 
 }  // namespace comic::apps

@@ -94,4 +94,11 @@ class ArgParser {
 // an exception escape main().
 int RunMain(const std::string& program, const std::function<int()>& body);
 
+// The command as typed, for reports: `program` and argv[1..] joined by spaces.
+std::string CommandLine(const std::string& program, int argc, char** argv);
+
+// "PROGRAM: warning: TEXT" on stderr as one printable line (io/core/printable_text.h); nothing
+// for an empty text.
+void PrintWarning(const std::string& program, const std::string& text);
+
 }  // namespace comic::apps

@@ -2,6 +2,7 @@
 
 #include "apps/common/shared_flags.h"
 #include "frontend/matching/track_builder.h"
+#include "io/core/error.h"
 #include "sfm/run/tracker_settings.h"
 
 namespace comic::apps {
@@ -9,7 +10,8 @@ namespace comic::apps {
 TrackerFlags::TrackerFlags()
     : options(sfm::DefaultRunTrackerOptions()),
       prediction(frontend::MotionPredictionName(options.prediction)),
-      track_conflicts(frontend::TrackConflictRuleName(options.conflict_rule)) {}
+      track_conflicts(frontend::TrackConflictRuleName(options.conflict_rule)),
+      align_patches(options.align_patches ? 1 : 0) {}
 
 void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags) {
   frontend::TrackerOptions& options = flags->options;
@@ -47,6 +49,54 @@ void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags) {
       "latitude sign are upside down; needs --verify-min-gap)",
       &options.match_turned_180);
   AddMaxCostFlag(parser, &options.matcher.max_cost);
+  parser.AddOption("align-patches", "BOOL",
+                   "align each feature's patch into the next frame (pyramidal, gain and bias) and "
+                   "search detections near where it aligned: 1 or 0",
+                   &flags->align_patches);
+  parser.AddOption("max-continued-frames", "N",
+                   "with --align-patches 1: a track whose feature is not re-detected continues at "
+                   "its aligned position for up to N consecutive frames (0 = never)",
+                   &options.continuation.max_continued_frames);
+  parser.AddOption("max-alignment-residual", "T",
+                   "an alignment is trusted if its mean squared difference after gain and bias "
+                   "is at most T (grey levels squared)",
+                   &options.continuation.max_residual);
+  parser.AddOption("aligned-radius", "PX",
+                   "search radius for detections around a trusted alignment",
+                   &options.continuation.aligned_radius);
+  parser.AddOption("min-alignment-correlation", "C",
+                   "an alignment is trusted if its normalised cross-correlation is at least C",
+                   &options.continuation.min_correlation);
+  parser.AddOption("alignment-min-eigenvalue", "E",
+                   "windows with a weaker gradient moment are not aligned",
+                   &options.continuation.alignment.min_eigenvalue);
+  parser.AddOption("min-window-eigenvalue", "E",
+                   "track only features whose 23x23 window has a gradient moment with both "
+                   "eigenvalues >= E (grey levels squared per pixel squared; 0 = all)",
+                   &options.min_window_eigenvalue);
+  parser.AddOption("bridge-frames", "G",
+                   "with --align-patches 1: a track lost at frame i is looked for again in frames "
+                   "i+2 .. i+G (re-association after a gap; 0 = none)",
+                   &options.continuation.bridge_frames);
+  parser.AddOption("alignment-max-fb", "PX",
+                   "an alignment counts only if aligning back returns within PX of the start (0 = "
+                   "no check)",
+                   &options.continuation.alignment.max_forward_backward_px);
+  parser.AddOption("alignment-iterations", "N", "iterations per level of the patch alignment",
+                   &options.continuation.alignment.max_iterations);
+  parser.AddOption("alignment-levels", "N", "pyramid levels of the patch alignment",
+                   &options.continuation.alignment.levels);
+}
+
+frontend::TrackerOptions ToTrackerOptions(const TrackerFlags& flags) {
+  frontend::TrackerOptions options = flags.options;
+  options.prediction = frontend::ParseMotionPrediction(flags.prediction);
+  options.conflict_rule = frontend::ParseTrackConflictRule(flags.track_conflicts);
+  COMIC_CHECK(flags.align_patches == 0 || flags.align_patches == 1, kInvalidArgument,
+              "--align-patches must be 1 or 0, got " << flags.align_patches);
+  options.align_patches = flags.align_patches == 1;
+  options.Check();
+  return options;
 }
 
 sfm::TrackerSettings ToTrackerSettings(const TrackerFlags& flags, const ArgParser& parser) {
@@ -62,6 +112,19 @@ sfm::TrackerSettings ToTrackerSettings(const TrackerFlags& flags, const ArgParse
   if (parser.WasSet("verify-min-gap")) settings.verify_min_gap = o.verify_min_gap;
   if (parser.WasSet("match-turned")) settings.match_turned = o.match_turned_180;
   if (parser.WasSet("max-cost")) settings.max_cost = o.matcher.max_cost;
+  if (parser.WasSet("align-patches")) {
+    COMIC_CHECK(flags.align_patches == 0 || flags.align_patches == 1, kInvalidArgument,
+                "--align-patches must be 1 or 0, got " << flags.align_patches);
+    settings.align_patches = flags.align_patches == 1;
+  }
+  if (parser.WasSet("min-window-eigenvalue")) {
+    settings.min_window_eigenvalue = o.min_window_eigenvalue;
+  }
+  for (const char* name : {"max-continued-frames", "max-alignment-residual", "aligned-radius",
+                           "min-alignment-correlation", "alignment-min-eigenvalue", "bridge-frames",
+                           "alignment-max-fb", "alignment-iterations", "alignment-levels"}) {
+    if (parser.WasSet(name)) settings.continuation = o.continuation;
+  }
   return settings;
 }
 

@@ -20,6 +20,7 @@ struct TrackerFlags {
   frontend::TrackerOptions options;  // the numeric and boolean fields are bound directly
   std::string prediction;            // MotionPredictionName
   std::string track_conflicts;       // TrackConflictRuleName
+  int align_patches;                 // options.align_patches as 1 or 0 (a default-on switch)
 };
 
 void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags);
@@ -27,5 +28,9 @@ void AddTrackerFlags(ArgParser& parser, TrackerFlags* flags);
 // The tracker flags given on the command line (parser.WasSet), as the run's settings: the others
 // keep the run's defaults, set up for the pairing --matching chooses (sfm/run/tracker_settings.h).
 sfm::TrackerSettings ToTrackerSettings(const TrackerFlags& flags, const ArgParser& parser);
+
+// Every tracker flag as given or defaulted, parsed and Check()ed (comic_track_survival, which
+// tracks without a pairing choice).
+frontend::TrackerOptions ToTrackerOptions(const TrackerFlags& flags);
 
 }  // namespace comic::apps

@@ -1,5 +1,6 @@
 #include "frontend/evaluation/stereo_match_figure.h"
 
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
@@ -14,6 +15,13 @@ const cv::Scalar kCorrect(60, 200, 60);  // BGR
 const cv::Scalar kWrong(40, 40, 230);
 const cv::Scalar kUnmatched(170, 170, 170);
 const cv::Scalar kBoundaryTint(255, 160, 60);
+
+std::string Css(const cv::Scalar& bgr) {
+  char text[8];
+  std::snprintf(text, sizeof(text), "#%02x%02x%02x", static_cast<int>(bgr[2]),
+                static_cast<int>(bgr[1]), static_cast<int>(bgr[0]));
+  return text;
+}
 
 cv::Mat BasePanel(const io::MiddleburyPair& pair) {
   cv::Mat base;
@@ -76,6 +84,22 @@ cv::Mat Panel(const io::MiddleburyPair& pair, const StereoRun& run, const Stereo
 }
 
 }  // namespace
+
+std::vector<io::PageLegendEntry> StereoMatchFigureLegend(double correct_tolerance) {
+  char correct[160];
+  std::snprintf(correct, sizeof(correct),
+                "correct match: a line from the left feature to where its right partner was "
+                "found, within %.1f px of the true position",
+                correct_tolerance);
+  // The tint is blended at 30 % over the grey image: show the colour it gives on mid grey.
+  const cv::Scalar tinted = 0.7 * cv::Scalar(128, 128, 128) + 0.3 * kBoundaryTint;
+  return {{Css(kCorrect), correct},
+          {Css(kWrong), "wrong match: its partner is farther than that from the true position"},
+          {Css(kUnmatched), "a valid left feature without an accepted match (grey dot)"},
+          {Css(tinted),
+           "blue band: pixels near a depth discontinuity (Middlebury's disc.png = "
+           "255), the boundary region of the paper's split"}};
+}
 
 cv::Mat DrawStereoMatchFigure(const io::MiddleburyPair& pair, const StereoRun& run,
                               const std::vector<StereoMethod>& methods, double max_cost) {

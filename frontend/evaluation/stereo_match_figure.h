@@ -13,6 +13,7 @@
 
 #include "frontend/evaluation/stereo_evaluation.h"
 #include "io/datasets/middlebury.h"
+#include "io/report/page_sections.h"
 
 namespace comic::frontend {
 
@@ -26,5 +27,9 @@ namespace comic::frontend {
 // empty method list.
 cv::Mat DrawStereoMatchFigure(const io::MiddleburyPair& pair, const StereoRun& run,
                               const std::vector<StereoMethod>& methods, double max_cost);
+
+// What DrawStereoMatchFigure's colours mean, as a page legend (io/report/page_sections.h);
+// `correct_tolerance` is StereoEvaluationOptions::correct_tolerance (pixels).
+std::vector<io::PageLegendEntry> StereoMatchFigureLegend(double correct_tolerance);
 
 }  // namespace comic::frontend

@@ -1,10 +1,43 @@
 #include "frontend/evaluation/track_drawing.h"
 
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
 
 #include "io/core/error.h"
 
 namespace comic::frontend {
+
+namespace {
+
+// BGR, and the same colours as CSS for the legends.
+const cv::Scalar kRegionEdge(255, 160, 0);
+const cv::Scalar kBoundary(0, 0, 255);
+const cv::Scalar kInterior(0, 220, 0);
+const cv::Scalar kOutside(0, 255, 255);
+const cv::Scalar kUntracked(160, 160, 160);
+
+std::string Css(const cv::Scalar& bgr) {
+  char text[8];
+  std::snprintf(text, sizeof(text), "#%02x%02x%02x", static_cast<int>(bgr[2]),
+                static_cast<int>(bgr[1]), static_cast<int>(bgr[0]));
+  return text;
+}
+
+}  // namespace
+
+std::vector<io::PageLegendEntry> TrackDrawingLegend(bool with_regions) {
+  if (!with_regions) {
+    return {{Css(kOutside),
+             "a track through this frame: its path over the last frames and a dot "
+             "at its feature"},
+            {Css(kUntracked), "a feature in no track through this frame (small cross)"}};
+  }
+  return {{Css(kBoundary), "track at a feature on the object's boundary (within the band)"},
+          {Css(kInterior), "track at a feature inside the object"},
+          {Css(kOutside), "track at a feature outside the object"},
+          {Css(kRegionEdge), "the object region's outline"},
+          {Css(kUntracked), "a feature in no track through this frame (small cross)"}};
+}
 
 cv::Mat DrawTracks(const cv::Mat& bgr, const FeatureTracks& tracks, int frame,
                    const std::vector<RegionLabel>& labels, const cv::Mat& region_labels,
@@ -23,19 +56,19 @@ cv::Mat DrawTracks(const cv::Mat& bgr, const FeatureTracks& tracks, int frame,
     const cv::Mat object = region_labels != static_cast<int>(RegionLabel::kOutside);
     std::vector<std::vector<cv::Point>> contours;
     cv::findContours(object, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-    cv::drawContours(canvas, contours, -1, cv::Scalar(255, 160, 0), 1, cv::LINE_AA);
+    cv::drawContours(canvas, contours, -1, kRegionEdge, 1, cv::LINE_AA);
   }
   const auto colour_of = [&](int feature) {
-    if (labels.empty()) return cv::Scalar(0, 255, 255);
+    if (labels.empty()) return kOutside;
     switch (labels[feature]) {
       case RegionLabel::kBoundary:
-        return cv::Scalar(0, 0, 255);
+        return kBoundary;
       case RegionLabel::kInterior:
-        return cv::Scalar(0, 220, 0);
+        return kInterior;
       case RegionLabel::kOutside:
         break;
     }
-    return cv::Scalar(0, 255, 255);
+    return kOutside;
   };
   std::vector<bool> tracked(features.size(), false);
   constexpr int kShift = 4;  // sub-pixel drawing
@@ -61,7 +94,7 @@ cv::Mat DrawTracks(const cv::Mat& bgr, const FeatureTracks& tracks, int frame,
     for (size_t i = 0; i < features.size(); ++i) {
       if (tracked[i]) continue;
       const cv::Point p(cvRound(features[i].x), cvRound(features[i].y));
-      cv::drawMarker(canvas, p, cv::Scalar(160, 160, 160), cv::MARKER_CROSS, 5, 1);
+      cv::drawMarker(canvas, p, kUntracked, cv::MARKER_CROSS, 5, 1);
     }
   }
   return canvas;

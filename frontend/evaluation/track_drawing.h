@@ -6,6 +6,7 @@
 
 #include "frontend/evaluation/region_labels.h"
 #include "frontend/matching/track.h"
+#include "io/report/page_sections.h"
 
 namespace comic::frontend {
 
@@ -26,5 +27,9 @@ cv::Mat DrawTracks(const cv::Mat& bgr, const FeatureTracks& tracks, int frame,
                    const std::vector<RegionLabel>& labels = {},
                    const cv::Mat& region_labels = cv::Mat(),
                    const TrackDrawingOptions& options = {});
+
+// What DrawTracks' colours mean, as a page legend (io/report/page_sections.h); `with_regions`:
+// the boundary / interior / outside colours and the region's outline.
+std::vector<io::PageLegendEntry> TrackDrawingLegend(bool with_regions);
 
 }  // namespace comic::frontend

@@ -1,5 +1,7 @@
 #include "frontend/matching/combined_tracking.h"
 
+#include <algorithm>
+
 #include "io/core/error.h"
 #include "io/image/image_sequence.h"
 
@@ -40,6 +42,14 @@ TrackingResult MergeTrackingResults(const std::vector<TrackingResult>& parts,
     for (const TrackingResult& part : parts) {
       const FeatureSet& features = part.tracks.features[frame];
       tracks.features[frame].insert(tracks.features[frame].end(), features.begin(), features.end());
+    }
+    if (std::all_of(parts.begin(), parts.end(),
+                    [&](const TrackingResult& part) { return frame < part.continued.size(); })) {
+      std::vector<uint8_t> flags;
+      for (const TrackingResult& part : parts) {
+        flags.insert(flags.end(), part.continued[frame].begin(), part.continued[frame].end());
+      }
+      merged.continued.push_back(std::move(flags));
     }
   }
   for (size_t p = 0; p < parts.size(); ++p) {

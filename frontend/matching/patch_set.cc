@@ -51,4 +51,10 @@ void PatchSet::DropSides(size_t i) {
   patches_[i].object_side = PatchSide::kNone;
 }
 
+void PatchSet::Append(const cv::Mat& gray, const FeatureSet& more) {
+  PatchSet added(gray, more, sides_);
+  patches_.insert(patches_.end(), added.patches_.begin(), added.patches_.end());
+  words_.insert(words_.end(), added.words_.begin(), added.words_.end());
+}
+
 }  // namespace comic::frontend

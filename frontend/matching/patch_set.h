@@ -68,6 +68,10 @@ class PatchSet {
   // the full patch.
   void DropSides(size_t i);
 
+  // Adds the patches of `more` features of the same image (`gray`, as given to the constructor),
+  // prepared with this set's sides: the tracker's continued features (track_continuation.h).
+  void Append(const cv::Mat& gray, const FeatureSet& more);
+
  private:
   static constexpr size_t kWordsPerPatch = 3 * kPatchPixels;
 

@@ -38,6 +38,8 @@ void TrackerOptions::Check() const {
               "tracker: the matcher must use the radius gate");
   COMIC_CHECK(max_features >= 0, kInvalidArgument,
               "tracker: max_features must be >= 0 (0 = all), got " << max_features);
+  COMIC_CHECK(min_window_eigenvalue >= 0, kInvalidArgument,
+              "tracker: min_window_eigenvalue must be >= 0, got " << min_window_eigenvalue);
   COMIC_CHECK(unpredicted_radius >= 0, kInvalidArgument,
               "tracker: unpredicted_radius must be >= 0 px, got " << unpredicted_radius);
   COMIC_CHECK(velocity_neighbours >= 1, kInvalidArgument,
@@ -56,15 +58,23 @@ void TrackerOptions::Check() const {
   COMIC_CHECK(!match_turned_180 || verify_min_gap > 0, kInvalidArgument,
               "tracker: match_turned_180 needs verify_min_gap > 0 (the verified matches decide "
               "between the hypotheses)");
+  continuation.Check();
+  COMIC_CHECK(align_patches || continuation.max_continued_frames == 0, kInvalidArgument,
+              "tracker: continuation.max_continued_frames > 0 needs align_patches");
 }
 
-FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Size& image_size,
-                                   const TrackerOptions& options) {
+namespace {
+
+FeatureSet SelectFeatures(const FeatureSet& detected, const cv::Size& image_size,
+                          const cv::Mat* gray, const TrackerOptions& options) {
   // Keep the max_features strongest (by response, then the deterministic SortByResponse order)
   // without reordering the input.
   std::vector<size_t> usable;
   for (size_t i = 0; i < detected.size(); ++i) {
-    if (detected[i].response >= options.min_response && PatchFits(detected[i], image_size)) {
+    if (detected[i].response >= options.min_response && PatchFits(detected[i], image_size) &&
+        (options.min_window_eigenvalue <= 0 ||
+         WindowMinEigenvalue(*gray, detected[i].Position(), kPatchSize) >=
+             options.min_window_eigenvalue)) {
       usable.push_back(i);
     }
   }
@@ -87,13 +97,24 @@ FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Size& i
   return kept;
 }
 
-namespace {
+}  // namespace
 
-// A known displacement at a position.
-struct MotionSample {
-  cv::Point2f position;
-  cv::Point2f displacement;
-};
+FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Mat& gray,
+                                   const TrackerOptions& options) {
+  COMIC_CHECK(!gray.empty() && gray.type() == CV_8UC1, kInvalidArgument,
+              "tracker: frames must be non-empty 8-bit single-channel images");
+  return SelectFeatures(detected, gray.size(), &gray, options);
+}
+
+FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Size& image_size,
+                                   const TrackerOptions& options) {
+  COMIC_CHECK(options.min_window_eigenvalue <= 0, kInvalidArgument,
+              "tracker: min_window_eigenvalue needs the image (SelectTrackableFeatures(detected, "
+              "gray, options))");
+  return SelectFeatures(detected, image_size, nullptr, options);
+}
+
+namespace {
 
 // Median displacement of the `k` samples nearest to `p` within `max_distance`, if any. Ties in
 // distance are broken by sample order, so the result is deterministic.
@@ -301,6 +322,10 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
   // Earlier frames matched to this one, nearest first: the predictions for the farther ones
   // build on the matches to the nearer ones.
   std::vector<std::vector<PatchMatch>> mutual_to_frame, accepted_to_frame;
+  SearchRegions search_to_frame;
+  ImagePyramid pyramid;
+  if (options_.align_patches) pyramid = ImagePyramid(gray, options_.continuation.alignment.levels);
+  std::vector<PatchAlignment> aligned;  // of frame − 1's features into this frame
   for (int gap = 1; gap <= options_.match_window && gap <= frame; ++gap) {
     const int earlier = frame - gap;
     const bool verify = options_.verify_min_gap > 0 && gap >= options_.verify_min_gap;
@@ -310,8 +335,15 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
     auto match = [&](const cv::Mat& gray2, const FeatureSet& features2, const PatchSet& patches2,
                      const CoarseFrame& coarse2, bool is_turned, std::vector<PatchMatch>* mutual,
                      std::vector<PatchMatch>* accepted) {
-      const SearchRegions search =
+      SearchRegions search =
           PredictSearchRegions(earlier, gray2, features2, coarse2, accepted_to_frame, is_turned);
+      if (gap == 1 && !is_turned && options_.align_patches) {
+        aligned = AlignFeatures(features_[earlier], pyramids_[earlier], pyramid, search, {},
+                                options_.continuation.alignment);
+        search = GuidedSearchRegions(features_[earlier], search, options_.matcher.radius, aligned,
+                                     options_.continuation);
+      }
+      if (gap == 1 && !is_turned) search_to_frame = search;
       *mutual = SelectMutualBest(ComputeCandidateCosts(
           features_[earlier], patches_[earlier], features2, patches2, options_.matcher, search));
       *accepted = ApplyCostThreshold(*mutual, options_.matcher.max_cost);
@@ -336,6 +368,18 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
     accepted_to_frame.push_back(std::move(accepted));
     mutual_to_frame.push_back(std::move(mutual));
   }
+  std::vector<int> runs(features.size(), 0);
+  if (!aligned.empty() && !previous_pair_turned) {
+    AddContinuations(gray, aligned, &features, &patches, &mutual_to_frame.front(),
+                     &accepted_to_frame.front(), &runs);
+  }
+  next_link_.emplace_back();  // this frame's, filled below
+  RecordLinks(accepted_to_frame);
+  std::vector<FramePairMatches> bridges;
+  if (options_.align_patches && options_.continuation.bridge_frames >= 2) {
+    bridges = AddBridges(gray, pyramid, &features, &patches, &runs);
+  }
+  next_link_.back().assign(features.size(), {-1, -1});
   if (options_.matcher.cost == MatchCost::kTrackSides && frame > 0) {
     // The memory along the track: a feature whose match from the frame before cost its full
     // patch (the side did not win) is compared by its full patch when it is matched on. Done
@@ -353,6 +397,11 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
   names_.push_back(name);
   mutual_.push_back(std::move(mutual_to_frame));
   accepted_.push_back(std::move(accepted_to_frame));
+  search_regions_.push_back(std::move(search_to_frame));
+  continued_runs_.push_back(std::move(runs));
+  alignments_.push_back(std::move(aligned));
+  bridges_.push_back(std::move(bridges));
+  pyramids_.push_back(std::move(pyramid));
   patches_.push_back(std::move(patches));
   coarse_.push_back(std::move(coarse));
   image_size_ = gray.size();
@@ -362,6 +411,152 @@ void Tracker::AddFrame(const cv::Mat& gray, FeatureSet features, const std::stri
     patches_[expired] = PatchSet();
     coarse_[expired] = CoarseFrame();
   }
+  const int unaligned = frame - std::max(1, options_.continuation.bridge_frames);
+  if (unaligned >= 0) pyramids_[unaligned] = ImagePyramid();
+}
+
+void Tracker::RecordLinks(const std::vector<std::vector<PatchMatch>>& accepted_to_frame) {
+  const int frame = static_cast<int>(features_.size());
+  // Nearest frames last, so that a feature linked to several frames keeps the nearest.
+  for (int gap = static_cast<int>(accepted_to_frame.size()); gap >= 1; --gap) {
+    for (const PatchMatch& m : accepted_to_frame[gap - 1]) {
+      std::pair<int, int>& next = next_link_[frame - gap][m.index1];
+      if (next.first < 0 || next.first > frame) next = {frame, m.index2};
+    }
+  }
+}
+
+std::vector<FramePairMatches> Tracker::AddBridges(const cv::Mat& gray, const ImagePyramid& pyramid,
+                                                  FeatureSet* features, PatchSet* patches,
+                                                  std::vector<int>* runs) {
+  const TrackContinuationOptions& options = options_.continuation;
+  const int frame = static_cast<int>(features_.size());
+  // The features of this frame some track holds already.
+  std::vector<bool> held(features->size(), false);
+  for (int earlier = std::max(0, frame - std::max(options_.match_window, options.bridge_frames));
+       earlier < frame; ++earlier) {
+    for (const std::pair<int, int>& next : next_link_[earlier]) {
+      if (next.first == frame) held[next.second] = true;
+    }
+  }
+  std::vector<FramePairMatches> bridges;
+  for (int gap = 2; gap <= options.bridge_frames && gap <= frame; ++gap) {
+    const int earlier = frame - gap;
+    const FeatureSet& from = features_[earlier];
+    // Where the tracks that reach this frame moved since `earlier`, and the track ends there.
+    std::vector<MotionSample> samples;
+    std::vector<int> ends;
+    for (int k = 0; k < static_cast<int>(from.size()); ++k) {
+      std::pair<int, int> at = next_link_[earlier][k];
+      if (at.first < 0) {
+        if (continued_runs_[earlier][k] < std::max(1, options.max_continued_frames)) {
+          ends.push_back(k);
+        }
+        continue;
+      }
+      while (at.first >= 0 && at.first < frame) at = next_link_[at.first][at.second];
+      if (at.first == frame) {
+        samples.push_back(
+            {from[k].Position(), (*features)[at.second].Position() - from[k].Position()});
+      }
+    }
+    if (ends.empty()) continue;
+    FeatureSet candidates;
+    std::vector<cv::Point2f> points;
+    for (int k : ends) {
+      candidates.push_back(from[k]);
+      points.push_back(from[k].Position());
+    }
+    SearchRegions start;
+    start.centres = PredictFromNeighbours(points, samples, options_.velocity_neighbours,
+                                          options_.velocity_neighbour_radius);
+    const std::vector<PatchAlignment> aligned =
+        AlignFeatures(candidates, pyramids_[earlier], pyramid, start, {}, options.alignment);
+    // Best alignments first.
+    std::vector<int> order;
+    for (int c = 0; c < static_cast<int>(ends.size()); ++c) {
+      if (IsTrusted(aligned[c], options)) order.push_back(c);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return aligned[a].residual < aligned[b].residual; });
+    FramePairMatches links{earlier, frame, {}};
+    FeatureSet added;
+    const double radius2 = options.aligned_radius * options.aligned_radius;
+    const double separation2 = options.min_separation * options.min_separation;
+    for (int c : order) {
+      const cv::Point2f p = aligned[c].position;
+      int nearest = -1;
+      double nearest_d2 = radius2;
+      bool crowded = false;
+      for (int i = 0; i < static_cast<int>(features->size()); ++i) {
+        const cv::Point2f d = (*features)[i].Position() - p;
+        const double d2 = d.dot(d);
+        if (held[i]) {
+          crowded = crowded || d2 <= separation2;
+          continue;
+        }
+        if ((*runs)[i] == 0 && d2 <= nearest_d2) {
+          nearest_d2 = d2;
+          nearest = i;
+        }
+      }
+      const int k = ends[c];
+      if (nearest >= 0) {
+        links.matches.push_back({k, nearest, aligned[c].residual});
+        held[nearest] = true;
+      } else if (!crowded && continued_runs_[earlier][k] + gap <= options.max_continued_frames) {
+        Feature moved = from[k];
+        const cv::Point2f shift = p - moved.Position();
+        moved.x = p.x;
+        moved.y = p.y;
+        for (cv::Point2f& q : moved.curve) q += shift;
+        const int index = static_cast<int>(features->size());
+        features->push_back(moved);
+        added.push_back(moved);
+        runs->push_back(continued_runs_[earlier][k] + gap);
+        held.push_back(true);
+        links.matches.push_back({k, index, aligned[c].residual});
+      }
+    }
+    patches->Append(gray, added);
+    if (links.matches.empty()) continue;
+    std::sort(links.matches.begin(), links.matches.end(),
+              [](const PatchMatch& a, const PatchMatch& b) { return a.index1 < b.index1; });
+    for (const PatchMatch& m : links.matches) next_link_[earlier][m.index1] = {frame, m.index2};
+    bridges.push_back(std::move(links));
+  }
+  return bridges;
+}
+
+void Tracker::AddContinuations(const cv::Mat& gray, const std::vector<PatchAlignment>& aligned,
+                               FeatureSet* features, PatchSet* patches,
+                               std::vector<PatchMatch>* mutual, std::vector<PatchMatch>* accepted,
+                               std::vector<int>* runs) const {
+  const int previous = static_cast<int>(features_.size()) - 1;
+  const std::vector<Continuation> continued =
+      ContinueUnmatched(features_[previous], continued_runs_[previous], *features, *accepted,
+                        aligned, options_.continuation);
+  // A continued feature's match replaces its mutual-best match above the threshold, if any.
+  std::vector<bool> is_continued(features_[previous].size(), false);
+  for (const Continuation& c : continued) is_continued[c.index1] = true;
+  mutual->erase(std::remove_if(mutual->begin(), mutual->end(),
+                               [&](const PatchMatch& m) { return is_continued[m.index1]; }),
+                mutual->end());
+  FeatureSet added;
+  for (const Continuation& c : continued) {
+    const PatchMatch match{c.index1, static_cast<int>(features->size() + added.size()), c.residual};
+    mutual->push_back(match);
+    accepted->push_back(match);
+    runs->push_back(continued_runs_[previous][c.index1] + 1);
+    added.push_back(c.feature);
+  }
+  patches->Append(gray, added);
+  features->insert(features->end(), added.begin(), added.end());
+  const auto by_index1 = [](const PatchMatch& a, const PatchMatch& b) {
+    return a.index1 < b.index1;
+  };
+  std::sort(mutual->begin(), mutual->end(), by_index1);
+  std::sort(accepted->begin(), accepted->end(), by_index1);
 }
 
 TrackingResult Tracker::Result() const {
@@ -372,16 +567,29 @@ TrackingResult Tracker::Result() const {
       std::any_of(names_.begin(), names_.end(), [](const std::string& n) { return !n.empty(); });
   if (any_name) result.tracks.frame_names = names_;
   result.tracks.features = features_;
+  for (const std::vector<int>& runs : continued_runs_) {
+    std::vector<uint8_t> flags(runs.size());
+    for (size_t k = 0; k < runs.size(); ++k) flags[k] = runs[k] > 0 ? 1 : 0;
+    result.continued.push_back(std::move(flags));
+  }
   for (int frame2 = 1; frame2 < static_cast<int>(features_.size()); ++frame2) {
     for (int gap = 1; gap <= static_cast<int>(mutual_[frame2].size()); ++gap) {
       if (gap == 1) {
         result.mutual_matches.push_back(mutual_[frame2][0]);
         result.accepted_matches.push_back(accepted_[frame2][0]);
+        result.search_regions.push_back(search_regions_[frame2]);
+        if (options_.align_patches) result.alignments.push_back(alignments_[frame2]);
       } else {
         result.window_mutual_matches.push_back({frame2 - gap, frame2, mutual_[frame2][gap - 1]});
         result.window_accepted_matches.push_back(
             {frame2 - gap, frame2, accepted_[frame2][gap - 1]});
       }
+    }
+  }
+  for (const std::vector<FramePairMatches>& bridges : bridges_) {
+    for (const FramePairMatches& pair : bridges) {
+      result.window_mutual_matches.push_back(pair);
+      result.window_accepted_matches.push_back(pair);
     }
   }
   result.options = options_;
@@ -397,10 +605,9 @@ TrackingResult TrackSequence(const io::ImageSequence& sequence, const Detector& 
   Tracker tracker(options, detector.Name(), &detector);
   for (size_t i = 0; i < sequence.NumFrames(); ++i) {
     const io::Frame frame = sequence.ReadFrame(i);
-    tracker.AddFrame(
-        frame.gray,
-        SelectTrackableFeatures(detector.Detect(frame.gray), frame.gray.size(), options),
-        frame.name);
+    tracker.AddFrame(frame.gray,
+                     SelectTrackableFeatures(detector.Detect(frame.gray), frame.gray, options),
+                     frame.name);
     if (progress) progress(i + 1, sequence.NumFrames());
   }
   return tracker.Result();
@@ -417,7 +624,7 @@ TrackingResult TrackFrames(const std::vector<cv::Mat>& grays, const Detector& de
     COMIC_CHECK(!grays[i].empty() && grays[i].type() == CV_8UC1, kInvalidArgument,
                 "tracker: frame " << i << " is not a non-empty 8-bit single-channel image");
     tracker.AddFrame(grays[i],
-                     SelectTrackableFeatures(detector.Detect(grays[i]), grays[i].size(), options),
+                     SelectTrackableFeatures(detector.Detect(grays[i]), grays[i], options),
                      frame_names.empty() ? "" : frame_names[i]);
     if (progress) progress(i + 1, grays.size());
   }

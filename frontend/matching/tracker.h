@@ -65,9 +65,11 @@
 
 #include "frontend/detector.h"
 #include "frontend/matching/match_verification.h"
+#include "frontend/matching/patch_alignment.h"
 #include "frontend/matching/patch_matcher.h"
 #include "frontend/matching/track.h"
 #include "frontend/matching/track_builder.h"
+#include "frontend/matching/track_continuation.h"
 
 namespace comic::io {
 class ImageSequence;
@@ -90,6 +92,11 @@ struct TrackerOptions {
   float min_response = -std::numeric_limits<float>::max();
   // Keep at most this many of the strongest features per frame after the cut-off (0 = all).
   int max_features = 0;
+  // Features whose kPatchSize window has a smaller minimum gradient eigenvalue
+  // (WindowMinEigenvalue, grey levels² per pixel²) are not tracked, before the max_features cut:
+  // a flat window, or one holding a single straight edge, matches anything nearby equally well
+  // ("good features to track", Shi & Tomasi 1994). 0 = every feature.
+  double min_window_eigenvalue = 0.0;
   // Motion prediction (see above).
   MotionPrediction prediction = MotionPrediction::kNone;
   // Search radius in pixels for features without any prediction (0 = matcher.radius).
@@ -122,6 +129,13 @@ struct TrackerOptions {
   // translational patch matcher cannot link those to the others. Doubles the matching time of
   // the verified pairs.
   bool match_turned_180 = false;
+  // Guided search and continuation (track_continuation.h): each feature of frame i is aligned
+  // into frame i+1 from its predicted position by pyramidal patch alignment; detections are
+  // searched near a trusted alignment only, and with continuation.max_continued_frames > 0 a
+  // track whose feature is not re-detected continues at the aligned position for that many
+  // frames. Off in the paper's protocol; on for the SfM (sfm::SequenceReconstructionOptions).
+  bool align_patches = false;
+  TrackContinuationOptions continuation;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -141,6 +155,15 @@ struct TrackingResult {
   std::vector<std::vector<PatchMatch>> mutual_matches;
   // Per frame pair (i, i+1): the matches accepted at matcher.max_cost.
   std::vector<std::vector<PatchMatch>> accepted_matches;
+  // Per frame pair (i, i+1): where each feature of frame i was searched in frame i+1 (empty
+  // regions: at its own position within matcher.radius), for the diagnosis of lost tracks.
+  std::vector<SearchRegions> search_regions;
+  // Per frame, per feature: 1 if the feature is a continuation (not a detection: its track's
+  // feature of the frame before, moved to where its patch aligned; align_patches), else 0.
+  // Continued features follow a frame's detected ones.
+  std::vector<std::vector<uint8_t>> continued;
+  // align_patches, per frame pair (i, i+1): each feature of frame i aligned into frame i+1.
+  std::vector<std::vector<PatchAlignment>> alignments;
   // match_window > 1: the same for the pairs (i, j), 2 <= j − i <= match_window, ordered by j then
   // by the gap. Empty for match_window = 1.
   std::vector<FramePairMatches> window_mutual_matches;
@@ -157,7 +180,12 @@ struct TrackingResult {
 using TrackingProgress = std::function<void(size_t frames_done, size_t num_frames)>;
 
 // The features of one detection the tracker can use: response >= options.min_response, patch
-// inside an image of `image_size`, at most options.max_features strongest (input order kept).
+// inside the image, window eigenvalue >= options.min_window_eigenvalue, at most
+// options.max_features strongest (input order kept).
+FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Mat& gray,
+                                   const TrackerOptions& options);
+// The same knowing only the image size: throws comic::Error(kInvalidArgument) if
+// options.min_window_eigenvalue > 0 (the test needs the image).
 FeatureSet SelectTrackableFeatures(const FeatureSet& detected, const cv::Size& image_size,
                                    const TrackerOptions& options);
 
@@ -207,6 +235,22 @@ class Tracker {
                                      const std::vector<std::vector<PatchMatch>>& accepted_to_frame2,
                                      bool turned) const;
 
+  // Appends the continuations of the tracks of frame − 1 that found no detection in `frame` to
+  // its features, patches and matches from frame − 1 (align_patches).
+  void AddContinuations(const cv::Mat& gray, const std::vector<PatchAlignment>& aligned,
+                        FeatureSet* features, PatchSet* patches, std::vector<PatchMatch>* mutual,
+                        std::vector<PatchMatch>* accepted, std::vector<int>* runs) const;
+  // Records the links into the frame being added (its matches from every earlier frame of the
+  // window: `accepted_to_frame`[g − 1] from the frame g before) as the next observation of the
+  // earlier features.
+  void RecordLinks(const std::vector<std::vector<PatchMatch>>& accepted_to_frame);
+  // Re-association after a gap (continuation.bridge_frames): links the tracks that ended two or
+  // more frames before the frame being added to it, as detections or new continued features
+  // appended to `features`, `patches` and `runs`; returns the links by frame pair.
+  std::vector<FramePairMatches> AddBridges(const cv::Mat& gray, const ImagePyramid& pyramid,
+                                           FeatureSet* features, PatchSet* patches,
+                                           std::vector<int>* runs);
+
   TrackerOptions options_;
   std::string detector_name_;
   const Detector* detector_;
@@ -220,6 +264,17 @@ class Tracker {
   // [j][g − 1]: matches of frame j − g to frame j (empty for frame 0).
   std::vector<std::vector<std::vector<PatchMatch>>> mutual_;
   std::vector<std::vector<std::vector<PatchMatch>>> accepted_;
+  std::vector<SearchRegions> search_regions_;  // [j]: frame j − 1 to frame j (empty for j = 0)
+  // align_patches: the last frame's pyramid, and per frame and feature the number of consecutive
+  // frames its track has been continued without a detection (0 for a detection).
+  std::vector<ImagePyramid> pyramids_;  // kept while a later frame may be aligned to them
+  std::vector<std::vector<int>> continued_runs_;
+  // Per frame and feature: the (frame, feature) of its track's next observation, (-1, -1) if
+  // none yet.
+  std::vector<std::vector<std::pair<int, int>>> next_link_;
+  // [j]: the gap links into frame j (re-association after a gap).
+  std::vector<std::vector<FramePairMatches>> bridges_;
+  std::vector<std::vector<PatchAlignment>> alignments_;  // [j]: frame j − 1's into frame j
   std::vector<std::pair<int, int>> turned_pairs_;
 };
 

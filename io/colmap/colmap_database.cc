@@ -5,10 +5,12 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <limits>
 #include <set>
 
+#include "io/colmap/sqlite_file.h"
 #include "io/core/error.h"
 
 namespace comic::io {
@@ -90,12 +92,39 @@ constexpr ModelInfo kModels[] = {
     {kColmapThinPrismFisheye, "THIN_PRISM_FISHEYE", 12},
 };
 
+// "PATH: SQLite: MESSAGE", with the system's reason when there is one ("database or disk is
+// full: No space left on device"); for a lock that outlasted the busy timeout, who holds it.
+std::string SqliteMessage(sqlite3* db, const std::string& path, int rc,
+                          const std::string& message) {
+  if ((rc & 0xff) != SQLITE_BUSY && (rc & 0xff) != SQLITE_LOCKED) {
+    int system_errno = db != nullptr ? sqlite3_system_errno(db) : 0;
+    // SQLite's unix VFS reports a full disk as SQLITE_FULL and clears the errno it got (ENOSPC);
+    // we set no page limit, so that is the only way to SQLITE_FULL here.
+    if ((rc & 0xff) == SQLITE_FULL && system_errno == 0) system_errno = ENOSPC;
+    return path + ": SQLite: " + message +
+           (system_errno != 0 ? std::string(": ") + std::strerror(system_errno) : "");
+  }
+  const std::string holders = DescribeOtherHolders(path);
+  return path + ": the database is locked by another connection" +
+         (holders.empty() ? "" : " (" + holders + ")") + " after waiting " +
+         std::to_string(SqliteFileOptions().busy_timeout_ms) + " ms";
+}
+
+// COLMAP's feature_extractor writes descriptors for an image that has keypoints but none, and
+// keeps the keypoints: 5064 SIFT descriptors beside 2000 of our keypoints, and its matchers then
+// index keypoints that do not exist (exhaustive_matcher segfaults; issue 29). Such a database is
+// refused, naming the first image.
+void CheckDescriptorsMatchKeypoints(sqlite3* db, const std::string& path);
+
 // A prepared statement, finalized on destruction. Errors name the database's path.
 class Statement {
  public:
   Statement(sqlite3* db, const std::string& path, const std::string& sql) : db_(db), path_(path) {
     COMIC_CHECK(db_ != nullptr, kInvalidArgument, "COLMAP database is closed");
     const int rc = sqlite3_prepare_v2(db_, sql.c_str(), -1, &stmt_, nullptr);
+    if ((rc & 0xff) == SQLITE_BUSY || (rc & 0xff) == SQLITE_LOCKED) {
+      throw Error(ErrorKind::kIo, SqliteMessage(db_, path_, rc, sqlite3_errmsg(db_)));
+    }
     if (rc != SQLITE_OK) {
       throw Error(rc == SQLITE_NOTADB ? ErrorKind::kInvalidData : ErrorKind::kIo,
                   path_ + ": SQLite cannot prepare '" + sql + "': " + sqlite3_errmsg(db_));
@@ -127,7 +156,7 @@ class Statement {
     if (rc == SQLITE_ROW) return true;
     if (rc == SQLITE_DONE) return false;
     throw Error(rc == SQLITE_NOTADB ? ErrorKind::kInvalidData : ErrorKind::kIo,
-                path_ + ": SQLite: " + sqlite3_errmsg(db_));
+                SqliteMessage(db_, path_, rc, sqlite3_errmsg(db_)));
   }
   void StepDone() {
     COMIC_CHECK(!Step(), kIo, path_ << ": SQLite statement returned an unexpected row");
@@ -166,6 +195,19 @@ class Statement {
   const std::string& path_;
   sqlite3_stmt* stmt_ = nullptr;
 };
+
+void CheckDescriptorsMatchKeypoints(sqlite3* db, const std::string& path) {
+  Statement statement(db, path,
+                      "SELECT keypoints.image_id, keypoints.rows, descriptors.rows FROM keypoints "
+                      "JOIN descriptors ON keypoints.image_id = descriptors.image_id WHERE "
+                      "keypoints.rows != descriptors.rows ORDER BY keypoints.image_id LIMIT 1");
+  COMIC_CHECK(!statement.Step(), kInvalidData,
+              path << ": image " << statement.Int64(0) << " has " << statement.Int64(1)
+                   << " keypoints but " << statement.Int64(2)
+                   << " descriptors (COLMAP's feature_extractor run on a database whose "
+                      "keypoints had no descriptors?); COLMAP's matchers would read past its "
+                      "keypoints (docs/colmap.md)");
+}
 
 void CheckImageId(int64_t image_id) {
   COMIC_CHECK(image_id >= 1 && image_id < kColmapMaxNumImages, kInvalidArgument,
@@ -336,6 +378,8 @@ ColmapDatabase ColmapDatabase::Open(const std::string& path) {
         database.db_ != nullptr ? sqlite3_errmsg(database.db_) : sqlite3_errstr(rc);
     throw Error(ErrorKind::kIo, path + ": SQLite cannot open the database: " + message);
   }
+  // Another connection's lock is waited for, then named (io/colmap/sqlite_file.h).
+  sqlite3_busy_timeout(database.db_, SqliteFileOptions().busy_timeout_ms);
   // Anything that is not an SQLite file fails here (SQLITE_NOTADB -> kInvalidData).
   int64_t num_tables = 0;
   {
@@ -349,6 +393,7 @@ ColmapDatabase ColmapDatabase::Open(const std::string& path) {
     database.Execute("PRAGMA user_version=" + std::to_string(kColmap38UserVersion));
   }
   database.CheckSchema();
+  CheckDescriptorsMatchKeypoints(database.db_, database.path_);
   return database;
 }
 
@@ -388,7 +433,7 @@ void ColmapDatabase::Execute(const std::string& sql) const {
     const std::string message = error != nullptr ? error : sqlite3_errstr(rc);
     sqlite3_free(error);
     throw Error(rc == SQLITE_NOTADB ? ErrorKind::kInvalidData : ErrorKind::kIo,
-                path_ + ": SQLite: " + message);
+                SqliteMessage(db_, path_, rc, message));
   }
 }
 

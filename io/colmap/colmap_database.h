@@ -139,8 +139,10 @@ class ColmapDatabase {
   // Opens the database at `path`, creating the file and COLMAP 3.8's tables where missing
   // (":memory:" gives an in-memory database). An existing database must hold COLMAP's tables
   // with at least COLMAP 3.8's columns (minus images' pose prior columns, which newer COLMAP
-  // versions dropped). Throws comic::Error: kIo if SQLite cannot open it, kInvalidData if it is
-  // not a COLMAP database.
+  // versions dropped), and as many descriptors as keypoints for every image that has both.
+  // Another connection's lock is waited for (SqliteFileOptions' busy timeout), then named in the
+  // error. Throws comic::Error: kIo if SQLite cannot open it or it stays locked, kInvalidData if
+  // it is not a (consistent) COLMAP database.
   static ColmapDatabase Open(const std::string& path);
 
   ColmapDatabase(ColmapDatabase&& other) noexcept;

@@ -49,6 +49,13 @@ bool AtEnd(std::istringstream& fields) {
 
 }  // namespace
 
+void CheckColmapImageName(const std::string& name, const std::string& what) {
+  COMIC_CHECK(!name.empty() && name.find_first_of(" \t\r\n\v\f") == std::string::npos, kInvalidData,
+              what << ": frame name '" << name
+                   << "' is empty or holds whitespace, which a COLMAP model cannot hold (its "
+                      "images.txt splits names at spaces); rename the frames, e.g. with '_'");
+}
+
 void ColmapTextModel::Check() const {
   std::set<uint32_t> camera_ids;
   for (const ColmapCamera& camera : cameras) {

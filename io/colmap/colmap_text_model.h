@@ -64,6 +64,12 @@ struct ColmapTextModel {
   void Check() const;
 };
 
+// Throws comic::Error(kInvalidData), naming `what` (the frames' folder) and the name, if `name`
+// cannot name an image of a COLMAP model: empty, or holding whitespace, which COLMAP's
+// images.txt reader splits at. Run on the frame names before any work (issue 29: a frame named
+// 'img 000000.png' failed only after the whole reconstruction).
+void CheckColmapImageName(const std::string& name, const std::string& what);
+
 // Reads cameras.txt, images.txt and points3D.txt from `folder`. Throws comic::Error naming the
 // file and line: kNotFound for a missing file, kInvalidData for a malformed line.
 ColmapTextModel ReadColmapTextModel(const std::string& folder);

@@ -1,6 +1,25 @@
 #include "io/core/error.h"
 
 namespace comic {
+namespace {
+
+std::string WithoutNulBytes(const std::string& message) {
+  if (message.find('\0') == std::string::npos) return message;
+  std::string out;
+  for (const char c : message) {
+    if (c == '\0') {
+      out += "\\x00";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Error::Error(ErrorKind kind, const std::string& message)
+    : std::runtime_error(WithoutNulBytes(message)), kind_(kind) {}
 
 const char* ErrorKindName(ErrorKind kind) {
   switch (kind) {

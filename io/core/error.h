@@ -21,7 +21,9 @@ const char* ErrorKindName(ErrorKind kind);
 
 class Error : public std::runtime_error {
  public:
-  Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+  // A NUL byte in `message` (quoted from a file) is stored as the four characters "\x00":
+  // what() is a C string, and would otherwise end the message there.
+  Error(ErrorKind kind, const std::string& message);
   ErrorKind kind() const { return kind_; }
 
  private:

@@ -1,9 +1,13 @@
 #include "io/core/file_utils.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -11,6 +15,7 @@
 
 #include "io/core/error.h"
 #include "io/core/interrupt_cleanup.h"
+#include "io/core/library_messages.h"
 #include "io/core/natural_sort.h"
 
 namespace comic::io {
@@ -48,18 +53,59 @@ std::string JoinPaths(const std::string& a, const std::string& b) {
   return (fs::path(a) / b).string();
 }
 
-std::vector<std::string> ListFiles(const std::string& folder) {
+namespace {
+
+// What a folder entry that is not a regular file is, following symlinks.
+std::string EntryKind(const fs::path& path) {
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0) {
+    if (errno == ELOOP) return "a symlink loop";
+    struct stat link;
+    if (::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) return "a dangling symlink";
+    return std::string("unreadable: ") + std::strerror(errno);
+  }
+  if (S_ISDIR(info.st_mode)) return "a folder";
+  if (S_ISFIFO(info.st_mode)) return "a FIFO";
+  if (S_ISSOCK(info.st_mode)) return "a socket";
+  if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode)) return "a device";
+  return "not a regular file";
+}
+
+}  // namespace
+
+std::vector<std::string> ListFiles(const std::string& folder, std::vector<SkippedEntry>* skipped) {
   COMIC_CHECK(PathExists(folder), kNotFound, folder << ": no such file or folder");
   COMIC_CHECK(IsDirectory(folder), kInvalidArgument, folder << ": not a folder");
   std::vector<std::string> names;
+  std::vector<std::string> skipped_names;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
     std::error_code type_ec;
-    if (entry.is_regular_file(type_ec)) names.push_back(entry.path().filename().string());
+    if (entry.is_regular_file(type_ec)) {
+      names.push_back(entry.path().filename().string());
+    } else {
+      skipped_names.push_back(entry.path().filename().string());
+    }
   }
   COMIC_CHECK(!ec, kIo, folder << ": cannot list folder: " << ec.message());
   NaturalSort(&names);
+  if (skipped != nullptr) {
+    NaturalSort(&skipped_names);
+    skipped->clear();
+    for (const std::string& name : skipped_names) {
+      skipped->push_back({name, EntryKind(fs::path(folder) / name)});
+    }
+  }
   return names;
+}
+
+std::string DescribeSkippedEntries(const std::vector<SkippedEntry>& skipped) {
+  if (skipped.empty()) return "";
+  const bool one = skipped.size() == 1;
+  return "skipped " + std::to_string(skipped.size()) +
+         (one ? " entry that is not a regular file: '"
+              : " entries that are not regular files, the first '") +
+         skipped.front().name + "' (" + skipped.front().kind + ")";
 }
 
 void EnsureWritableDirectory(const std::string& folder) {
@@ -117,7 +163,7 @@ std::string ReadFileToString(const std::string& path) {
 }
 
 void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
-                     bool overwrite) {
+                     bool overwrite, const MoveIntoPlace& move) {
   CheckWritableFile(path, overwrite);
   // The temporary name keeps the extension, so writers that pick the format from it still work.
   const fs::path target(path);
@@ -135,9 +181,13 @@ void WriteAtomically(const std::string& path, const std::function<void(const std
   try {
     write(temp);
     COMIC_CHECK(IsRegularFile(temp), kIo, path << ": writing failed");
-    std::error_code ec;
-    fs::rename(temp, path, ec);
-    COMIC_CHECK(!ec, kIo, path << ": cannot rename temporary file into place: " << ec.message());
+    if (move) {
+      move(temp, path);
+    } else {
+      std::error_code ec;
+      fs::rename(temp, path, ec);
+      COMIC_CHECK(!ec, kIo, path << ": cannot rename temporary file into place: " << ec.message());
+    }
   } catch (const Error& e) {
     remove_temp();
     // The user knows the path they gave, not our hidden temporary name.
@@ -153,29 +203,63 @@ void WriteAtomically(const std::string& path, const std::function<void(const std
   }
 }
 
+namespace {
+
+// Writes `size` bytes to the new file `temp`; errors name `path` and say why (errno: "No space
+// left on device"), checked up to the close, where a full disk often shows first.
+void WriteBytes(const std::string& temp, const char* data, size_t size, const std::string& path) {
+  std::FILE* file = std::fopen(temp.c_str(), "wb");
+  COMIC_CHECK(file != nullptr, kIo, path << ": cannot open for writing: " << std::strerror(errno));
+  const bool written = std::fwrite(data, 1, size, file) == size && std::fflush(file) == 0;
+  const int write_errno = errno;
+  const bool closed = std::fclose(file) == 0;
+  COMIC_CHECK(written && closed, kIo,
+              path << ": write failed: " << std::strerror(written ? errno : write_errno));
+}
+
+}  // namespace
+
 void WriteFileAtomically(const std::string& path, const std::string& contents, bool overwrite) {
   WriteAtomically(
       path,
-      [&](const std::string& temp) {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        COMIC_CHECK(out.good(), kIo, path << ": cannot open for writing");
-        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-        out.close();
-        COMIC_CHECK(out.good(), kIo, path << ": write failed (disk full?)");
-      },
+      [&](const std::string& temp) { WriteBytes(temp, contents.data(), contents.size(), path); },
       overwrite);
+}
+
+void CheckImageOutputFormat(const std::string& path, const std::string& what) {
+  bool writable = false;
+  try {
+    writable = !FileExtension(path).empty() && cv::haveImageWriter(path);
+  } catch (const cv::Exception&) {
+  }
+  COMIC_CHECK(writable, kInvalidArgument,
+              path << ": " << what
+                   << " needs an image file name OpenCV can write (.png, .jpg, .bmp, .tif, .ppm, "
+                      "...), got the extension '"
+                   << FileExtension(path) << "'");
 }
 
 void WriteImageAtomically(const std::string& path, const cv::Mat& image) {
   COMIC_CHECK(!image.empty(), kInvalidArgument, path << ": refusing to write an empty image");
-  WriteAtomically(path, [&](const std::string& temp) {
-    bool ok = false;
+  // Encoded in memory, then written by us: a full disk is our one line naming `path`, never
+  // libpng's "Write Error" on stderr, and never a truncated file the encoder did not notice.
+  const std::string extension = "." + FileExtension(path);
+  std::vector<uchar> encoded;
+  bool ok = false;
+  std::string opencv_error;
+  const std::string library_message = CaptureLibraryMessages([&] {
     try {
-      ok = cv::imwrite(temp, image);
+      ok = cv::imencode(extension, image, encoded);
     } catch (const cv::Exception& e) {
-      throw Error(ErrorKind::kIo, path + ": cannot write image: " + e.what());
+      opencv_error = e.err;
     }
-    COMIC_CHECK(ok, kIo, path << ": cannot write image (unknown extension or unwritable)");
+  });
+  const std::string detail = !library_message.empty() ? library_message : opencv_error;
+  COMIC_CHECK(ok && !encoded.empty(), kIo,
+              path << ": cannot encode the image as '" << extension << "'"
+                   << (detail.empty() ? "" : " (" + detail + ")"));
+  WriteAtomically(path, [&](const std::string& temp) {
+    WriteBytes(temp, reinterpret_cast<const char*>(encoded.data()), encoded.size(), path);
   });
 }
 

@@ -23,9 +23,22 @@ std::string FileName(const std::string& path);    // last path component
 std::string ParentPath(const std::string& path);  // "" for a bare file name
 std::string JoinPaths(const std::string& a, const std::string& b);
 
-// Regular files directly inside `folder` (names only, not paths), naturally sorted.
+// An entry of a folder that is not a regular file (nor a symlink to one), and what it is:
+// "a folder", "a FIFO", "a socket", "a device", "a dangling symlink", "a symlink loop", ...
+struct SkippedEntry {
+  std::string name;
+  std::string kind;
+};
+
+// Regular files directly inside `folder` (names only, not paths), naturally sorted; symlinks to
+// regular files count as files. The other entries go to `skipped` (if given), naturally sorted.
 // Throws comic::Error (kNotFound / kInvalidArgument) if `folder` is missing or not a folder.
-std::vector<std::string> ListFiles(const std::string& folder);
+std::vector<std::string> ListFiles(const std::string& folder,
+                                   std::vector<SkippedEntry>* skipped = nullptr);
+
+// One line for entries a reader skipped (empty if none): "skipped 3 entries that are not regular
+// files, the first 'a.png' (a FIFO)".
+std::string DescribeSkippedEntries(const std::vector<SkippedEntry>& skipped);
 
 // Creates `folder` and its parents if needed and checks that a file can be created in it.
 // Throws comic::Error(kIo) naming the folder otherwise.
@@ -45,18 +58,31 @@ void CheckWritableFile(const std::string& path, bool overwrite = true);
 // Reads a whole text or binary file. Throws comic::Error(kNotFound / kIo).
 std::string ReadFileToString(const std::string& path);
 
-// Calls `write(temp_path)`, which must create the file at temp_path, then renames it to `path`.
-// On any exception the temporary file is removed and the exception is rethrown, so `path` is
-// either the complete new file or untouched. If `overwrite` is false and `path` exists, throws
+// How a finished temporary file takes the place of the target: (temp_path, path). Empty:
+// rename(2). io/colmap/sqlite_file.h checks and locks an old database around the rename.
+using MoveIntoPlace = std::function<void(const std::string&, const std::string&)>;
+
+// Calls `write(temp_path)`, which must create the file at temp_path, then moves it to `path`
+// (`move`, by default a rename). On any exception the temporary file is removed and the
+// exception is rethrown with the temporary name replaced by `path`, so `path` is either the
+// complete new file or untouched. If `overwrite` is false and `path` exists, throws
 // comic::Error(kIo) before writing anything.
 void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
-                     bool overwrite = true);
+                     bool overwrite = true, const MoveIntoPlace& move = {});
 
 // Atomic write of bytes to `path` (see WriteAtomically).
 void WriteFileAtomically(const std::string& path, const std::string& contents,
                          bool overwrite = true);
 
-// Atomic cv::imwrite; the format follows the extension of `path`. Throws comic::Error(kIo).
+// Throws comic::Error(kInvalidArgument) naming `what` (the option) and `path` unless OpenCV can
+// encode an image in the format `path`'s extension names (cv::haveImageWriter); apps call it
+// before any work, so "--overlay out.xyz" fails in a second with our words, not after the work
+// with OpenCV's "could not find a writer for the specified extension".
+void CheckImageOutputFormat(const std::string& path, const std::string& what);
+
+// Atomic cv::imwrite; the format follows the extension of `path`. Throws comic::Error(kIo)
+// naming `path`, with what the codec library printed (libpng's "Write Error" on a full disk)
+// inside the one message instead of on stderr.
 void WriteImageAtomically(const std::string& path, const cv::Mat& image);
 
 }  // namespace comic::io

@@ -10,11 +10,16 @@ void CheckMaxPixels(int64_t max_pixels) {
 }
 
 void CheckPixelBudget(const std::string& what, cv::Size size, int64_t max_pixels) {
-  const int64_t pixels = static_cast<int64_t>(size.width) * size.height;
+  CheckPixelBudget(what, size.width, size.height, max_pixels);
+}
+
+void CheckPixelBudget(const std::string& what, int64_t width, int64_t height, int64_t max_pixels) {
+  // Header sizes are at most 2^32 per side: the product fits in int64.
+  const int64_t pixels = width * height;
   COMIC_CHECK(pixels <= max_pixels, kInvalidData,
-              what << ": " << size.width << "x" << size.height << " = " << pixels
+              what << ": " << width << "x" << height << " = " << pixels
                    << " pixels exceeds the budget of " << max_pixels
-                   << " (about 200 bytes each); raise it with --max-pixels " << pixels
+                   << " (docs/robustness.md); raise it with --max-pixels " << pixels
                    << " or work smaller with --resize-height");
 }
 

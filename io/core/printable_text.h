@@ -1,6 +1,8 @@
-// Text from files or libraries made safe for our one line on stderr: bytes that are not printable
-// ASCII are shown as \xNN (binary garbage is never echoed raw into a terminal), line breaks and
-// tabs become spaces, and the result is cut to a length a reader can take in.
+// Text from files or libraries made safe for our one line on stderr: control bytes and bytes
+// that are not valid UTF-8 are shown as \xNN (binary garbage is never echoed raw into a
+// terminal), line breaks and tabs become spaces, and the result is cut to a length a reader can
+// take in. Valid UTF-8 (a frame named "straße_001.png") is kept as it is, so a user's path reads
+// as they typed it.
 #pragma once
 
 #include <cstddef>
@@ -8,8 +10,11 @@
 
 namespace comic::io {
 
-// `text` as one printable line of at most `max_length` characters (then "..." is appended).
-// UTF-8 sequences count as non-printable: an error message is about bytes, not glyphs.
+// `text` as one printable line of at most `max_length` bytes (then "..." is appended; a UTF-8
+// character is never split). Printable: ASCII 0x20-0x7e and well-formed UTF-8 sequences of
+// characters other than the C1 controls (U+0080-U+009F), the line and paragraph separators
+// (U+2028, U+2029) and the bidirectional overrides and isolates (U+202A-U+202E, U+2066-U+2069),
+// which could reorder or break the line on a terminal.
 std::string PrintableOneLine(const std::string& text, size_t max_length = 400);
 
 }  // namespace comic::io

@@ -71,6 +71,14 @@ std::string StagedFolder::ToTargetPaths(const std::string& text) const {
   return out;
 }
 
+void StagedFolder::NamingTarget(const std::function<void()>& body) const {
+  try {
+    body();
+  } catch (const Error& e) {
+    throw Error(e.kind(), ToTargetPaths(e.what()));
+  }
+}
+
 void StagedFolder::Commit() {
   COMIC_CHECK(!committed_, kInvalidArgument, target_ << ": staged outputs already committed");
   std::error_code ec;

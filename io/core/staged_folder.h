@@ -8,6 +8,7 @@
 //   out.Commit();                               // now flags.out/report.json exists
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -31,6 +32,11 @@ class StagedFolder {
   const std::string& target() const { return target_; }
   // `text` with the staging folder's path replaced by the target's (paths in reports and logs).
   std::string ToTargetPaths(const std::string& text) const;
+
+  // Runs `body`, which writes into path(); a comic::Error it throws is rethrown with the staging
+  // folder's path replaced by the target's, so a failure (a full disk) names the user's path,
+  // never the hidden staging folder (issue 29).
+  void NamingTarget(const std::function<void()>& body) const;
 
   // Moves everything staged into `target` (created if missing; files of the same name replaced,
   // subfolders merged) and removes the staging folder. Throws comic::Error(kIo) naming target.

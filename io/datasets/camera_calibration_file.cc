@@ -42,7 +42,8 @@ std::string ReadText(const std::string& path) {
 bool ParseNumber(const std::string& field, double* value) {
   char* end = nullptr;
   *value = std::strtod(field.c_str(), &end);
-  return end != field.c_str() && *end == '\0' && std::isfinite(*value);
+  // The whole field: a NUL byte inside it is not the end of the number.
+  return end != field.c_str() && end == field.c_str() + field.size() && std::isfinite(*value);
 }
 
 // The lines that are neither blank nor '#' comments, split into fields.
@@ -167,11 +168,16 @@ CameraCalibration ReadColmapCameras(
   COMIC_CHECK(fields.size() >= 4, kInvalidData,
               where << ": expected CAMERA_ID MODEL WIDTH HEIGHT PARAMS[]");
   const std::string& model = fields[1];
-  const int num_params = ColmapCameraModelNumParams(model);
-  COMIC_CHECK(
-      num_params > 0 && ColmapCameraModelId(model) <= 4, kInvalidData,
-      where << ": camera model " << model
-            << " is not supported (SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV)");
+  int num_params = -1;
+  try {
+    num_params = ColmapCameraModelNumParams(model);
+  } catch (const Error&) {
+    // Not one of COLMAP's names: said below with the file and line, not as a bare name.
+  }
+  COMIC_CHECK(num_params > 0 && ColmapCameraModelId(model) <= 4, kInvalidData,
+              where << ": camera model " << model
+                    << (num_params > 0 ? " is not supported" : " is not one of COLMAP's models")
+                    << " (supported: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV)");
   COMIC_CHECK(static_cast<int>(fields.size()) == 4 + num_params, kInvalidData,
               where << ": " << model << " takes " << num_params << " parameters, got "
                     << static_cast<int>(fields.size()) - 4);

@@ -43,7 +43,9 @@ bool ParseDouble(const std::string& text, double* value) {
   errno = 0;
   char* end = nullptr;
   *value = std::strtod(text.c_str(), &end);
-  return end != text.c_str() && *end == '\0' && errno == 0 && std::isfinite(*value);
+  // The whole text: a NUL byte inside it is not the end of the number.
+  return end != text.c_str() && end == text.c_str() + text.size() && errno == 0 &&
+         std::isfinite(*value);
 }
 
 double Number(const std::string& path, int line, const std::string& text) {
@@ -87,6 +89,10 @@ const char* GroundTruthFormatName(GroundTruthFormat format) {
       return "strecha";
   }
   return "unknown";
+}
+
+const char* GroundTruthLengthUnit(GroundTruthFormat format) {
+  return format == GroundTruthFormat::kKitti || format == GroundTruthFormat::kStrecha ? "m" : "";
 }
 
 GroundTruthFormat ParseGroundTruthFormat(const std::string& name) {

@@ -30,6 +30,10 @@ enum class GroundTruthFormat { kAuto, kKitti, kMiddlebury, kStrecha };
 const char* GroundTruthFormatName(GroundTruthFormat format);
 GroundTruthFormat ParseGroundTruthFormat(const std::string& name);
 
+// The length unit of a format's camera positions: "m" for KITTI (the vehicle's odometry) and
+// Strecha (surveyed metres); "" where the format does not say (Middlebury's multi-view sets).
+const char* GroundTruthLengthUnit(GroundTruthFormat format);
+
 struct GroundTruthCamera {
   // The image this camera belongs to ("templeSR0001.png", "0000.jpg"); empty for formats that
   // identify frames by index (KITTI).

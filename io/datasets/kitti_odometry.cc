@@ -36,8 +36,9 @@ cv::Matx34d ParseMatrix34(const std::string& path, int line_number, const std::s
     errno = 0;
     char* end = nullptr;
     const double value = std::strtod(field.c_str(), &end);
-    COMIC_CHECK(*end == '\0' && errno == 0 && std::isfinite(value), kInvalidData,
-                path << ":" << line_number << ": '" << field << "' is not a number");
+    // The whole field: a NUL byte inside it is not the end of the number.
+    COMIC_CHECK(end == field.c_str() + field.size() && errno == 0 && std::isfinite(value),
+                kInvalidData, path << ":" << line_number << ": '" << field << "' is not a number");
     values.push_back(value);
   }
   COMIC_CHECK(

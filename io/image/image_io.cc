@@ -4,10 +4,12 @@
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/library_messages.h"
+#include "io/image/image_header.h"
 
 namespace comic::io {
 namespace {
@@ -118,7 +120,31 @@ cv::Mat ReadImageUnchanged(const std::string& path) {
   return image;
 }
 
+void CheckResizeHeight(int resize_height, const std::string& what) {
+  COMIC_CHECK(resize_height == 0 ||
+                  (resize_height >= kMinResizeHeight && resize_height <= kMaxResizeHeight),
+              kInvalidArgument,
+              what << " must be 0 (original size) or in [" << kMinResizeHeight << ", "
+                   << kMaxResizeHeight << "] pixels, got " << resize_height);
+}
+
+std::optional<cv::Size> CheckImageHeaderBudget(const std::string& path, int resize_height,
+                                               int64_t max_pixels) {
+  const std::optional<ImageHeader> header = ReadImageHeader(path);
+  if (!header || header->height <= 0 || header->width <= 0) return std::nullopt;  // decoder says
+  int64_t width = header->width;
+  int64_t height = header->height;
+  if (resize_height > 0 && resize_height != height) {
+    width = std::max<int64_t>(1, std::llround(static_cast<double>(width) * resize_height / height));
+    height = resize_height;
+  }
+  CheckPixelBudget(path, width, height, max_pixels);
+  // Within the budget, so within int (kMaxMaxPixels < 2^31).
+  return cv::Size(static_cast<int>(header->width), static_cast<int>(header->height));
+}
+
 LoadedImage LoadImage(const std::string& path, int resize_height, int64_t max_pixels) {
+  CheckImageHeaderBudget(path, resize_height, max_pixels);
   const cv::Mat raw = ReadImageUnchanged(path);
   CheckPixelBudget(path, ResizedSize(raw.size(), resize_height), max_pixels);
   LoadedImage loaded;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 
 #include "io/core/pixel_budget.h"
@@ -35,10 +36,25 @@ struct LoadedImage {
   cv::Mat color;  // CV_8UC3, BGR
 };
 
+// Throws comic::Error(kInvalidArgument) unless `resize_height` is 0 (keep) or in
+// [kMinResizeHeight, kMaxResizeHeight]; `what` names it ("--resize-height", "resize_height").
+void CheckResizeHeight(int resize_height, const std::string& what = "--resize-height");
+
+// The smallest --resize-height accepted other than 0: 8 px.
+constexpr int kMinResizeHeight = 8;
+
+// Refuses the image at `path` when the size its header declares (io/image/image_header.h),
+// resized to `resize_height`, exceeds `max_pixels` (CheckPixelBudget), before anything is
+// decoded, and returns that size. Files whose header this cannot read pass with std::nullopt
+// (their size is checked after decoding).
+std::optional<cv::Size> CheckImageHeaderBudget(const std::string& path, int resize_height,
+                                               int64_t max_pixels);
+
 // Reads `path` (any format OpenCV decodes) and returns grey and colour at `resize_height`
 // (0 = original size). Throws comic::Error: kNotFound for a missing file, kInvalidData for a
 // file that is not a decodable image or has an unsupported depth, or whose size after resizing
-// exceeds `max_pixels` (io/core/pixel_budget.h; checked before resizing), naming the file.
+// exceeds `max_pixels` (io/core/pixel_budget.h; checked on the header before decoding, where the
+// format allows, and before resizing), naming the file.
 LoadedImage LoadImage(const std::string& path, int resize_height = 0,
                       int64_t max_pixels = kDefaultMaxPixels);
 

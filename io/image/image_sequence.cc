@@ -17,13 +17,7 @@ struct ImageSequence::VideoState {
 };
 
 void ImageSequenceOptions::Check() const {
-  COMIC_CHECK(resize_height >= 0, kInvalidArgument,
-              "resize_height must be >= 0 (0 = keep), got " << resize_height);
-  COMIC_CHECK(resize_height == 0 || resize_height >= 8, kInvalidArgument,
-              "resize_height must be at least 8 pixels, got " << resize_height);
-  COMIC_CHECK(
-      resize_height <= kMaxResizeHeight, kInvalidArgument,
-      "resize_height must be at most " << kMaxResizeHeight << " pixels, got " << resize_height);
+  CheckResizeHeight(resize_height, "resize_height");
   CheckMaxPixels(max_pixels);
   COMIC_CHECK(first_frame >= 0, kInvalidArgument, "first_frame must be >= 0, got " << first_frame);
   COMIC_CHECK(last_frame == -1 || last_frame >= first_frame, kInvalidArgument,
@@ -67,11 +61,23 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
 
   if (IsDirectory(path)) {
     std::vector<std::string> images;
-    for (const std::string& name : ListFiles(path)) {
+    std::vector<SkippedEntry> skipped;
+    for (const std::string& name : ListFiles(path, &skipped)) {
       if (IsImageExtension(FileExtension(name))) images.push_back(name);
     }
-    COMIC_CHECK(!images.empty(), kInvalidArgument,
-                path << ": folder holds no images (png/jpg/jpeg/ppm/pgm/pnm/pbm/tif/tiff/bmp)");
+    // Entries named as images that are not files (a FIFO would block the reader, a dangling
+    // symlink is a frame gone missing) are left out, and said so (issue 29).
+    std::vector<SkippedEntry> skipped_images;
+    for (const SkippedEntry& entry : skipped) {
+      if (IsImageExtension(FileExtension(entry.name))) skipped_images.push_back(entry);
+    }
+    if (!skipped_images.empty()) {
+      sequence.warning_ = path + ": " + DescribeSkippedEntries(skipped_images);
+    }
+    COMIC_CHECK(
+        !images.empty(), kInvalidArgument,
+        path << ": folder holds no images (png/jpg/jpeg/ppm/pgm/pnm/pbm/tif/tiff/bmp)"
+             << (skipped_images.empty() ? "" : "; " + DescribeSkippedEntries(skipped_images)));
     sequence.folder_ = path;
     sequence.source_indices_ = SelectIndices(static_cast<int>(images.size()), options);
     COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,
@@ -100,6 +106,16 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
     COMIC_CHECK(capture.isOpened(), kInvalidData,
                 path << ": cannot open as a video (unknown format, unsupported codec or corrupt"
                      << (message.empty() ? "" : "; FFmpeg: " + message) << ")");
+    // The budget on the size the stream declares, before any frame is decoded.
+    const double declared_width = capture.get(cv::CAP_PROP_FRAME_WIDTH);
+    const double declared_height = capture.get(cv::CAP_PROP_FRAME_HEIGHT);
+    if (declared_width >= 1 && declared_height >= 1 && declared_width < 1e9 &&
+        declared_height < 1e9) {
+      const cv::Size declared =
+          ResizedSize(cv::Size(static_cast<int>(declared_width), static_cast<int>(declared_height)),
+                      options.resize_height);
+      CheckPixelBudget(path, declared, options.max_pixels);
+    }
     // Count frames by grabbing: CAP_PROP_FRAME_COUNT is an estimate for many containers.
     int count = 0;
     bool corrupt = false;
@@ -138,7 +154,20 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
   sequence.source_size_ = raw.size();
   CheckPixelBudget(what, ResizedSize(raw.size(), options.resize_height), options.max_pixels);
   sequence.frame_size_ = sequence.MakeFrame(raw, 0, what).gray.size();
+  if (!sequence.is_video_) sequence.CheckFrameHeaders();
   return sequence;
+}
+
+void ImageSequence::CheckFrameHeaders() const {
+  for (size_t i = 1; i < names_.size(); ++i) {
+    const std::string path = JoinPaths(folder_, names_[i]);
+    const std::optional<cv::Size> size =
+        CheckImageHeaderBudget(path, options_.resize_height, options_.max_pixels);
+    COMIC_CHECK(!size || *size == source_size_, kInvalidData,
+                path << ": size " << size->width << "x" << size->height
+                     << " differs from the first frame's " << source_size_.width << "x"
+                     << source_size_.height);
+  }
 }
 
 std::string ImageSequence::FramePath(size_t i) const {
@@ -185,6 +214,8 @@ Frame ImageSequence::MakeFrame(const cv::Mat& raw, size_t i, const std::string& 
 
 cv::Mat ImageSequence::ReadImageRaw(size_t i, std::string* what) const {
   *what = JoinPaths(folder_, names_[i]);
+  // Every frame's declared size against the budget before it is decoded, not only the first's.
+  CheckImageHeaderBudget(*what, options_.resize_height, options_.max_pixels);
   return ReadImageUnchanged(*what);
 }
 

@@ -47,8 +47,11 @@ struct Frame {
 class ImageSequence {
  public:
   // Opens a folder of images (png/jpg/jpeg/ppm/pgm/pnm/pbm/tif/tiff/bmp, naturally sorted so
-  // frame_2 < frame_10; other files are ignored), a single image, or a video file (anything
-  // else, read with cv::VideoCapture). Reads the first frame to validate the source.
+  // frame_2 < frame_10; other files are ignored; entries named as images that are not regular
+  // files, such as FIFOs and dangling symlinks, are skipped and counted in warning()), a single
+  // image, or a video file (anything else, read with cv::VideoCapture). Reads the first frame to
+  // validate the source, and every other frame's header (size and pixel budget); a video's
+  // declared frame size is held to the budget before any frame is decoded.
   // Throws comic::Error naming the path and the problem: missing path (kNotFound), folder
   // without images or a range selecting no frame (kInvalidArgument), corrupt first image or
   // video that cannot be opened (kInvalidData).
@@ -60,7 +63,8 @@ class ImageSequence {
 
   const std::string& path() const { return path_; }
   // Non-empty when the source was accepted with a problem the user should hear about (a truncated
-  // video opened with allow_truncated: how many frames are used). Apps print it as one line.
+  // video opened with allow_truncated: how many frames are used; entries of a folder skipped).
+  // Apps print it as one line.
   const std::string& warning() const { return warning_; }
   bool IsVideo() const { return is_video_; }
   size_t NumFrames() const { return source_indices_.size(); }
@@ -88,6 +92,9 @@ class ImageSequence {
   cv::Mat ReadImageRaw(size_t i, std::string* what) const;
   cv::Mat ReadVideoRaw(size_t i, std::string* what) const;
   Frame MakeFrame(const cv::Mat& raw, size_t i, const std::string& what) const;
+  // Every selected frame's header (folders): a frame declaring more pixels than the budget, or
+  // another size than the first frame's, is refused at Open(), before any work (issue 29).
+  void CheckFrameHeaders() const;
 
   std::string path_;
   std::string warning_;

@@ -24,6 +24,20 @@ int TextWidth(const std::string& text, double scale) {
   return cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline).width;
 }
 
+// `text` written bottom to top with its centre at `center` (a y-axis label).
+void VerticalText(cv::Mat* image, const std::string& text, cv::Point center, double scale) {
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+  cv::Mat strip(size.height + baseline + 4, size.width + 4, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::putText(strip, text, {2, size.height + 2}, cv::FONT_HERSHEY_SIMPLEX, scale, {0, 0, 0}, 1,
+              cv::LINE_AA);
+  cv::Mat turned;
+  cv::rotate(strip, turned, cv::ROTATE_90_COUNTERCLOCKWISE);
+  cv::Rect where(center.x - turned.cols / 2, center.y - turned.rows / 2, turned.cols, turned.rows);
+  where &= cv::Rect(0, 0, image->cols, image->rows);
+  turned(cv::Rect(0, 0, where.width, where.height)).copyTo((*image)(where));
+}
+
 }  // namespace
 
 cv::Mat DrawBarChart(const BarChart& chart, const cv::Size& size) {
@@ -44,7 +58,10 @@ cv::Mat DrawBarChart(const BarChart& chart, const cv::Size& size) {
     Text(&image, chart.series[s].name, {x + 16, 43}, 0.45);
     x += 16 + TextWidth(chart.series[s].name, 0.45) + 18;
   }
-  const int left = 50, right = size.width - 10, top = 70, bottom = size.height - 30;
+  // With a y-axis label, room for it left of the tick values.
+  const int label_room = chart.y_label.empty() ? 0 : 22;
+  const int left = 50 + label_room, right = size.width - 10, top = 70, bottom = size.height - 30;
+  if (!chart.y_label.empty()) VerticalText(&image, chart.y_label, {11, (top + bottom) / 2}, 0.45);
   double max_value = 0.0;
   for (const BarChartSeries& s : chart.series) {
     for (double v : s.values) {
@@ -70,7 +87,7 @@ cv::Mat DrawBarChart(const BarChart& chart, const cv::Size& size) {
     cv::line(image, {left, y}, {right, y}, cv::Scalar(220, 220, 220), 1);
     char label[32];
     std::snprintf(label, sizeof(label), "%g", v);
-    Text(&image, label, {4, y + 4}, 0.4, {80, 80, 80});
+    Text(&image, label, {4 + label_room, y + 4}, 0.4, {80, 80, 80});
   }
   cv::line(image, {left, bottom}, {right, bottom}, cv::Scalar(0, 0, 0), 1);
   if (chart.groups.empty()) return image;

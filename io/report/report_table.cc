@@ -43,20 +43,23 @@ std::string ReportTable::FormatCell(const Cell& cell, size_t column) const {
   return out.str();
 }
 
+bool ReportTable::IsNumericColumn(size_t column) const {
+  bool numeric = !rows_.empty();
+  for (const auto& row : rows_) {
+    const Cell& cell = row.at(column);
+    numeric =
+        numeric && (std::holds_alternative<int64_t>(cell) || std::holds_alternative<double>(cell) ||
+                    std::holds_alternative<std::monostate>(cell));
+  }
+  return numeric;
+}
+
 std::string ReportTable::ToMarkdown() const {
   std::ostringstream out;
   out << "|";
   for (const std::string& column : columns_) out << " " << column << " |";
   out << "\n|";
-  for (size_t c = 0; c < columns_.size(); ++c) {
-    bool numeric = !rows_.empty();
-    for (const auto& row : rows_) {
-      numeric = numeric && (std::holds_alternative<int64_t>(row[c]) ||
-                            std::holds_alternative<double>(row[c]) ||
-                            std::holds_alternative<std::monostate>(row[c]));
-    }
-    out << (numeric ? "---:|" : "---|");
-  }
+  for (size_t c = 0; c < columns_.size(); ++c) out << (IsNumericColumn(c) ? "---:|" : "---|");
   out << "\n";
   for (const auto& row : rows_) {
     out << "|";

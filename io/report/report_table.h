@@ -32,6 +32,12 @@ class ReportTable {
   const std::vector<std::string>& columns() const { return columns_; }
   size_t NumRows() const { return rows_.size(); }
   const Cell& At(size_t row, size_t column) const { return rows_.at(row).at(column); }
+  // A cell as Markdown and CSV write it ("" for an empty one).
+  std::string CellText(size_t row, size_t column) const {
+    return FormatCell(rows_.at(row).at(column), column);
+  }
+  // Whether every cell of `column` is a number or empty (right-aligned in Markdown).
+  bool IsNumericColumn(size_t column) const;
 
   // GitHub-flavoured Markdown: a header row, numbers right-aligned.
   std::string ToMarkdown() const;

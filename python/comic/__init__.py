@@ -4,9 +4,12 @@ Conventions follow cv2 and pycolmap: images are uint8 numpy arrays (H x W grey, 
 cv2.imread gives them), pixel centres at integer coordinates (OpenCV), results are numpy arrays
 (structured where a row has named fields), options are keyword arguments named as the apps' flags
 with underscores (comic_sfm --max-features -> max_features), and errors are exceptions carrying the
-command line's message: ValueError for an invalid argument, TypeError for an option of the wrong
-type, RuntimeError for everything else (unreadable files, malformed data). Long calls release the
-GIL.
+command line's message: ValueError for an invalid argument, TypeError for an argument or option of
+the wrong type, RuntimeError for everything else (unreadable files, malformed data, an image beyond
+the pixel budget), never an abort of the interpreter. The checks are the apps': thread counts at
+most the machine's (0 = all), resize_height 0 or in [8, 16384], at most `max_pixels` pixels per
+image (MAX_PIXELS by default, the apps' --max-pixels), outputs never over inputs. Long calls
+release the GIL.
 
 reconstruct() and export_colmap() run what comic_sfm and comic_export_colmap run (the library's
 sfm/run/): the same options give the same files, byte for byte.
@@ -33,6 +36,7 @@ __all__ = [
     "MATCH_DTYPE",
     "DETECTORS",
     "EXPORT_COLMAP_OPTIONS",
+    "MAX_PIXELS",
     "RECONSTRUCT_OPTIONS",
     "Reconstruction",
     "Tracks",
@@ -67,6 +71,30 @@ PATCH_SIZE = _core.patch_size
 RECONSTRUCT_OPTIONS = tuple(sorted(_core.reconstruct_option_names()))
 #: The keyword options of export_colmap(): comic_export_colmap's long flags with underscores.
 EXPORT_COLMAP_OPTIONS = tuple(sorted(_core.export_colmap_option_names()))
+#: The default pixel budget per image (the apps' --max-pixels; io/core/pixel_budget.h).
+MAX_PIXELS = _core.default_max_pixels
+
+
+def _call(name, function, *args):
+    """Calls the compiled `function`; a TypeError from pybind11's argument conversion ("incompatible
+    function arguments", which would print every argument, whole image arrays included) becomes
+    one short line naming the arguments' types."""
+    try:
+        return function(*args)
+    except TypeError as error:
+        if "incompatible function arguments" not in str(error):
+            raise
+        types = ", ".join(type(arg).__name__ for arg in args)
+        raise TypeError("%s: an argument has the wrong type (got %s)" % (name, types)) from None
+
+
+def _name(value, what):
+    if not isinstance(value, str):
+        raise TypeError(
+            "%s must be a str (one of %s), got %s"
+            % (what, ", ".join(DETECTORS), type(value).__name__)
+        )
+    return value
 
 
 def _pack(columns, dtype):
@@ -86,21 +114,28 @@ def _columns(features, what):
     return {name: features[name] for name in features.dtype.names}
 
 
-def imread(path, resize_height=0, color=False):
+def imread(path, resize_height=0, color=False, max_pixels=MAX_PIXELS):
     """Reads an image as the apps do (io/image/image_io.h): grey uint8 H x W, or BGR H x W x 3 with
-    color=True, resized to resize_height (0 = as stored). Raises RuntimeError naming the file."""
-    return _core.imread(str(path), int(resize_height), bool(color))
+    color=True, resized to resize_height (0 = as stored). An image with more than max_pixels
+    pixels after resizing is refused from its header, before it is decoded. Raises RuntimeError
+    naming the file."""
+    return _call(
+        "imread", _core.imread, str(path), resize_height, bool(color), max_pixels
+    )
 
 
-def detect(image, detector="comic", **options):
-    """Detects features in `image` (uint8, grey or BGR).
+def detect(image, detector="comic", max_pixels=MAX_PIXELS, **options):
+    """Detects features in `image` (uint8, grey or BGR; at most max_pixels pixels).
 
     Returns (features, side_masks): a structured array of FEATURE_DTYPE, strongest first, and a
     uint8 array of shape (N, 23, 23) labelling each feature's patch pixels by side of its iso-curve
     (1: ic+, 2: ic-, 0: neither; all 0 for detectors without side information). `options` are the
     named detector's options (e.g. scale=8.4, threads=2 for CoMIC; integration_sigma for Harris).
     """
-    return _features(_core.detect(_np.asarray(image), detector, options))
+    _name(detector, "detect: detector")
+    return _features(
+        _call("detect", _core.detect, _np.asarray(image), detector, options, max_pixels)
+    )
 
 
 def match(image1, features1, image2, features2, side_masks1=None, side_masks2=None, **options):
@@ -110,7 +145,9 @@ def match(image1, features1, image2, features2, side_masks1=None, side_masks2=No
     "like-sides"; the split costs use the side masks), min_side_overlap, max_cost (the SSD
     threshold T; float("inf") keeps every mutual-best match). Returns a MATCH_DTYPE array.
     """
-    columns = _core.match(
+    columns = _call(
+        "match",
+        _core.match,
         _np.asarray(image1),
         _columns(features1, "match: features1"),
         side_masks1,
@@ -166,14 +203,17 @@ def track(frames, detector="comic", detector_options=None, callback=None, **opti
 
     `options` are the tracker's, named as the apps' flags: search_radius, max_cost, cost,
     max_features, min_response, prediction ("none", "velocity", "coarse-to-fine"),
-    unpredicted_radius, match_window, ...; for a path also resize_height, first, last, stride.
-    `callback(done, total)` is called after each frame. Returns a Tracks.
+    unpredicted_radius, match_window, ...; for a path also resize_height, first, last, stride;
+    max_pixels for both. `callback(done, total)` is called after each frame. Returns a Tracks.
     """
+    _name(detector, "track: detector")
     if isinstance(frames, _os.PathLike):
         frames = _os.fspath(frames)
     if not isinstance(frames, str):
         frames = [_np.asarray(frame) for frame in frames]
-    return Tracks(_core.track(frames, detector, detector_options or {}, options, callback))
+    return Tracks(
+        _call("track", _core.track, frames, detector, detector_options or {}, options, callback)
+    )
 
 
 def _option_values(options):
@@ -370,8 +410,13 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
     error line. Bad options raise ValueError (TypeError for a wrong type) with comic_sfm's
     message; unreadable input raises RuntimeError.
     """
-    result = _core.reconstruct(
-        _os.fspath(frames), _option_values(options), detector_options or {}, callback
+    result = _call(
+        "reconstruct",
+        _core.reconstruct,
+        _os.fspath(frames),
+        _option_values(options),
+        detector_options or {},
+        callback,
     )
     if not options.get("quiet", True):
         for line in result["lines"]:
@@ -401,6 +446,11 @@ def export_colmap(frames, colmap_db, *, detector_options=None, **options):
     options and RuntimeError for input or outputs it cannot use (an existing database without
     overwrite=True), leaving the database and frames as they were.
     """
-    return _core.export_colmap(
-        _os.fspath(frames), _os.fspath(colmap_db), _option_values(options), detector_options or {}
+    return _call(
+        "export_colmap",
+        _core.export_colmap,
+        _os.fspath(frames),
+        _os.fspath(colmap_db),
+        _option_values(options),
+        detector_options or {},
     )

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/colmap/sqlite_file.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 
@@ -301,6 +302,11 @@ ColmapExportSummary WriteTracksToColmapDatabase(const frontend::FeatureTracks& t
   return summary;
 }
 
+void CheckColmapDatabaseOutput(const std::string& path, bool overwrite) {
+  io::CheckWritableFile(path, overwrite);
+  io::CheckSqliteFileReplaceable(path);
+}
+
 ColmapExportSummary ExportTracksToColmapDatabase(const frontend::FeatureTracks& tracks,
                                                  const std::optional<Camera>& camera,
                                                  const ColmapExportOptions& options,
@@ -317,7 +323,7 @@ ColmapExportSummary ExportTracksToColmapDatabase(const frontend::FeatureTracks& 
         summary = WriteTracksToColmapDatabase(tracks, camera, options, &database);
         database.Close();
       },
-      overwrite);
+      overwrite, io::SqliteReplacement());
   return summary;
 }
 

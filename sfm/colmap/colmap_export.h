@@ -76,9 +76,17 @@ ColmapExportSummary WriteTracksToColmapDatabase(const frontend::FeatureTracks& t
                                                 const ColmapExportOptions& options,
                                                 io::ColmapDatabase* database);
 
-// Creates the database file `path`: built in a temporary file in the same folder and renamed into
-// place only when complete, so a failed export leaves no file behind. An existing `path` is
-// refused (comic::Error(kIo)) unless `overwrite`, and is then replaced as a whole.
+// Checks, before any work, that ExportTracksToColmapDatabase can write `path`: its folder is
+// writable, `path` is not a folder, and an existing file is refused unless `overwrite`; an
+// existing database must not be held by another program, and no stale journal may lie beside it
+// (io/colmap/sqlite_file.h; a hot journal is rolled back). Throws comic::Error(kIo) naming `path`.
+void CheckColmapDatabaseOutput(const std::string& path, bool overwrite);
+
+// Creates the database file `path`: built in a temporary file in the same folder, checked with
+// SQLite's integrity check and renamed into place only when complete, so a failed export leaves
+// no file behind. An existing `path` is refused (comic::Error(kIo)) unless `overwrite`, and is then
+// replaced as a whole, under the guard of io/colmap/sqlite_file.h: never while another program
+// holds it, never beside a stale journal.
 ColmapExportSummary ExportTracksToColmapDatabase(const frontend::FeatureTracks& tracks,
                                                  const std::optional<Camera>& camera,
                                                  const ColmapExportOptions& options,

@@ -220,6 +220,10 @@ std::vector<std::string> ColmapMapperArguments(const std::string& database_path,
   return args;
 }
 
+std::string ColmapMapperOutputBeside(const std::string& database_path) {
+  return io::JoinPaths(io::JoinPaths(io::ParentPath(database_path), "colmap"), "sparse");
+}
+
 std::string ColmapMapperCommandLine(const std::string& database_path, const std::string& image_path,
                                     const std::string& output_path,
                                     const ColmapMapperOptions& options) {

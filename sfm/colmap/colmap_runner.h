@@ -75,6 +75,12 @@ std::vector<std::string> ColmapMapperArguments(const std::string& database_path,
                                                const std::string& output_path,
                                                const ColmapMapperOptions& options);
 
+// Where the printed `colmap mapper` command for the database at `database_path` writes its
+// models: colmap/sparse beside the database, a folder of COLMAP's own, never comic_sfm's sparse/0
+// when the database lies in its --output (issue 29: the printed command replaced images.bin and
+// points3D.bin there).
+std::string ColmapMapperOutputBeside(const std::string& database_path);
+
 // The exact commands to run the mapper by hand: "mkdir -p OUT && colmap mapper ...".
 std::string ColmapMapperCommandLine(const std::string& database_path, const std::string& image_path,
                                     const std::string& output_path,

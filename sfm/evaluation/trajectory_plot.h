@@ -1,6 +1,7 @@
 // A top view of camera trajectories as an image: the estimated centres (aligned into the
 // ground-truth world by the Sim(3) of the evaluation) against the true ones, with equal scale on
-// both axes, a scale bar and a legend.
+// both axes, axes with ticks and a grid in the world's unit, a scale bar, the frames that were
+// not registered marked where they truly were, a wrapped title and a legend.
 //
 //   const PlotPlane plane = PlotPlaneFromAxes(0, 2);  // x right, z up the page: KITTI's top view
 //   cv::Mat image = RenderTrajectoryPlot(aligned_centers, true_centers, plane, {});
@@ -32,15 +33,20 @@ PlotPlane PlotPlaneFromAxes(int right_axis, int up_axis);
 PlotPlane PlotPlaneFromCenters(const std::vector<Eigen::Vector3d>& centers);
 
 struct TrajectoryPlotOptions {
-  int width = 900;   // pixels
-  int height = 900;  // pixels
-  std::string title;
+  int width = 900;    // pixels
+  int height = 900;   // pixels
+  std::string title;  // wrapped to the width
+  // The length unit of the centres: "m" with metric ground truth; "units" when the scale is the
+  // model's own.
+  std::string unit = "units";
+  std::string note;  // a line under the legend, e.g. the ATE (may be empty)
   void Check() const;
 };
 
 // Draws per frame the estimated centre (red, joined in frame order), the true centre (green)
-// and a grey line between the two; either may be missing for a frame. With no true centres it
-// draws the estimate alone. Deterministic.
+// and a grey line between the two; either may be missing for a frame: a frame with a true centre
+// and no estimate (not registered) is an amber cross. With no true centres it draws the estimate
+// alone and counts the frames without one in the legend. Deterministic.
 cv::Mat RenderTrajectoryPlot(const std::vector<std::optional<Eigen::Vector3d>>& estimated_centers,
                              const std::vector<std::optional<Eigen::Vector3d>>& true_centers,
                              const PlotPlane& plane, const TrajectoryPlotOptions& options);

@@ -47,6 +47,8 @@ Camera LoadCameraCalibration(const std::string& path, const cv::Size& source_siz
   try {
     source_camera =
         Camera::FromParams(*file_model, source_size.width, source_size.height, calibration.params);
+    // Values no lens has (issue 29: cx = 1e300 ran to 0 verified pairs with exit 0).
+    CheckCameraValuesPlausible(source_camera);
   } catch (const Error& error) {
     throw Error(ErrorKind::kInvalidData, path + ": " + error.what());
   }

@@ -7,9 +7,11 @@
 #include "frontend/matching/combined_tracking.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/core/thread_count.h"
 #include "io/image/frame_export.h"
+#include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_runner.h"
 
 namespace comic::sfm {
@@ -33,7 +35,13 @@ std::string ImageNamePrefix(const std::string& frames, const std::string& image_
 // for COLMAP, --image-path, --sparse. Throws comic::Error naming the flag or the file.
 void PlaceOutputs(const ColmapExportRunOptions& options, ColmapExportRunResult* result) {
   const std::string& database = options.colmap.colmap_db;
-  io::CheckWritableFile(database, options.colmap.overwrite);
+  // Inputs are sacred (issue 29: `--colmap-db frames/000000.png --overwrite` replaced a frame).
+  io::CheckOutputsAvoidInputs(
+      {{"--colmap-db", database},
+       {"--write-frames",
+        options.write_frames == kFramesBesideDatabase ? "" : options.write_frames}},
+      {{"FRAMES", options.frames}, {"--intrinsics", options.camera.intrinsics}});
+  CheckColmapDatabaseOutput(database, options.colmap.overwrite);
   COMIC_CHECK(io::PathExists(options.frames), kNotFound,
               options.frames << ": no such file or folder");
   result->video = !io::IsDirectory(options.frames);
@@ -57,8 +65,7 @@ void PlaceOutputs(const ColmapExportRunOptions& options, ColmapExportRunResult* 
   result->image_path = options.image_path.empty() ? result->frames_folder : options.image_path;
   COMIC_CHECK(io::IsDirectory(result->image_path) || result->image_path == result->frames_folder,
               kNotFound, result->image_path << ": --image-path is not a folder");
-  result->sparse =
-      options.sparse.empty() ? io::JoinPaths(io::ParentPath(database), "sparse") : options.sparse;
+  result->sparse = options.sparse.empty() ? ColmapMapperOutputBeside(database) : options.sparse;
 }
 
 io::ImageSequence OpenFrames(const ColmapExportRunOptions& options, bool video) {
@@ -118,6 +125,7 @@ ColmapExportRunResult RunColmapExport(const ColmapExportRunOptions& options,
   export_options.image_name_prefix = ImageNamePrefix(result.frames_folder, result.image_path);
   const io::ImageSequence sequence = OpenFrames(options, result.video);
   result.num_frames = sequence.NumFrames();
+  result.warning = sequence.warning();
   if (!options.camera.intrinsics.empty()) {
     result.camera = ResolveCamera(options.camera, sequence.SourceFrameSize(), sequence.FrameSize(),
                                   std::nullopt)
@@ -132,7 +140,9 @@ ColmapExportRunResult RunColmapExport(const ColmapExportRunOptions& options,
   const frontend::TrackingResult tracking = Track(options, sequence, tracker, callbacks);
   if (frames_out) {
     if (callbacks.stage_started) callbacks.stage_started(RunStage::kWritingFrames, "");
-    io::WriteSequenceFrames(sequence, frames_out->path(), callbacks.frame_done);
+    // A failure (a full disk) names the user's folder, not the staging one.
+    frames_out->NamingTarget(
+        [&] { io::WriteSequenceFrames(sequence, frames_out->path(), callbacks.frame_done); });
   }
   result.summary = ExportTracksToColmapDatabase(tracking.tracks, result.camera, export_options,
                                                 options.colmap.colmap_db, options.colmap.overwrite);

@@ -66,6 +66,9 @@ struct ColmapExportRunResult {
   int pair_window = 0;
   ColmapExportSummary summary;
   std::string mapper_command;  // the `colmap mapper` command to run, paste-able
+  // The frames were accepted with a problem to tell (entries of the folder skipped, a truncated
+  // video used up to its break): ImageSequence::warning(); empty if none.
+  std::string warning;
 };
 
 // Runs `options`. Throws comic::Error for bad options (kInvalidArgument, naming the flag) and for

@@ -5,7 +5,9 @@
 #include "frontend/matching/pairing.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/report/json_text.h"
 #include "sfm/colmap/colmap_comparison.h"
+#include "sfm/colmap/colmap_export.h"
 #include "sfm/colmap/colmap_pipeline.h"
 #include "sfm/colmap/colmap_runner.h"
 #include "sfm/working_resolution.h"
@@ -64,8 +66,9 @@ ColmapDatabaseOutput WriteRunColmapDatabase(const DetectorRun& run,
       RunExportOptions(options, inputs), output.path, options.colmap.overwrite);
   ColmapMapperOptions mapper = RecommendedColmapMapperOptions(output.summary);
   mapper.num_threads = options.colmap.colmap_threads;
-  output.mapper_command = ColmapMapperCommandLine(
-      output.path, image_path, io::JoinPaths(io::ParentPath(output.path), "sparse"), mapper);
+  // Into colmap/sparse beside the database: never over our own sparse/0 (issue 29).
+  output.mapper_command = ColmapMapperCommandLine(output.path, image_path,
+                                                  ColmapMapperOutputBeside(output.path), mapper);
   return output;
 }
 
@@ -104,7 +107,7 @@ ColmapComparisonOutput CompareRunWithColmap(const DetectorRun& run,
         {"matches", exported.num_matches},
         {"inlier_matches", exported.num_inlier_matches},
         {"known_intrinsics", exported.known_intrinsics}}}};
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.json"), json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.json"), io::JsonText(json, 2));
   return {out.ToTargetPaths(table.ToMarkdown()),
           out.ToTargetPaths(comparison.colmap_mapper_command),
           out.ToTargetPaths(comparison.log_path)};
@@ -162,7 +165,7 @@ void CheckColmapOutputs(const ReconstructionRunOptions& options) {
               "--compare-colmap needs FRAMES to be a folder of images (for a video use "
               "--colmap-db, which writes the frames, and run COLMAP on it)");
   if (!options.colmap.colmap_db.empty()) {
-    io::CheckWritableFile(options.colmap.colmap_db, options.colmap.overwrite);
+    CheckColmapDatabaseOutput(options.colmap.colmap_db, options.colmap.overwrite);
   }
   if (options.compare_colmap) {
     COMIC_CHECK(IsColmapAvailable(), kNotFound,

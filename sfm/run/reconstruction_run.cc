@@ -1,10 +1,13 @@
 #include "sfm/run/reconstruction_run.h"
 
 #include <cmath>
+#include <functional>
 #include <memory>
 
+#include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/image/frame_export.h"
 #include "sfm/run/run_outputs.h"
@@ -45,6 +48,17 @@ class RunOutputFolders {
   }
   const std::string& frames_staging() const { return frames_staging_; }
   const std::string& frames_target() const { return frames_target_; }
+
+  // Runs `body`, which writes into the staging folders; an error it throws (a full disk) names
+  // the user's folders, not the staging ones (issue 29).
+  void NamingTargets(const std::function<void()>& body) const {
+    const auto in_frames = [&] { frames_out_ ? frames_out_->NamingTarget(body) : body(); };
+    if (out_) {
+      out_->NamingTarget(in_frames);
+    } else {
+      in_frames();
+    }
+  }
 
   void Commit() {
     if (out_) out_->Commit();
@@ -146,6 +160,16 @@ std::string FailureLine(const ReconstructionRunOptions& options,
 
 void CheckRunOptions(const ReconstructionRunOptions& options) {
   options.Check();
+  // Inputs are sacred (issue 29: `-o FRAMES` left trajectory.png among the frames).
+  io::CheckOutputsAvoidInputs(
+      {{"--output", options.output},
+       {"--colmap-db", options.colmap.colmap_db},
+       {"--write-frames", options.write_frames == kFramesInOutput ? "" : options.write_frames}},
+      {{"FRAMES", options.frames},
+       {"--gt", options.gt},
+       {"--intrinsics", options.camera.intrinsics},
+       {"--regions", options.regions},
+       {"--masks", options.masks}});
   CheckColmapOutputs(options);
   // Validate, then write, all or nothing: --output is checked but not created; the outputs go to
   // a staging folder beside it and move into place when the run is complete.
@@ -158,12 +182,18 @@ ReconstructionRunResult RunReconstruction(const ReconstructionRunOptions& option
   ReconstructionRunResult result;
   result.inputs = ResolveRunInputs(options);
   CheckFramesOption(options, result.inputs);
+  // A frame name no COLMAP model can hold fails now, not after the reconstruction (issue 29).
+  for (const std::string& name : result.inputs.sequence->FrameNames()) {
+    io::CheckColmapImageName(name, options.frames);
+  }
   if (callbacks.inputs_resolved) callbacks.inputs_resolved(result.inputs);
   RunOutputFolders folders(options, result.inputs);
-  RunDetectors(options, folders, callbacks, &result);
-  CompareDetectors(options, folders, &result);
-  WriteFrames(folders, callbacks, &result);
-  HandToColmap(options, folders, &result);
+  folders.NamingTargets([&] {
+    RunDetectors(options, folders, callbacks, &result);
+    CompareDetectors(options, folders, &result);
+    WriteFrames(folders, callbacks, &result);
+    HandToColmap(options, folders, &result);
+  });
   // A failed reconstruction commits its report.json (the documented exception): it says why.
   folders.Commit();
   result.failure = FailureLine(options, result);

@@ -90,6 +90,7 @@ void ReconstructionRunOptions::Check() const {
   COMIC_CHECK(boundary_band > 0, kInvalidArgument, "--boundary-band must be > 0");
   if (plot_plane != "auto") ParsePlotPlane(plot_plane);
   io::ParseGroundTruthFormat(gt_format);
+  report_page.Check();
 }
 
 SequenceReconstructionOptions MakeSequenceReconstructionOptions(

@@ -11,6 +11,7 @@
 #include "io/image/image_sequence.h"
 #include "sfm/colmap/colmap_export.h"
 #include "sfm/run/camera_resolution.h"
+#include "sfm/run/run_page_options.h"
 #include "sfm/run/tracker_settings.h"
 #include "sfm/sequence_reconstruction.h"
 
@@ -98,6 +99,9 @@ struct ReconstructionRunOptions {
   // --write-frames: where a video's frames are written as PNGs (empty: not written, unless
   // --colmap-db needs them; kFramesInOutput: images/ in --output).
   std::string write_frames;
+  // report.html: points in the 3-D view, frames shown, where three.js is (not flags: the
+  // defaults; Python's report_page).
+  RunPageOptions report_page;
 
   // Throws comic::Error(kInvalidArgument) naming the bad flag. Touches no file.
   void Check() const;

@@ -1,16 +1,20 @@
 #include "sfm/run/run_outputs.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "io/colmap/colmap_binary_model.h"
 #include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/datasets/ground_truth_cameras.h"
 #include "io/image/image_io.h"
+#include "io/report/json_text.h"
 #include "io/report/ply.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/colmap/model_set_writer.h"
 #include "sfm/run/colmap_outputs.h"
+#include "sfm/run/run_page.h"
 #include "sfm/run/run_report.h"
 
 namespace comic::sfm {
@@ -80,6 +84,7 @@ std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
         files.push_back(std::string("rotation_only/") + name);
     }
   }
+  files.push_back("report.html");  // every run, failed ones too
   return files;
 }
 
@@ -93,7 +98,9 @@ void WriteDetectorOutputs(const DetectorRun& run, const ReconstructionRunOptions
   } else if (run.keeps_tracks) {
     WriteWhatWasFound(run, options, inputs, folder);
   }
-  io::WriteFileAtomically(io::JoinPaths(folder, "report.json"), run.report_json.dump(2) + "\n");
+  io::WriteHtmlPage(io::JoinPaths(folder, "report.html"), RunPage(run, options, inputs),
+                    options.report_page.html);
+  io::WriteFileAtomically(io::JoinPaths(folder, "report.json"), io::JsonText(run.report_json, 2));
 }
 
 io::ReportTable ComparisonTable(const std::vector<DetectorRun>& runs) {
@@ -110,7 +117,9 @@ void WriteComparisonOutputs(const io::ReportTable& table, const std::vector<Dete
   nlohmann::json json = {{"table", table.ToJson()}, {"runs", nlohmann::json::array()}};
   for (const DetectorRun& run : runs) json["runs"].push_back(RunReportToJson(run.report));
   json["options"] = RunOptionsToJson(options, inputs);
-  io::WriteFileAtomically(io::JoinPaths(folder, "compare.json"), json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(folder, "compare.json"), io::JsonText(json, 2));
+  io::WriteHtmlPage(io::JoinPaths(folder, "report.html"),
+                    ComparisonPage(table, runs, options, inputs), options.report_page.html);
 }
 
 cv::Mat RenderRunPlot(const RunInputs& inputs, const Reconstruction& reconstruction,
@@ -138,6 +147,20 @@ cv::Mat RenderRunPlot(const RunInputs& inputs, const Reconstruction& reconstruct
       inputs.plot_plane_from_estimate ? PlotPlaneFromCenters(all_estimated) : inputs.plot_plane;
   TrajectoryPlotOptions plot_options;
   plot_options.title = title;
+  plot_options.unit = "model units";
+  const size_t registered = all_estimated.size();
+  char note[200];
+  if (evaluation) {
+    const std::string unit = io::GroundTruthLengthUnit(inputs.gt_format);
+    plot_options.unit = unit.empty() ? "ground-truth units" : unit;
+    std::snprintf(note, sizeof(note), "ATE RMSE %.4g %s (%.3g %% of the %.4g %s path); ",
+                  evaluation->ate_rmse, plot_options.unit.c_str(),
+                  100.0 * evaluation->ate_fraction_of_path, evaluation->path_length,
+                  plot_options.unit.c_str());
+    plot_options.note = note;
+  }
+  plot_options.note +=
+      std::to_string(registered) + " of " + std::to_string(estimated.size()) + " frames registered";
   return RenderTrajectoryPlot(estimated_centers, true_centers, plane, plot_options);
 }
 

@@ -41,6 +41,9 @@ frontend::TrackerOptions TrackerSettings::ToTrackerOptions() const {
   if (verify_min_gap) options.verify_min_gap = *verify_min_gap;
   if (match_turned) options.match_turned_180 = *match_turned;
   if (max_cost) options.matcher.max_cost = *max_cost;
+  if (align_patches) options.align_patches = *align_patches;
+  if (min_window_eigenvalue) options.min_window_eigenvalue = *min_window_eigenvalue;
+  if (continuation) options.continuation = *continuation;
   options.Check();
   return options;
 }
@@ -81,6 +84,9 @@ frontend::TrackerOptions TrackerOptionsForRun(const TrackerSettings& settings,
   if (settings.coarse_radius) options.coarse_radius = given.coarse_radius;
   if (settings.search_radius) options.matcher.radius = given.matcher.radius;
   if (settings.max_cost) options.matcher.max_cost = given.matcher.max_cost;
+  if (settings.align_patches) options.align_patches = given.align_patches;
+  if (settings.min_window_eigenvalue) options.min_window_eigenvalue = given.min_window_eigenvalue;
+  if (settings.continuation) options.continuation = given.continuation;
   options.Check();
   return options;
 }

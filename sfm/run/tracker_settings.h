@@ -23,16 +23,20 @@ class ImageSequence;
 namespace comic::sfm {
 
 struct TrackerSettings {
-  std::optional<int> max_features;             // --max-features N (0 = all)
-  std::optional<double> search_radius;         // --search-radius PX
-  std::optional<double> unpredicted_radius;    // --unpredicted-radius PX (0 = --search-radius)
-  std::optional<std::string> prediction;       // --prediction none|velocity|coarse-to-fine
-  std::optional<double> coarse_radius;         // --coarse-radius PX
-  std::optional<int> match_window;             // --match-window K
-  std::optional<std::string> track_conflicts;  // --track-conflicts drop|greedy
-  std::optional<int> verify_min_gap;           // --verify-min-gap G
-  std::optional<bool> match_turned;            // --match-turned
-  std::optional<double> max_cost;              // --max-cost T
+  std::optional<int> max_features;              // --max-features N (0 = all)
+  std::optional<double> search_radius;          // --search-radius PX
+  std::optional<double> unpredicted_radius;     // --unpredicted-radius PX (0 = --search-radius)
+  std::optional<std::string> prediction;        // --prediction none|velocity|coarse-to-fine
+  std::optional<double> coarse_radius;          // --coarse-radius PX
+  std::optional<int> match_window;              // --match-window K
+  std::optional<std::string> track_conflicts;   // --track-conflicts drop|greedy
+  std::optional<int> verify_min_gap;            // --verify-min-gap G
+  std::optional<bool> match_turned;             // --match-turned
+  std::optional<double> max_cost;               // --max-cost T
+  std::optional<bool> align_patches;            // --align-patches 1|0
+  std::optional<double> min_window_eigenvalue;  // --min-window-eigenvalue E
+  // --max-continued-frames, --bridge-frames and the alignment flags (track_continuation.h).
+  std::optional<frontend::TrackContinuationOptions> continuation;
 
   // The defaults with every given field applied, names parsed, Check()ed. Throws
   // comic::Error(kInvalidArgument) naming the bad option.

@@ -69,6 +69,10 @@ TEST(ComicSfmColmap, WritesTheDatabaseAndComparesWithColmap) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("run COLMAP on it with:\n  mkdir -p "), std::string::npos)
       << result.output;
+  // Into colmap/sparse beside the database, never over comic_sfm's own sparse/0 (issue 29).
+  EXPECT_NE(result.output.find("--output_path " + dir.File("colmap/sparse") + " "),
+            std::string::npos)
+      << result.output;
   EXPECT_NE(result.output.find("--Mapper.ba_refine_focal_length 0"), std::string::npos);
   comic::io::ColmapDatabase database = comic::io::ColmapDatabase::Open(db);
   EXPECT_EQ(database.NumImages(), 12u);

@@ -210,7 +210,7 @@ TEST(ComicSfm, ModelAndPlyFormatsAreChosenByFlags) {
       nlohmann::json::parse(comic::io::ReadFileToString(dir.File("bin/report.json")));
   EXPECT_EQ(report["outputs"],
             nlohmann::json({"sparse/0/cameras.bin", "sparse/0/images.bin", "sparse/0/points3D.bin",
-                            "points.ply", "trajectory.png"}));
+                            "points.ply", "trajectory.png", "report.html"}));
   // The PLYs hold the same points, the binary one to float precision.
   const auto ascii_cloud = comic::io::ReadPly(dir.File("txt/points.ply"));
   const auto binary_cloud = comic::io::ReadPly(dir.File("bin/points.ply"));
@@ -373,6 +373,36 @@ TEST(ComicSfm, UnreconstructableInputIsReportedNotCrashed) {
   EXPECT_FALSE(comic::io::PathExists(dir.File("points3D.txt")));
 }
 
+// Issue 29: names are either refused before any work (whitespace) or work end to end. UTF-8
+// frame names reach the model (text and binary) and the database as they are on disk.
+TEST(ComicSfm, Utf8FrameNamesWorkEndToEnd) {
+  ScopedTempDir dir;
+  const std::string frames = dir.File("frames");
+  comic::io::EnsureWritableDirectory(frames);
+  const std::string prefix =
+      "stra\xc3\x9f"
+      "e_\xe5\xb8\xa7_";  // straße_帧_
+  for (int k = 0; k < 4; ++k) {
+    std::filesystem::copy_file(Example() + "/image_l/00000" + std::to_string(k) + ".png",
+                               frames + "/" + prefix + std::to_string(k) + ".png");
+  }
+  const std::string out = dir.File("out");
+  const auto result = RunCommand(AppPath("comic_sfm") + " " + frames + " --intrinsics " +
+                                 Example() + "/calib.txt --detector fast --threads 1 --quiet " +
+                                 "--output " + out + " --colmap-db " + dir.File("t.db"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const comic::io::ColmapTextModel text = comic::io::ReadColmapTextModel(out);
+  const comic::io::ColmapTextModel binary = comic::io::ReadColmapBinaryModel(out + "/sparse/0");
+  ASSERT_EQ(text.images.size(), 4u);
+  ASSERT_EQ(binary.images.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(text.images[k].name, prefix + std::to_string(k) + ".png");
+    EXPECT_EQ(binary.images[k].name, text.images[k].name);
+  }
+  comic::io::ColmapDatabase database = comic::io::ColmapDatabase::Open(dir.File("t.db"));
+  EXPECT_EQ(database.ReadAllImages().front().name, prefix + "0.png");
+}
+
 // Issue 17: frames without parallax (one frame four times) end in one error line that names the
 // failing check of the initial pair and what to try; report.json holds the diagnosis and the
 // tracks found are written as a COLMAP database.
@@ -400,6 +430,8 @@ TEST(ComicSfm, NoParallaxIsDiagnosedAndTheTracksAreStillWritten) {
   EXPECT_EQ(report["diagnosis"]["stage"], "initial_pair");
   EXPECT_EQ(err.find(report["diagnosis"]["message"].get<std::string>()), err.find("no initial"));
   EXPECT_EQ(report["outputs"][0], "tracks.db");
+  EXPECT_EQ(report["outputs"].back(), "report.html");  // a failed run gets its page too
+  EXPECT_TRUE(comic::io::IsRegularFile(out + "/report.html"));
   EXPECT_EQ(comic::io::ColmapDatabase::Open(out + "/tracks.db").ReadAllImages().size(), 4u);
   EXPECT_FALSE(comic::io::PathExists(out + "/points3D.txt"));
 }

@@ -111,6 +111,14 @@ TEST(ComicStereoEval, SyntheticPairGivesTheConstructedAnswers) {
   ASSERT_FALSE(figure.empty());
   EXPECT_EQ(figure.cols, 2 * SyntheticStereoScene::kWidth);
   EXPECT_GT(figure.rows, SyntheticStereoScene::kHeight);  // plus a title bar
+  // report.html (issue 28): the tables, the figure and the legend the PNG lacks, in one page.
+  std::ifstream page_file(out + "/report.html");
+  const std::string page((std::istreambuf_iterator<char>(page_file)), {});
+  for (const char* text :
+       {"comic_stereo_eval", "Matched precision", "Beside the paper", "harris/full",
+        "M_score(1) (% of detected)", "data:image/", "correct match", "blue band"}) {
+    EXPECT_NE(page.find(text), std::string::npos) << text;
+  }
 }
 
 TEST(ComicStereoEval, OutputIsDeterministic) {
@@ -165,8 +173,8 @@ TEST(ComicStereoEval, BadInputGivesOneLineErrorAndNonZeroExit) {
       {left + " " + right + disp + " --disparity-scale 4 --max-cost 0", 2,
        "max_cost (T) must be > 0"},
       {left + " " + right + disp + " --disparity-scale 4 --counts 10,x", 2, "expected a number"},
-      {left + " " + right + disp + " --disparity-scale 4 --output " + left, 1,
-       "exists and is not a folder"},
+      {left + " " + right + disp + " --disparity-scale 4 --output " + left, 2,
+       "--output is the input LEFT"},
   };
   for (const Case& c : cases) {
     // The common options first, so a case's own options (given later) override them.

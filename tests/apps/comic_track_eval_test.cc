@@ -128,6 +128,13 @@ TEST(ComicTrackEval, WritesTheTablesChartsAndOverlaysWithMasks) {
                 .size(),
             3u);  // start frames 0, 1, 2 with n = 5 over 8 frames
   EXPECT_NE(ReadText(out + "/report.md").find("comic_track_eval"), std::string::npos);
+  // report.html (issue 28): every table and chart, the overlays and their legend in one page.
+  const std::string page = ReadText(out + "/report.html");
+  for (const char* text : {"Scores, n = 5", "Scores, n = 1", "At other SSD thresholds T, n = 5",
+                           "M_score(5) (% of N)", "ResM_5 (features)", "Tracks on frames",
+                           "data:image/", "on the object's boundary", "outline"}) {
+    EXPECT_NE(page.find(text), std::string::npos) << text;
+  }
   // The sweep: one line per row and threshold; M_score grows with T, and the line at T = 400
   // is the main table's.
   const nlohmann::json sweep = nlohmann::json::parse(ReadText(out + "/threshold_sweep_n5.json"));
@@ -175,6 +182,9 @@ TEST(ComicTrackEval, WritesTheEqualCountPrecisionTableIntoTheOutputFolder) {
   const nlohmann::json table =
       nlohmann::json::parse(ReadText(dir.File("k") + "/precision_equal_count.json"));
   EXPECT_FALSE(table.empty());
+  EXPECT_NE(ReadText(dir.File("k") + "/report.html")
+                .find("Epipolar precision at equal numbers of matches"),
+            std::string::npos);
 }
 
 TEST(ComicTrackEval, ReportsEpipolarPrecisionOnTheBundledKittiClip) {
@@ -195,6 +205,10 @@ TEST(ComicTrackEval, ReportsEpipolarPrecisionOnTheBundledKittiClip) {
     EXPECT_GT(row["precision @T %"].get<double>(), 50.0) << row.dump();
     EXPECT_LE(row["precision @T %"].get<double>(), 100.0);
   }
+  const std::string page = ReadText(dir.File("k") + "/report.html");
+  EXPECT_NE(page.find("Epipolar precision, n = 5"), std::string::npos);
+  // Only full-patch matchers: no equal-count table (as no precision_equal_count.*).
+  EXPECT_EQ(page.find("Epipolar precision at equal numbers of matches"), std::string::npos);
   // Without a region, only "overall" is defined.
   const nlohmann::json scores = nlohmann::json::parse(ReadText(dir.File("k") + "/scores_n5.json"));
   EXPECT_TRUE(scores[0]["M_score(5) % boundary"].is_null());
@@ -257,7 +271,7 @@ TEST(ComicTrackEval, BadInputGivesOneLineErrorAndNonZeroExit) {
        "--poses and --calib go together"},
       {frames + " --detectors harris", 2, "give the feature count N"},
       {frames + ok + " --comic-matchers ncc", 2, "unknown match cost 'ncc'"},
-      {frames + ok + " --search-radius 0", 2, "radius must be > 0"},
+      {frames + ok + " --search-radius 0", 2, "--search-radius must be > 0"},
       {frames + ok + " --sweep 100,x", 2, "--sweep: expected a number or inf, got 'x'"},
       {frames + ok + " --bogus", 2, "unknown option --bogus"},
       {frames + " --detectors harris --count 10 --output /proc/none", 1, "cannot create"},

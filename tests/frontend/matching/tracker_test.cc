@@ -398,6 +398,113 @@ TEST(Tracker, SelectsTrackableFeatures) {
   EXPECT_EQ(kept[0].response, 3);
 }
 
+TrackerOptions AlignedOptions(int max_continued_frames) {
+  TrackerOptions options = HarrisOptions();
+  options.align_patches = true;
+  options.continuation.max_continued_frames = max_continued_frames;
+  return options;
+}
+
+TEST(Tracker, AlignedPatchesFollowAMotionBeyondTheSearchRadius) {
+  const int kStep = 16;
+  const auto frames = TranslatingFrames(4, {kStep, 0}, {260, 160});
+  const HarrisDetector harris;
+  TrackerOptions plain_options = HarrisOptions();
+  plain_options.matcher.radius = 10;
+  const FeatureTracks plain = TrackFrames(frames, harris, plain_options).tracks;
+  EXPECT_LT(CorrectStepFraction(plain, {kStep, 0}), 0.2);
+  TrackerOptions aligned_options = AlignedOptions(0);
+  aligned_options.matcher.radius = 10;
+  const TrackingResult aligned = TrackFrames(frames, harris, aligned_options);
+  int steps = 0;
+  EXPECT_GT(CorrectStepFraction(aligned.tracks, {kStep, 0}, &steps), 0.95);
+  EXPECT_GE(steps, 600);
+  ASSERT_EQ(aligned.alignments.size(), 3u);
+  ASSERT_EQ(aligned.search_regions.size(), 3u);
+  // No continuation asked: every feature is a detection.
+  for (const std::vector<uint8_t>& flags : aligned.continued) {
+    for (uint8_t f : flags) EXPECT_EQ(f, 0);
+  }
+}
+
+// Tracks frames with the detector's features, except in frame `missed`, which gets none (the
+// detector missed them all: a blurred frame).
+TrackingResult TrackMissingAFrame(const std::vector<cv::Mat>& frames, int missed,
+                                  const TrackerOptions& options) {
+  const HarrisDetector harris;
+  Tracker tracker(options, harris.Name(), &harris);
+  for (int i = 0; i < static_cast<int>(frames.size()); ++i) {
+    FeatureSet features;
+    if (i != missed)
+      features = SelectTrackableFeatures(harris.Detect(frames[i]), frames[i], options);
+    tracker.AddFrame(frames[i], features);
+  }
+  return tracker.Result();
+}
+
+TEST(Tracker, ContinuationCarriesTracksThroughAFrameWithoutDetections) {
+  const auto frames = TranslatingFrames(5, {3, 2});
+  const auto full_tracks = [](const FeatureTracks& tracks) {
+    int n = 0;
+    for (const Track& t : tracks.tracks) n += t.Length() == 5 ? 1 : 0;
+    return n;
+  };
+  const TrackingResult plain = TrackMissingAFrame(frames, 2, AlignedOptions(0));
+  const TrackingResult continued = TrackMissingAFrame(frames, 2, AlignedOptions(2));
+  EXPECT_EQ(full_tracks(plain.tracks), 0);
+  EXPECT_GE(full_tracks(continued.tracks), 30);
+  // Frame 2 holds continued features only, each where the scene moved it.
+  ASSERT_EQ(continued.continued.size(), 5u);
+  EXPECT_GE(continued.continued[2].size(), 30u);
+  for (uint8_t f : continued.continued[2]) EXPECT_EQ(f, 1);
+  for (uint8_t f : continued.continued[3]) EXPECT_EQ(f, 0);
+  EXPECT_GT(CorrectStepFraction(continued.tracks, {3, 2}), 0.95);
+  // Deterministic.
+  const TrackingResult again = TrackMissingAFrame(frames, 2, AlignedOptions(2));
+  ASSERT_EQ(again.tracks.tracks.size(), continued.tracks.tracks.size());
+  for (size_t f = 0; f < frames.size(); ++f) {
+    ASSERT_EQ(again.tracks.features[f].size(), continued.tracks.features[f].size());
+    for (size_t k = 0; k < again.tracks.features[f].size(); ++k) {
+      EXPECT_EQ(again.tracks.features[f][k].Position(), continued.tracks.features[f][k].Position());
+    }
+  }
+}
+
+TEST(Tracker, BridgesRelinkTracksAcrossAFrameWithoutDetections) {
+  // No continuation: with bridge_frames = 2 the tracks lost at frame 2 are found again in frame 3.
+  const auto frames = TranslatingFrames(5, {3, 2});
+  TrackerOptions options = AlignedOptions(0);
+  options.continuation.bridge_frames = 2;
+  const TrackingResult bridged = TrackMissingAFrame(frames, 2, options);
+  int skipping = 0, correct = 0;
+  for (const Track& t : bridged.tracks.tracks) {
+    for (size_t k = 1; k < t.observations.size(); ++k) {
+      if (t.observations[k - 1].frame != 1 || t.observations[k].frame != 3) continue;
+      ++skipping;
+      const cv::Point2f d = bridged.tracks.FeatureOf(t.observations[k]).Position() -
+                            bridged.tracks.FeatureOf(t.observations[k - 1]).Position();
+      correct += std::hypot(d.x - 6, d.y - 4) < 1.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GE(skipping, 30);
+  EXPECT_GE(correct, 0.95 * skipping);
+}
+
+TEST(Tracker, WindowEigenvalueDropsFeaturesOnStraightEdges) {
+  cv::Mat gray(100, 100, CV_8UC1, cv::Scalar(30));
+  gray(cv::Rect(50, 0, 50, 100)).setTo(200);  // a vertical edge at x = 50
+  gray(cv::Rect(70, 60, 30, 40)).setTo(90);   // a corner at (70, 60)
+  FeatureSet detected(2);
+  detected[0].x = 50, detected[0].y = 30, detected[0].response = 5;  // on the straight edge
+  detected[1].x = 70, detected[1].y = 60, detected[1].response = 1;  // on the corner
+  TrackerOptions options;
+  options.min_window_eigenvalue = 1.0;
+  const FeatureSet kept = SelectTrackableFeatures(detected, gray, options);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].x, 70);
+  EXPECT_THROW(SelectTrackableFeatures(detected, gray.size(), options), Error);
+}
+
 TEST(Tracker, BadOptionsAndFrames) {
   TrackerOptions options;
   options.matcher.gate = CandidateGate::kRectifiedStereo;
@@ -406,6 +513,13 @@ TEST(Tracker, BadOptionsAndFrames) {
   options.prediction = MotionPrediction::kCoarseToFine;
   EXPECT_THROW(Tracker(options, "x"), Error);  // needs a detector
   EXPECT_THROW(ParseMotionPrediction("kalman"), Error);
+  options = {};
+  options.continuation.max_continued_frames = 3;  // needs align_patches
+  EXPECT_THROW(options.Check(), Error);
+  options.align_patches = true;
+  EXPECT_NO_THROW(options.Check());
+  options.min_window_eigenvalue = -1;
+  EXPECT_THROW(options.Check(), Error);
   EXPECT_EQ(ParseMotionPrediction("coarse-to-fine"), MotionPrediction::kCoarseToFine);
   Tracker tracker(TrackerOptions{}, "x");
   tracker.AddFrame(cv::Mat(50, 50, CV_8UC1, cv::Scalar(0)), {});

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
 
 #include "io/core/error.h"
 #include "tests/test_support.h"
@@ -112,6 +114,52 @@ TEST(FileUtils, CheckWritableFileBeforeWork) {
   WriteFileAtomically(dir.File("old.txt"), "x");
   EXPECT_NO_THROW(CheckWritableFile(dir.File("old.txt")));
   EXPECT_THROW(CheckWritableFile(dir.File("old.txt"), /*overwrite=*/false), Error);
+}
+
+}  // namespace
+}  // namespace comic::io
+
+namespace comic::io {
+namespace {
+
+// Issue 29: an unknown image extension failed after the work, in OpenCV's own words; it is now
+// checked first, and a write failure is our one message naming the file.
+TEST(FileUtils, ImageOutputFormatsAreCheckedBeforeWork) {
+  EXPECT_NO_THROW(CheckImageOutputFormat("out/overlay.png", "--overlay"));
+  EXPECT_NO_THROW(CheckImageOutputFormat("sheet.JPG", "--contact-sheet"));
+  for (const std::string path : {"overlay.xyz", "overlay", "overlay.txt"}) {
+    try {
+      CheckImageOutputFormat(path, "--overlay");
+      FAIL() << path << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": --overlay needs an image file name", 0), 0u)
+          << e.what();
+    }
+  }
+  comic::test::ScopedTempDir dir;
+  try {
+    WriteImageAtomically(dir.File("img.unknownext"), cv::Mat(4, 4, CV_8UC1, cv::Scalar(1)));
+    FAIL() << "written";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("OpenCV("), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("img.unknownext: cannot encode"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(FileUtils, ListFilesReportsWhatItSkips) {
+  comic::test::ScopedTempDir dir;
+  WriteFileAtomically(dir.File("a.png"), "x");
+  ASSERT_EQ(::mkfifo(dir.File("b.png").c_str(), 0644), 0);
+  std::vector<SkippedEntry> skipped;
+  EXPECT_EQ(ListFiles(dir.path(), &skipped), std::vector<std::string>{"a.png"});
+  ASSERT_EQ(skipped.size(), 1u);
+  EXPECT_EQ(skipped[0].name, "b.png");
+  EXPECT_EQ(skipped[0].kind, "a FIFO");
+  EXPECT_EQ(DescribeSkippedEntries(skipped),
+            "skipped 1 entry that is not a regular file: 'b.png' (a FIFO)");
+  EXPECT_EQ(DescribeSkippedEntries({}), "");
 }
 
 }  // namespace

@@ -19,6 +19,28 @@ TEST(PrintableOneLine, EscapesBinaryBytes) {
   EXPECT_EQ(PrintableOneLine(std::string("a\0b", 3)), "a\\x00b");
 }
 
+// Issue 29: a frame named in UTF-8 reads as the user typed it; what is not UTF-8, or would move
+// the cursor or reorder the line, is still escaped.
+TEST(PrintableOneLine, KeepsWellFormedUtf8AndEscapesTheRest) {
+  EXPECT_EQ(PrintableOneLine("stra\xc3\x9f"
+                             "e/\xe5\xb8\xa7 001.png \xf0\x9f\x93\xb7"),
+            "stra\xc3\x9f"
+            "e/\xe5\xb8\xa7 001.png \xf0\x9f\x93\xb7");
+  // A lone continuation byte, a truncated sequence, an overlong '/', a surrogate.
+  EXPECT_EQ(PrintableOneLine("a\x80"
+                             "b"),
+            "a\\x80b");
+  EXPECT_EQ(PrintableOneLine("a\xc3"), "a\\xc3");
+  EXPECT_EQ(PrintableOneLine("\xc0\xaf"), "\\xc0\\xaf");
+  EXPECT_EQ(PrintableOneLine("\xed\xa0\x80"), "\\xed\\xa0\\x80");
+  // C1 control U+009B (a terminal's CSI), right-to-left override U+202E, line separator U+2028.
+  EXPECT_EQ(PrintableOneLine("\xc2\x9b"
+                             "2J"),
+            "\\xc2\\x9b2J");
+  EXPECT_EQ(PrintableOneLine("\xe2\x80\xae"), "\\xe2\\x80\\xae");
+  EXPECT_EQ(PrintableOneLine("\xe2\x80\xa8"), "\\xe2\\x80\\xa8");
+}
+
 TEST(PrintableOneLine, CutsLongText) {
   const std::string cut = PrintableOneLine(std::string(1000, 'z'), 10);
   EXPECT_EQ(cut, std::string(10, 'z') + "...");

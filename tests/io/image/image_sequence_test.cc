@@ -1,12 +1,16 @@
 #include "io/image/image_sequence.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
+#include <vector>
 
 #include "io/core/error.h"
+#include "io/core/file_utils.h"
 #include "tests/test_support.h"
 
 namespace comic::io {
@@ -192,13 +196,52 @@ TEST(ImageSequenceErrors, TruncatedImageIsRejected) {
   ExpectError([&] { ImageSequence::Open(dir.path()); }, ErrorKind::kInvalidData, "cut.png");
 }
 
+// Every frame's header is read at Open() (issue 29): a frame of another size, or one over the
+// pixel budget, is refused before any work, not when the frames before it have been tracked.
 TEST(ImageSequenceErrors, FramesOfDifferentSizes) {
   ScopedTempDir dir;
   cv::imwrite(dir.File("f1.png"), NumberedFrame(1, {40, 30}));
-  cv::imwrite(dir.File("f2.png"), NumberedFrame(2, {41, 30}));
-  const auto sequence = ImageSequence::Open(dir.path());
-  ExpectError([&] { sequence.ReadFrame(1); }, ErrorKind::kInvalidData,
-              "f2.png: size 41x30 differs from the first frame's 40x30");
+  cv::imwrite(dir.File("f2.png"), NumberedFrame(2, {40, 30}));
+  cv::imwrite(dir.File("f3.jpg"), NumberedFrame(3, {41, 30}));
+  ExpectError([&] { ImageSequence::Open(dir.path()); }, ErrorKind::kInvalidData,
+              "f3.jpg: size 41x30 differs from the first frame's 40x30");
+  // Outside the selected range it does not matter.
+  ImageSequenceOptions first_two;
+  first_two.last_frame = 1;
+  EXPECT_EQ(ImageSequence::Open(dir.path(), first_two).NumFrames(), 2u);
+  // A later frame over the budget, by its header.
+  cv::imwrite(dir.File("f3.jpg"), NumberedFrame(3, {400, 300}));
+  ImageSequenceOptions budget;
+  budget.max_pixels = 40 * 30;
+  ExpectError([&] { ImageSequence::Open(dir.path(), budget); }, ErrorKind::kInvalidData,
+              "f3.jpg: 400x300 = 120000 pixels exceeds the budget of 1200");
+}
+
+// Issue 29: FIFOs, dangling symlinks and symlink loops named as frames were skipped without a
+// word (and a FIFO opened by a reader blocks it).
+TEST(ImageSequence, EntriesNamedAsFramesThatAreNotFilesAreSkippedAndSaidSo) {
+  ScopedTempDir dir;
+  cv::imwrite(dir.File("f1.png"), NumberedFrame(1));
+  cv::imwrite(dir.File("f2.png"), NumberedFrame(2));
+  ASSERT_EQ(::mkfifo(dir.File("a_fifo.png").c_str(), 0644), 0);
+  std::filesystem::create_symlink(dir.File("gone.png"), dir.File("dangling.png"));
+  std::filesystem::create_symlink(dir.File("loop.png"), dir.File("loop.png"));
+  std::filesystem::create_directory(dir.File("folder.png"));
+  std::filesystem::create_directory(dir.File("subfolder"));  // not named as a frame: no word
+  std::filesystem::create_symlink(dir.File("f1.png"), dir.File("f3.png"));  // a frame
+  const ImageSequence sequence = ImageSequence::Open(dir.path());
+  EXPECT_EQ(sequence.NumFrames(), 3u);
+  EXPECT_EQ(sequence.warning(), dir.path() +
+                                    ": skipped 4 entries that are not regular files, the first "
+                                    "'a_fifo.png' (a FIFO)");
+  std::vector<SkippedEntry> skipped;
+  ListFiles(dir.path(), &skipped);
+  ASSERT_EQ(skipped.size(), 5u);
+  EXPECT_EQ(skipped[1].name, "dangling.png");
+  EXPECT_EQ(skipped[1].kind, "a dangling symlink");
+  EXPECT_EQ(skipped[2].kind, "a folder");
+  EXPECT_EQ(skipped[3].name, "loop.png");
+  EXPECT_EQ(skipped[3].kind, "a symlink loop");
 }
 
 TEST(ImageSequenceErrors, VideoThatCannotBeOpened) {
@@ -268,7 +311,7 @@ TEST(ImageSequenceErrors, FramesOverThePixelBudgetAreRefusedBeforeResizing) {
   EXPECT_EQ(ImageSequence::Open(dir.path(), options).FrameSize(), cv::Size(200, 150));
   options.resize_height = 100000;
   ExpectError([&] { ImageSequence::Open(dir.path(), options); }, ErrorKind::kInvalidArgument,
-              "resize_height must be at most");
+              "resize_height must be 0 (original size) or in [8, 16384]");
 }
 
 TEST(ImageSequenceErrors, BadOptionsAndRanges) {

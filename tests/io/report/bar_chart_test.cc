@@ -37,6 +37,39 @@ TEST(BarChart, BarHeightsFollowTheValues) {
   EXPECT_EQ(CountColour(image(cv::Rect(0, 70, 600, 230)), second, 320, 590), 0);
 }
 
+// Black pixels (the label; tick values are grey) in a band of the image.
+int CountDark(const cv::Mat& image, int x0, int x1, int y0, int y1) {
+  int count = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const cv::Vec3b p = image.at<cv::Vec3b>(y, x);
+      count += p[0] < 60 && p[1] < 60 && p[2] < 60;  // black text, not the grey ticks
+    }
+  }
+  return count;
+}
+
+TEST(BarChart, WritesTheYAxisLabelAlongTheAxis) {
+  BarChart chart;
+  chart.groups = {"a"};
+  chart.series = {{"one", {5.0}}};
+  const cv::Mat unlabelled = DrawBarChart(chart, {600, 300});
+  chart.y_label = "M_score(5) (%)";
+  const cv::Mat labelled = DrawBarChart(chart, {600, 300});
+  // The label stands in the leftmost 22 pixels, over the plot's height; nothing is there without.
+  EXPECT_EQ(CountDark(unlabelled, 0, 20, 70, 270), 0);
+  EXPECT_GT(CountDark(labelled, 0, 20, 70, 270), 40);
+  // Written bottom to top: taller than wide.
+  int top = 300, bottom = 0;
+  for (int y = 0; y < 300; ++y) {
+    if (CountDark(labelled, 0, 20, y, y + 1) > 0) {
+      top = std::min(top, y);
+      bottom = std::max(bottom, y);
+    }
+  }
+  EXPECT_GT(bottom - top, 60);
+}
+
 TEST(BarChart, BadChartsThrow) {
   BarChart chart;
   chart.groups = {"a", "b"};

@@ -92,6 +92,10 @@ TEST(ColmapMapperArguments, ListEveryOptionExplicitly) {
             "--Mapper.init_min_tri_angle 1.5 --Mapper.ba_refine_focal_length 0 "
             "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0 "
             "--Mapper.min_model_size 10");
+  // Issue 29: the printed command for a database in comic_sfm's --output wrote over its sparse/0;
+  // it writes into a folder of COLMAP's own beside the database.
+  EXPECT_EQ(ColmapMapperOutputBeside("out/tracks.db"), "out/colmap/sparse");
+  EXPECT_EQ(ColmapMapperOutputBeside("kitti.db"), "colmap/sparse");
   EXPECT_EQ(ColmapMapperCommandLine("my db.db", "images", "out/sparse", ColmapMapperOptions()),
             "mkdir -p out/sparse && colmap mapper --database_path 'my db.db' --image_path images "
             "--output_path out/sparse --Mapper.init_max_forward_motion 0.95 "

@@ -59,6 +59,43 @@ TEST(TrajectoryPlot, DrawsBothTrajectoriesDeterministically) {
   EXPECT_GT(right - left, 60);
 }
 
+// Rows of the image holding near-black (text) pixels between columns x0 and x1.
+std::vector<int> InkRows(const cv::Mat& image, int x0, int x1, int y0, int y1) {
+  std::vector<int> rows;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const cv::Vec3b& p = image.at<cv::Vec3b>(y, x);
+      if (p[0] < 60 && p[1] < 60 && p[2] < 60) {
+        rows.push_back(y);
+        break;
+      }
+    }
+  }
+  return rows;
+}
+
+TEST(TrajectoryPlot, WrapsTheTitleMarksUnregisteredFramesAndDrawsAGrid) {
+  std::vector<std::optional<Eigen::Vector3d>> estimated, truth;
+  for (int i = 0; i < 20; ++i) {
+    truth.push_back(Eigen::Vector3d(0.1 * i, 0, 1.2 * i));
+    estimated.push_back(Eigen::Vector3d(0.1 * i, 0, 1.2 * i));
+  }
+  TrajectoryPlotOptions options;
+  options.title = "comic_sfm --detector comic " + std::string(120, 'x') + "/a/long/path/image_l";
+  options.unit = "m";
+  const cv::Mat all = RenderTrajectoryPlot(estimated, truth, PlotPlaneFromAxes(0, 2), options);
+  // The title goes on over a second line instead of running off the right edge.
+  EXPECT_FALSE(InkRows(all, 20, 880, 30, 46).empty());
+  EXPECT_TRUE(InkRows(all, 885, 900, 0, 46).empty());
+  const cv::Vec3b amber(0, 160, 240), grid(232, 232, 232);
+  EXPECT_EQ(CountColor(all, amber, 10), 0);
+  EXPECT_GT(CountColor(all, grid, 2), 1000);  // grid lines at the ticks
+  // Frames 7-9 not registered: amber crosses where they truly were, and the legend counts them.
+  for (int i = 7; i < 10; ++i) estimated[i].reset();
+  const cv::Mat missing = RenderTrajectoryPlot(estimated, truth, PlotPlaneFromAxes(0, 2), options);
+  EXPECT_GT(CountColor(missing, amber, 10), 3 * 20);
+}
+
 TEST(TrajectoryPlot, EmptyInputAndBadOptions) {
   const cv::Mat image = RenderTrajectoryPlot({}, {}, PlotPlaneFromAxes(0, 2), {});
   EXPECT_EQ(image.rows, 900);

@@ -74,11 +74,12 @@ TEST(RunReconstruction, WritesEveryOutputAndCommitsAtTheEnd) {
   ASSERT_TRUE(result.success());
   EXPECT_FALSE(existed_during_run);  // staged beside it until the run is complete
   for (const char* name : {"cameras.txt", "images.txt", "points3D.txt", "points.ply",
-                           "trajectory.png", "report.json"}) {
+                           "trajectory.png", "report.html", "report.json"}) {
     EXPECT_TRUE(io::PathExists(io::JoinPaths(options.output, name))) << name;
   }
   EXPECT_FALSE(io::PathExists(io::JoinPaths(options.output, "sparse")));
-  EXPECT_EQ(result.runs.front().report_json["outputs"].size(), 5u);
+  EXPECT_EQ(result.runs.front().report_json["outputs"].size(), 6u);
+  EXPECT_EQ(result.runs.front().report_json["outputs"].back(), "report.html");
 }
 
 TEST(RunReconstruction, AnErrorLeavesNoOutput) {

@@ -28,6 +28,28 @@ TEST(TrackerSettings, UnsetFieldsAreTheDefaults) {
             frontend::TrackConflictRuleName(defaults.conflict_rule));
 }
 
+TEST(TrackerSettings, PatchAlignmentAndContinuationAreKeptAsGiven) {
+  EXPECT_FALSE(TrackerSettings().ToTrackerOptions().align_patches);
+  TrackerSettings settings;
+  settings.align_patches = true;
+  settings.min_window_eigenvalue = 20.0;
+  frontend::TrackContinuationOptions continuation;
+  continuation.max_continued_frames = 30;
+  continuation.bridge_frames = 3;
+  settings.continuation = continuation;
+  for (frontend::PairingMode mode :
+       {frontend::PairingMode::kSequential, frontend::PairingMode::kExhaustive}) {
+    const frontend::TrackerOptions options = TrackerOptionsForRun(settings, Chosen(mode), 10);
+    EXPECT_TRUE(options.align_patches);
+    EXPECT_EQ(options.min_window_eigenvalue, 20.0);
+    EXPECT_EQ(options.continuation.max_continued_frames, 30);
+    EXPECT_EQ(options.continuation.bridge_frames, 3);
+  }
+  // Continuation without alignment is refused, naming the field.
+  settings.align_patches = false;
+  EXPECT_THROW(settings.ToTrackerOptions(), Error);
+}
+
 TEST(TrackerSettings, ThePairingSetsUpWhatWasNotGiven) {
   TrackerSettings settings;
   settings.search_radius = 25.0;
