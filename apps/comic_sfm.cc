@@ -116,8 +116,19 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                    "initial pair: a point's triangulation angle that counts fully towards the "
                    "pair's parallax score",
                    &o->init_angle);
-  parser.AddOption("init-max-gap", "N", "initial pair: frames at most this far apart",
+  parser.AddOption("init-max-gap", "N",
+                   "initial pair: frames at most this far apart (0: no limit, the gap grows as "
+                   "far as the tracks reach)",
                    &o->init_max_gap);
+  parser.AddOption("max-working-size", "N",
+                   "track and map frames whose larger side exceeds N pixels at N, and write the "
+                   "models in the input's pixels (0: the input's size; --resize-height decides "
+                   "when given)",
+                   &o->max_working_size);
+  parser.AddOption("min-registered", "F",
+                   "exit 1 unless the largest model holds at least this fraction of the frames "
+                   "(every model is written either way; 'success' needs 0.95)",
+                   &o->min_registered);
   apps::AddThreadsFlag(parser, &o->threads);
   apps::AddObjectRegionFlags(parser, &c->region);
   parser.AddOption("plot-plane", "P",
@@ -135,6 +146,12 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                  "also run COLMAP's mapper on the same tracks and write the side-by-side table "
                  "--output/colmap_compare.md (.csv, .json); COLMAP's files go to --output/colmap/",
                  &o->compare_colmap);
+  parser.AddFlag("compare-colmap-sift",
+                 "also run COLMAP's own pipeline on the same frames with its defaults (SIFT, the "
+                 "sequential or exhaustive matcher as --matching chose, mapper; one thread unless "
+                 "--colmap-threads) and write the side-by-side table "
+                 "--output/colmap_sift_compare.md; COLMAP's files go to --output/colmap_sift/",
+                 &o->compare_colmap_sift);
 }
 
 // The flags that need the parser (which were given) or a conversion, into the options.
@@ -196,8 +213,9 @@ int Run(int argc, char** argv) {
       "Structure from motion on a frame sequence (folder of images or video): tracks features\n"
       "with the chosen detector, reconstructs cameras and points incrementally with Ceres bundle\n"
       "adjustment, and writes into --output: cameras.txt, images.txt, points3D.txt (a COLMAP text\n"
-      "model; --model-format), sparse/0/{cameras,images,points3D}.bin (the same model in\n"
-      "COLMAP's binary format), points.ply (coloured point cloud; --ply-format), report.json\n"
+      "model of the largest model; --model-format), sparse/<k>/{cameras,images,points3D}.bin\n"
+      "(every model in COLMAP's binary format, sparse/0 the largest), points.ply (coloured point\n"
+      "cloud; --ply-format), report.json\n"
       "(every number and the options), trajectory.png (top view; with --gt, ours Sim(3)-aligned\n"
       "against the ground truth).");
   AddRunFlags(parser, &options, &command_line);
@@ -216,8 +234,11 @@ int Run(int argc, char** argv) {
       "turned, rotation_only/ (a camera path without points).\n"
       "Python: comic.reconstruct(FRAMES, ...) runs the same, with these options as keywords\n"
       "(--max-features -> max_features; python/README.md).\n"
-      "Exit codes: 0 success, 2 usage error, 1 anything else (including a sequence that cannot\n"
-      "be reconstructed without --compare).");
+      "Status: success when the largest model holds >= 95 % of the frames, else partial (the\n"
+      "unregistered ranges and the check each failed are in the summary line and report.json).\n"
+      "Exit codes: 0 a model holding at least --min-registered of the frames (default 0.5),\n"
+      "2 usage error, 1 anything else (including a sequence that cannot be reconstructed or a\n"
+      "smaller model, without --compare; the models are written all the same).");
   if (parser.Parse(argc, argv) == apps::ArgParser::Result::kHelpShown) return 0;
   FinishOptions(parser, command_line, &options);
 

@@ -812,6 +812,8 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"global_ba_growth", Field(&o->global_ba_growth)},
                        {"init_angle", Field(&o->init_angle)},
                        {"init_max_gap", Field(&o->init_max_gap)},
+                       {"max_working_size", Field(&o->max_working_size)},
+                       {"min_registered", Field(&o->min_registered)},
                        {"threads", Field(&o->threads)},
                        {"masks", Field(&o->masks)},
                        {"regions", Field(&o->regions)},
@@ -821,6 +823,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"model_format", Field(&o->model_format)},
                        {"ply_format", Field(&o->ply_format)},
                        {"compare_colmap", Field(&o->compare_colmap)},
+                       {"compare_colmap_sift", Field(&o->compare_colmap_sift)},
                        {"write_frames", WriteFrames(&o->write_frames, sfm::kFramesInOutput)},
                        {"quiet", Field(quiet)}};
   AddRunSequenceOptions(&o->sequence, &table);

@@ -53,8 +53,10 @@ int CountInliers(const Camera& camera, const Rigid3d& cam_from_world,
 std::optional<AbsolutePose> EstimateAbsolutePose(const Camera& camera,
                                                  const std::vector<Eigen::Vector2d>& points2D,
                                                  const std::vector<Eigen::Vector3d>& points3D,
-                                                 const AbsolutePoseOptions& options) {
+                                                 const AbsolutePoseOptions& options,
+                                                 int* num_inliers_found) {
   options.Check();
+  if (num_inliers_found) *num_inliers_found = 0;
   COMIC_CHECK(
       points2D.size() == points3D.size(), kInvalidArgument,
       "absolute pose: " << points2D.size() << " pixels for " << points3D.size() << " points");
@@ -77,6 +79,7 @@ std::optional<AbsolutePose> EstimateAbsolutePose(const Camera& camera,
       cv::solvePnPRansac(object_points, image_points, k, cv::noArray(), rvec, tvec, false,
                          options.max_num_iterations, static_cast<float>(options.max_error_px),
                          options.confidence, ransac_inliers, cv::SOLVEPNP_AP3P);
+  if (num_inliers_found && found) *num_inliers_found = static_cast<int>(ransac_inliers.size());
   if (!found || static_cast<int>(ransac_inliers.size()) < options.min_num_inliers) {
     return std::nullopt;
   }
@@ -97,6 +100,7 @@ std::optional<AbsolutePose> EstimateAbsolutePose(const Camera& camera,
     result.cam_from_world = PoseFromRodrigues(rvec, tvec);
     result.num_inliers = CountInliers(camera, result.cam_from_world, points2D, points3D,
                                       options.max_error_px, &result.inlier_mask);
+    if (num_inliers_found) *num_inliers_found = result.num_inliers;
     inliers.clear();
     for (size_t i = 0; i < result.inlier_mask.size(); ++i) {
       if (result.inlier_mask[i]) inliers.push_back(static_cast<int>(i));

@@ -34,10 +34,13 @@ struct AbsolutePose {
 };
 
 // Estimates cam_from_world from pixels (OpenCV convention) and world points of the same size
-// (comic::Error otherwise). std::nullopt when too few correspondences or inliers.
+// (comic::Error otherwise). std::nullopt when too few correspondences or inliers; then
+// `num_inliers_found` (if given) says how many inliers the best pose had (0 when RANSAC found
+// none), so that a failure can be reported with its margin.
 std::optional<AbsolutePose> EstimateAbsolutePose(const Camera& camera,
                                                  const std::vector<Eigen::Vector2d>& points2D,
                                                  const std::vector<Eigen::Vector3d>& points3D,
-                                                 const AbsolutePoseOptions& options);
+                                                 const AbsolutePoseOptions& options,
+                                                 int* num_inliers_found = nullptr);
 
 }  // namespace comic::sfm

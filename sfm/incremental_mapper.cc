@@ -21,9 +21,16 @@ void IncrementalMapper::Options::Check() const {
               "mapper init_tri_angle_deg must be in (0, 90)");
   COMIC_CHECK(init_min_score >= 0, kInvalidArgument, "mapper init_min_score must be >= 0");
   COMIC_CHECK(init_num_anchors >= 1, kInvalidArgument, "mapper init_num_anchors must be >= 1");
-  COMIC_CHECK(init_max_frame_gap >= 1, kInvalidArgument, "mapper init_max_frame_gap must be >= 1");
+  COMIC_CHECK(init_max_frame_gap >= 0, kInvalidArgument,
+              "mapper init_max_frame_gap must be >= 0 (0: no limit)");
+  COMIC_CHECK(init_linear_gap >= 1, kInvalidArgument, "mapper init_linear_gap must be >= 1");
+  COMIC_CHECK(init_gap_growth > 1.0, kInvalidArgument, "mapper init_gap_growth must be > 1");
+  COMIC_CHECK(init_anchor_spacing >= 1, kInvalidArgument,
+              "mapper init_anchor_spacing must be >= 1");
   COMIC_CHECK(init_max_num_trials >= 1, kInvalidArgument,
               "mapper init_max_num_trials must be >= 1");
+  COMIC_CHECK(init_trials_per_frame >= 0, kInvalidArgument,
+              "mapper init_trials_per_frame must be >= 0");
   two_view.Check();
   absolute_pose.Check();
   triangulation.Check();
@@ -51,6 +58,7 @@ IncrementalMapper::IncrementalMapper(const frontend::FeatureTracks& tracks, cons
   camera.Check();
   camera_id_ = reconstruction_.AddCamera(camera);
   track_of_feature_.resize(tracks.NumFrames());
+  best_failed_pose_inliers_.assign(tracks.NumFrames(), -1);
   for (size_t frame = 0; frame < tracks.NumFrames(); ++frame) {
     Image image;
     image.image_id = ImageIdOfFrame(static_cast<int>(frame));
@@ -88,6 +96,106 @@ int FeatureInFrame(const frontend::Track& track, int frame) {
   return it != track.observations.end() && it->frame == frame ? it->feature : -1;
 }
 
+// The frames (not excluded) ordered by tracked features, most first, ties by frame index.
+std::vector<int> ByTrackedFeatures(const std::vector<int>& num_tracked,
+                                   const std::set<image_t>& excluded) {
+  std::vector<int> frames;
+  for (int frame = 0; frame < static_cast<int>(num_tracked.size()); ++frame) {
+    if (!excluded.count(IncrementalMapper::ImageIdOfFrame(frame))) frames.push_back(frame);
+  }
+  std::stable_sort(frames.begin(), frames.end(),
+                   [&](int a, int b) { return num_tracked[a] > num_tracked[b]; });
+  return frames;
+}
+
+// The initial pair search's first anchors: the `count` most tracked frames.
+std::vector<int> MostTrackedFrames(const std::vector<int>& num_tracked,
+                                   const std::set<image_t>& excluded, int count) {
+  std::vector<int> frames = ByTrackedFeatures(num_tracked, excluded);
+  if (static_cast<int>(frames.size()) > count) frames.resize(count);
+  return frames;
+}
+
+// Anchors over the whole clip: the most tracked frame of every stretch of `spacing` frames, most
+// tracked first.
+std::vector<int> SpreadAnchors(const std::vector<int>& num_tracked,
+                               const std::set<image_t>& excluded, int spacing) {
+  std::vector<int> best_of_stretch((num_tracked.size() + spacing - 1) / spacing, -1);
+  std::vector<int> anchors;
+  for (int frame : ByTrackedFeatures(num_tracked, excluded)) {
+    int& best = best_of_stretch[frame / spacing];
+    if (best >= 0) continue;
+    best = frame;
+    anchors.push_back(frame);
+  }
+  return anchors;
+}
+
+// The next frame gap an anchor is paired at: one more up to init_linear_gap, then growing by
+// init_gap_growth (the number of gaps tried grows with the logarithm of the clip's length).
+int NextGap(int gap, const IncrementalMapper::Options& options) {
+  if (gap < options.init_linear_gap) return gap + 1;
+  return std::max(gap + 1, static_cast<int>(std::lround(gap * options.init_gap_growth)));
+}
+
+// MergeModel's point pairs: the points two models give to one physical point.
+struct ModelPointPair {
+  image_t image_id;           // a frame of this model observing it
+  Eigen::Vector2d xy;         // the feature in that frame
+  Eigen::Vector3d other_xyz;  // the point of the other model
+  Eigen::Vector3d xyz;        // the point of this model
+};
+
+// The similarity taking the other model's points onto this model's, by RANSAC over triples
+// (deterministic) and a refit on the pairs `consistent` accepts until that set stops growing (twice
+// at most); none unless at least min_num_inliers and min_inlier_ratio of the pairs agree.
+template <typename Consistent>
+std::optional<Sim3d> EstimateMergeSimilarity(const std::vector<ModelPointPair>& pairs,
+                                             const Consistent& consistent, int min_num_inliers,
+                                             double min_inlier_ratio) {
+  const auto count_inliers = [&](const Sim3d& sim, std::vector<Eigen::Vector3d>* src,
+                                 std::vector<Eigen::Vector3d>* dst) {
+    src->clear();
+    dst->clear();
+    for (const ModelPointPair& pair : pairs) {
+      if (!consistent(sim, pair)) continue;
+      src->push_back(pair.other_xyz);
+      dst->push_back(pair.xyz);
+    }
+    return src->size();
+  };
+  std::mt19937 random(1);
+  std::uniform_int_distribution<size_t> pick(0, pairs.size() - 1);
+  std::vector<Eigen::Vector3d> best_src, best_dst, src, dst;
+  constexpr int kNumIterations = 500;
+  for (int iteration = 0; iteration < kNumIterations; ++iteration) {
+    const size_t a = pick(random), b = pick(random), c = pick(random);
+    if (a == b || b == c || a == c) continue;
+    const auto sim =
+        EstimateSim3dUmeyama({pairs[a].other_xyz, pairs[b].other_xyz, pairs[c].other_xyz},
+                             {pairs[a].xyz, pairs[b].xyz, pairs[c].xyz});
+    if (!sim || !(sim->scale > 0)) continue;
+    if (count_inliers(*sim, &src, &dst) > best_src.size()) {
+      best_src.swap(src);
+      best_dst.swap(dst);
+    }
+  }
+  std::optional<Sim3d> sim;
+  for (int round = 0; round < 2 && best_src.size() >= 3; ++round) {
+    sim = EstimateSim3dUmeyama(best_src, best_dst);
+    if (!sim) return std::nullopt;
+    if (count_inliers(*sim, &src, &dst) < best_src.size()) break;
+    best_src.swap(src);
+    best_dst.swap(dst);
+  }
+  const double num_inliers = static_cast<double>(best_src.size());
+  if (!sim || num_inliers < min_num_inliers ||
+      num_inliers < min_inlier_ratio * static_cast<double>(pairs.size())) {
+    return std::nullopt;
+  }
+  return sim;
+}
+
 }  // namespace
 
 std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair(
@@ -97,143 +205,164 @@ std::optional<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPair
   return std::move(pairs.front());
 }
 
+IncrementalMapper::InitialPairSearch IncrementalMapper::EvaluateInitialPair(
+    int frame1, int frame2, const std::vector<int>& anchor_tracks, InitialPair* pair,
+    double* measure) const {
+  using Stage = InitialPairSearch::Stage;
+  pair->image_id1 = ImageIdOfFrame(frame1);
+  pair->image_id2 = ImageIdOfFrame(frame2);
+  std::vector<Eigen::Vector2d> points1, points2;
+  for (int t : anchor_tracks) {
+    const int feature2 = FeatureInFrame(tracks_->tracks[t], frame2);
+    if (feature2 < 0) continue;
+    const int feature1 = FeatureInFrame(tracks_->tracks[t], frame1);
+    pair->track_ids.push_back(t);
+    pair->point2D_idxs1.push_back(static_cast<point2D_t>(feature1));
+    pair->point2D_idxs2.push_back(static_cast<point2D_t>(feature2));
+    const frontend::Feature& f1 = tracks_->features[frame1][feature1];
+    const frontend::Feature& f2 = tracks_->features[frame2][feature2];
+    points1.emplace_back(f1.x, f1.y);
+    points2.emplace_back(f2.x, f2.y);
+  }
+  InitialPairSearch candidate;
+  candidate.image_id1 = pair->image_id1;
+  candidate.image_id2 = pair->image_id2;
+  candidate.num_shared_tracks = static_cast<int>(pair->track_ids.size());
+  *measure = candidate.num_shared_tracks;
+  if (candidate.num_shared_tracks < options_.init_min_num_matches) {
+    candidate.stage = Stage::kSharedTracks;
+    return candidate;
+  }
+  const Camera& camera = reconstruction_.camera(camera_id_);
+  pair->geometry =
+      EstimateCalibratedTwoViewGeometry(camera, camera, points1, points2, options_.two_view);
+  candidate.configuration = pair->geometry.configuration;
+  candidate.num_inliers = pair->geometry.num_inliers;
+  candidate.num_essential_inliers = pair->geometry.num_essential_inliers;
+  candidate.num_homography_inliers = pair->geometry.num_homography_inliers;
+  candidate.median_triangulation_angle_deg = pair->geometry.median_triangulation_angle_deg;
+  if (pair->geometry.configuration != TwoViewConfiguration::kCalibrated) {
+    candidate.stage = Stage::kGeometry;
+    // Closest to a general pose: the smallest share of inliers a homography explains; a
+    // degenerate pair (too few inliers for any pose) comes after every such pair.
+    const double homography_share = static_cast<double>(candidate.num_homography_inliers) /
+                                    std::max(candidate.num_essential_inliers, 1);
+    *measure = candidate.configuration == TwoViewConfiguration::kPlanarOrPanoramic
+                   ? 1.0 - homography_share
+                   : -1.0 + 1e-9 * candidate.num_essential_inliers;
+    return candidate;
+  }
+  if (pair->geometry.num_inliers < options_.init_min_num_inliers) {
+    candidate.stage = Stage::kInliers;
+    *measure = candidate.num_inliers;
+    return candidate;
+  }
+  double score = 0.0;
+  for (double angle : pair->geometry.triangulation_angles_deg) {
+    score += std::min(angle / options_.init_tri_angle_deg, 1.0);
+  }
+  pair->score = score;
+  candidate.score = score;
+  candidate.stage = score >= options_.init_min_score ? Stage::kQualified : Stage::kParallax;
+  *measure = score;
+  return candidate;
+}
+
 std::vector<IncrementalMapper::InitialPair> IncrementalMapper::FindInitialPairs(
     const std::set<image_t>& excluded, InitialPairSearch* search) const {
   using Stage = InitialPairSearch::Stage;
   InitialPairSearch seen;
+  double seen_measure = -1.0;
   // Keeps `candidate` if it came closer than the pair kept so far (InitialPairSearch).
-  const auto consider = [&seen](const InitialPairSearch& candidate, double measure,
-                                double* kept_measure) {
-    if (candidate.stage > seen.stage ||
-        (candidate.stage == seen.stage && measure > *kept_measure)) {
+  const auto consider = [&](const InitialPairSearch& candidate, double measure) {
+    if (candidate.stage > seen.stage || (candidate.stage == seen.stage && measure > seen_measure)) {
       const int verified = seen.num_pairs_verified, qualified = seen.num_pairs_qualified;
       seen = candidate;
       seen.num_pairs_verified = verified;
       seen.num_pairs_qualified = qualified;
-      *kept_measure = measure;
+      seen_measure = measure;
     }
   };
-  double seen_measure = -1.0;
-  struct Report {
-    InitialPairSearch* search;
-    InitialPairSearch* seen;
-    ~Report() {
-      if (search) *search = *seen;
-    }
-  } report{search, &seen};
   std::vector<InitialPair> pairs;
   const int num_frames = static_cast<int>(tracks_->NumFrames());
-  if (num_frames < 2) return pairs;
-  // Anchors: frames with the most tracked features first (for a video, the middle frames, whose
-  // tracks run both ways), ties by frame index.
   std::vector<int> num_tracked(num_frames, 0);
   for (const frontend::Track& track : tracks_->tracks) {
     if (track.Length() < 2) continue;
     for (const frontend::TrackObservation& obs : track.observations) ++num_tracked[obs.frame];
   }
-  std::vector<int> anchors;
-  for (int frame = 0; frame < num_frames; ++frame) {
-    if (!excluded.count(ImageIdOfFrame(frame))) anchors.push_back(frame);
-  }
-  std::stable_sort(anchors.begin(), anchors.end(),
-                   [&](int a, int b) { return num_tracked[a] > num_tracked[b]; });
-
-  const Camera& camera = reconstruction_.camera(camera_id_);
   int num_trials = 0;
-  const int num_anchors = std::min<int>(options_.init_num_anchors, anchors.size());
-  for (int a = 0; a < num_anchors && num_trials < options_.init_max_num_trials; ++a) {
-    const int frame1 = anchors[a];
-    // (The first anchor is looked at anyway, so that a search that fails says how many tracks
-    // its best pair shared; it cannot qualify.)
-    if (num_tracked[frame1] < options_.init_min_num_matches && a > 0) break;
-    // Tracks through the anchor.
+  const int max_num_trials =
+      std::max(options_.init_max_num_trials, options_.init_trials_per_frame * num_frames);
+  // Pairs `frame1` with the frames after it at growing gaps: parallax grows with the gap while
+  // the shared tracks dwindle, so the score rises to a peak and falls again.
+  const auto search_anchor = [&](int frame1) {
     std::vector<int> anchor_tracks;
-    for (size_t f = 0; f < track_of_feature_[frame1].size(); ++f) {
-      const int t = track_of_feature_[frame1][f];
+    for (int t : track_of_feature_[frame1]) {
       if (t >= 0 && tracks_->tracks[t].Length() >= 2) anchor_tracks.push_back(t);
     }
-    // Growing gaps: parallax grows with the gap while the shared tracks dwindle, so the score
-    // rises to a peak and falls again.
     double anchor_best_score = 0.0;
-    for (int gap = 1; gap <= options_.init_max_frame_gap && frame1 + gap < num_frames; ++gap) {
+    for (int gap = 1; frame1 + gap < num_frames &&
+                      (options_.init_max_frame_gap == 0 || gap <= options_.init_max_frame_gap);
+         gap = NextGap(gap, options_)) {
       const int frame2 = frame1 + gap;
       if (excluded.count(ImageIdOfFrame(frame2))) continue;
+      // Tracks only end as the gap grows, so past too few shared tracks larger gaps will not do
+      // better; a pair with enough of them costs a trial.
+      if (num_trials >= max_num_trials) return;
       InitialPair pair;
-      pair.image_id1 = ImageIdOfFrame(frame1);
-      pair.image_id2 = ImageIdOfFrame(frame2);
-      std::vector<Eigen::Vector2d> points1, points2;
-      for (int t : anchor_tracks) {
-        const int feature2 = FeatureInFrame(tracks_->tracks[t], frame2);
-        if (feature2 < 0) continue;
-        const int feature1 = FeatureInFrame(tracks_->tracks[t], frame1);
-        pair.track_ids.push_back(t);
-        pair.point2D_idxs1.push_back(static_cast<point2D_t>(feature1));
-        pair.point2D_idxs2.push_back(static_cast<point2D_t>(feature2));
-        const frontend::Feature& f1 = tracks_->features[frame1][feature1];
-        const frontend::Feature& f2 = tracks_->features[frame2][feature2];
-        points1.emplace_back(f1.x, f1.y);
-        points2.emplace_back(f2.x, f2.y);
+      double measure = 0.0;
+      const InitialPairSearch candidate =
+          EvaluateInitialPair(frame1, frame2, anchor_tracks, &pair, &measure);
+      if (candidate.stage == Stage::kSharedTracks) {
+        if (candidate.num_shared_tracks > 0) consider(candidate, measure);
+        return;
       }
-      InitialPairSearch candidate;
-      candidate.image_id1 = pair.image_id1;
-      candidate.image_id2 = pair.image_id2;
-      candidate.num_shared_tracks = static_cast<int>(pair.track_ids.size());
-      // Tracks only end as the gap grows, so larger gaps will not do better.
-      if (static_cast<int>(pair.track_ids.size()) < options_.init_min_num_matches) {
-        candidate.stage = Stage::kSharedTracks;
-        if (!pair.track_ids.empty())
-          consider(candidate, candidate.num_shared_tracks, &seen_measure);
-        break;
-      }
-      if (num_trials++ >= options_.init_max_num_trials) break;
-      pair.geometry =
-          EstimateCalibratedTwoViewGeometry(camera, camera, points1, points2, options_.two_view);
+      ++num_trials;
       ++seen.num_pairs_verified;
-      candidate.configuration = pair.geometry.configuration;
-      candidate.num_inliers = pair.geometry.num_inliers;
-      candidate.num_essential_inliers = pair.geometry.num_essential_inliers;
-      candidate.num_homography_inliers = pair.geometry.num_homography_inliers;
-      candidate.median_triangulation_angle_deg = pair.geometry.median_triangulation_angle_deg;
-      if (pair.geometry.configuration != TwoViewConfiguration::kCalibrated) {
-        candidate.stage = Stage::kGeometry;
-        // Closest to a general pose: the smallest share of inliers a homography explains; a
-        // degenerate pair (too few inliers for any pose) comes after every such pair.
-        const double homography_share = static_cast<double>(candidate.num_homography_inliers) /
-                                        std::max(candidate.num_essential_inliers, 1);
-        consider(candidate,
-                 candidate.configuration == TwoViewConfiguration::kPlanarOrPanoramic
-                     ? 1.0 - homography_share
-                     : -1.0 + 1e-9 * candidate.num_essential_inliers,
-                 &seen_measure);
-        continue;
-      }
-      if (pair.geometry.num_inliers < options_.init_min_num_inliers) {
-        candidate.stage = Stage::kInliers;
-        consider(candidate, candidate.num_inliers, &seen_measure);
-        continue;
-      }
-      double score = 0.0;
-      for (double angle : pair.geometry.triangulation_angles_deg) {
-        score += std::min(angle / options_.init_tri_angle_deg, 1.0);
-      }
-      pair.score = score;
-      candidate.score = score;
-      candidate.stage = score >= options_.init_min_score ? Stage::kQualified : Stage::kParallax;
-      consider(candidate, score, &seen_measure);
+      consider(candidate, measure);
+      if (candidate.stage < Stage::kParallax) continue;
       const bool saturated =
           pair.geometry.median_triangulation_angle_deg >= options_.init_tri_angle_deg;
-      if (score >= options_.init_min_score) {
+      if (candidate.stage == Stage::kQualified) {
         ++seen.num_pairs_qualified;
         pairs.push_back(std::move(pair));
       }
       // Past this anchor's peak, or most inliers already count fully so that larger gaps can
       // only lose matches.
-      if (score < 0.5 * anchor_best_score || saturated) break;
-      anchor_best_score = std::max(anchor_best_score, score);
+      if (candidate.score < 0.5 * anchor_best_score || saturated) return;
+      anchor_best_score = std::max(anchor_best_score, candidate.score);
     }
+  };
+  // First the most tracked frames (for a video, the middle frames, whose tracks run both ways),
+  // then anchors over the whole clip, so that later models find their pairs in this list; the
+  // pairs of the first anchors come first, each group best score first.
+  std::vector<char> searched(num_frames, 0);
+  size_t num_first = 0;
+  bool first_group = true;
+  for (const std::vector<int>& anchors :
+       {MostTrackedFrames(num_tracked, excluded, options_.init_num_anchors),
+        SpreadAnchors(num_tracked, excluded, options_.init_anchor_spacing)}) {
+    for (size_t a = 0; a < anchors.size() && num_trials < max_num_trials; ++a) {
+      const int frame1 = anchors[a];
+      // (The first anchor is looked at anyway, so that a search that fails says how many tracks
+      // its best pair shared; it cannot qualify.)
+      if (num_tracked[frame1] < options_.init_min_num_matches && a > 0) break;
+      if (searched[frame1]) continue;
+      searched[frame1] = 1;
+      search_anchor(frame1);
+    }
+    if (first_group) {
+      num_first = pairs.size();
+      for (InitialPair& pair : pairs) pair.most_tracked_anchor = true;
+    }
+    first_group = false;
   }
-  std::stable_sort(pairs.begin(), pairs.end(),
-                   [](const InitialPair& a, const InitialPair& b) { return a.score > b.score; });
+  const auto by_score = [](const InitialPair& a, const InitialPair& b) {
+    return a.score > b.score;
+  };
+  std::stable_sort(pairs.begin(), pairs.begin() + static_cast<long>(num_first), by_score);
+  std::stable_sort(pairs.begin() + static_cast<long>(num_first), pairs.end(), by_score);
+  if (search) *search = seen;
   return pairs;
 }
 
@@ -327,9 +456,14 @@ bool IncrementalMapper::RegisterNextImage(image_t image_id) {
     points2D.push_back(image.points2D[idx].xy);
     points3D.push_back(reconstruction_.point3D(point3D_id).xyz);
   }
+  int num_inliers_found = 0;
   const auto pose = EstimateAbsolutePose(reconstruction_.camera(image.camera_id), points2D,
-                                         points3D, options_.absolute_pose);
-  if (!pose) return false;
+                                         points3D, options_.absolute_pose, &num_inliers_found);
+  if (!pose) {
+    best_failed_pose_inliers_[frame] =
+        std::max(best_failed_pose_inliers_[frame], num_inliers_found);
+    return false;
+  }
   image.cam_from_world = pose->cam_from_world;
   reconstruction_.RegisterImage(image_id);
   registration_order_.push_back(image_id);
@@ -419,15 +553,24 @@ size_t IncrementalMapper::TriangulateAllTracks() {
   return num_new;
 }
 
-size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
-  // Point pairs through the features of frames registered in both models.
-  struct PointPair {
-    image_t image_id;
-    Eigen::Vector2d xy;         // the feature in that frame
-    Eigen::Vector3d other_xyz;  // the point of `other`
-    Eigen::Vector3d xyz;        // the point of this model
+size_t IncrementalMapper::MergeModel(const Reconstruction& other,
+                                     const std::vector<FeatureLink>& links) {
+  // Point pairs: the points the two models give to one physical point.
+  std::vector<ModelPointPair> pairs;
+  std::set<std::pair<point3D_t, point3D_t>> paired;  // (this, other) point ids
+  const auto add_pair = [&](image_t image_id, point2D_t idx, point3D_t other_point3D_id) {
+    const Point2D& point2D = reconstruction_.image(image_id).points2D[idx];
+    if (!point2D.HasPoint3D() || other_point3D_id == kInvalidPoint3DId) return;
+    if (!paired.insert({point2D.point3D_id, other_point3D_id}).second) return;
+    pairs.push_back({image_id, point2D.xy, other.point3D(other_point3D_id).xyz,
+                     reconstruction_.point3D(point2D.point3D_id).xyz});
   };
-  std::vector<PointPair> pairs;
+  const auto other_point = [&](image_t image_id, point2D_t idx) {
+    if (!other.ExistsImage(image_id)) return kInvalidPoint3DId;
+    const Image& image = other.image(image_id);
+    return image.registered && idx < image.points2D.size() ? image.points2D[idx].point3D_id
+                                                           : kInvalidPoint3DId;
+  };
   std::vector<image_t> new_image_ids;
   for (const auto& [image_id, other_image] : other.images()) {
     if (!other_image.registered || !reconstruction_.ExistsImage(image_id)) continue;
@@ -436,19 +579,38 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
       new_image_ids.push_back(image_id);
       continue;
     }
+    // A frame registered in both.
     const size_t n = std::min(image.points2D.size(), other_image.points2D.size());
     for (size_t idx = 0; idx < n; ++idx) {
-      if (!image.points2D[idx].HasPoint3D() || !other_image.points2D[idx].HasPoint3D()) continue;
-      pairs.push_back({image_id, image.points2D[idx].xy,
-                       other.point3D(other_image.points2D[idx].point3D_id).xyz,
-                       reconstruction_.point3D(image.points2D[idx].point3D_id).xyz});
+      add_pair(image_id, static_cast<point2D_t>(idx), other_image.points2D[idx].point3D_id);
     }
   }
-  if (new_image_ids.empty() || static_cast<int>(pairs.size()) < options_.merge_min_num_inliers) {
-    return 0;
+  if (new_image_ids.empty()) return 0;
+  // A track with a point in both (its frames may be registered in one model each).
+  for (const auto& [point3D_id, point] : reconstruction_.points3D()) {
+    const TrackElement& element = point.track.front();
+    const int t = track_of_feature_[FrameOfImageId(element.image_id)][element.point2D_idx];
+    if (t < 0) continue;
+    for (const frontend::TrackObservation& obs : tracks_->tracks[t].observations) {
+      const point3D_t other_id = other_point(ImageIdOfFrame(obs.frame), obs.feature);
+      if (other_id == kInvalidPoint3DId) continue;
+      add_pair(element.image_id, element.point2D_idx, other_id);
+      break;
+    }
   }
+  // The two ends of a link.
+  for (const FeatureLink& link : links) {
+    if (!reconstruction_.ExistsImage(link.image_id) ||
+        !reconstruction_.image(link.image_id).registered ||
+        link.point2D_idx >= reconstruction_.image(link.image_id).points2D.size()) {
+      continue;
+    }
+    add_pair(link.image_id, link.point2D_idx,
+             other_point(link.other_image_id, link.other_point2D_idx));
+  }
+  if (static_cast<int>(pairs.size()) < options_.merge_min_num_inliers) return 0;
 
-  const auto consistent = [&](const Sim3d& sim, const PointPair& pair) {
+  const auto consistent = [&](const Sim3d& sim, const ModelPointPair& pair) {
     const Image& image = reconstruction_.image(pair.image_id);
     const Eigen::Vector3d mapped = sim * pair.other_xyz;
     const double depth = (image.cam_from_world * pair.xyz).z();
@@ -460,49 +622,9 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
     return projection &&
            (*projection - pair.xy).norm() <= options_.filter_max_reprojection_error_px;
   };
-  const auto count_inliers = [&](const Sim3d& sim, std::vector<Eigen::Vector3d>* src,
-                                 std::vector<Eigen::Vector3d>* dst) {
-    src->clear();
-    dst->clear();
-    for (const PointPair& pair : pairs) {
-      if (!consistent(sim, pair)) continue;
-      src->push_back(pair.other_xyz);
-      dst->push_back(pair.xyz);
-    }
-    return src->size();
-  };
-
-  // RANSAC over triples, deterministic.
-  std::mt19937 random(1);
-  std::uniform_int_distribution<size_t> pick(0, pairs.size() - 1);
-  std::vector<Eigen::Vector3d> best_src, best_dst, src, dst;
-  constexpr int kNumIterations = 500;
-  for (int iteration = 0; iteration < kNumIterations; ++iteration) {
-    const size_t a = pick(random), b = pick(random), c = pick(random);
-    if (a == b || b == c || a == c) continue;
-    const auto sim =
-        EstimateSim3dUmeyama({pairs[a].other_xyz, pairs[b].other_xyz, pairs[c].other_xyz},
-                             {pairs[a].xyz, pairs[b].xyz, pairs[c].xyz});
-    if (!sim || !(sim->scale > 0)) continue;
-    if (count_inliers(*sim, &src, &dst) > best_src.size()) {
-      best_src.swap(src);
-      best_dst.swap(dst);
-    }
-  }
-  // Refit on the consistent pairs until the set stops growing (twice at most).
-  std::optional<Sim3d> sim;
-  for (int round = 0; round < 2 && best_src.size() >= 3; ++round) {
-    sim = EstimateSim3dUmeyama(best_src, best_dst);
-    if (!sim) return 0;
-    if (count_inliers(*sim, &src, &dst) < best_src.size()) break;
-    best_src.swap(src);
-    best_dst.swap(dst);
-  }
-  const double num_inliers = static_cast<double>(best_src.size());
-  if (!sim || num_inliers < options_.merge_min_num_inliers ||
-      num_inliers < options_.merge_min_inlier_ratio * static_cast<double>(pairs.size())) {
-    return 0;
-  }
+  const std::optional<Sim3d> sim = EstimateMergeSimilarity(
+      pairs, consistent, options_.merge_min_num_inliers, options_.merge_min_inlier_ratio);
+  if (!sim) return 0;
   for (image_t image_id : new_image_ids) {
     Image& image = reconstruction_.image(image_id);
     image.cam_from_world = sim->TransformPose(other.image(image_id).cam_from_world);
@@ -510,7 +632,54 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other) {
     registration_order_.push_back(image_id);
   }
   TriangulateAllTracks();
+  FuseLinkedPoints(links);
   return new_image_ids.size();
+}
+
+void IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links) {
+  // The tracks do not know that the two ends of a link are one point: tell the model.
+  for (const FeatureLink& link : links) {
+    if (!reconstruction_.ExistsImage(link.image_id) ||
+        !reconstruction_.ExistsImage(link.other_image_id)) {
+      continue;
+    }
+    const Image& image = reconstruction_.image(link.image_id);
+    const Image& other_image = reconstruction_.image(link.other_image_id);
+    if (!image.registered || !other_image.registered || link.point2D_idx >= image.points2D.size() ||
+        link.other_point2D_idx >= other_image.points2D.size()) {
+      continue;
+    }
+    const point3D_t a = image.points2D[link.point2D_idx].point3D_id;
+    const point3D_t b = other_image.points2D[link.other_point2D_idx].point3D_id;
+    if (a != kInvalidPoint3DId && b != kInvalidPoint3DId && a != b) FusePoints(a, b);
+  }
+}
+
+void IncrementalMapper::FusePoints(point3D_t a, point3D_t b) {
+  const Eigen::Vector3d xyz = reconstruction_.point3D(a).xyz;
+  std::set<image_t> seen;
+  for (const TrackElement& element : reconstruction_.point3D(a).track) {
+    seen.insert(element.image_id);
+  }
+  std::vector<TrackElement> moved;
+  for (const TrackElement& element : reconstruction_.point3D(b).track) {
+    if (seen.count(element.image_id)) continue;
+    const Image& image = reconstruction_.image(element.image_id);
+    const auto projection =
+        ProjectPoint(reconstruction_.camera(image.camera_id), image.cam_from_world, xyz);
+    if (projection && (*projection - image.points2D[element.point2D_idx].xy).norm() <=
+                          options_.complete_max_reprojection_error_px) {
+      moved.push_back(element);
+    }
+  }
+  if (moved.empty()) return;
+  reconstruction_.DeletePoint3D(b);
+  for (const TrackElement& element : moved) reconstruction_.AddObservation(a, element);
+}
+
+void IncrementalMapper::ResetCamera(const Camera& camera) {
+  camera.Check();
+  reconstruction_.camera(camera_id_) = camera;
 }
 
 void IncrementalMapper::FixGauge(BundleAdjustmentConfig* config) const {

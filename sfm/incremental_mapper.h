@@ -47,14 +47,25 @@ class IncrementalMapper {
     double init_tri_angle_deg = 4.0;
     // Initial pair: the best pair must score at least this.
     double init_min_score = 30.0;
-    // Initial pair: frames at most this far apart (in frame index).
-    int init_max_frame_gap = 20;
-    // Initial pair: anchor frames tried (those with the most tracks); each anchor is paired with
-    // the following frames at growing gaps until its score has clearly passed its peak or the
-    // median inlier angle reaches init_tri_angle_deg.
+    // Initial pair: frames at most this far apart (in frame index); 0 = no limit: each anchor's
+    // gap grows (one frame at a time up to init_linear_gap, then by init_gap_growth) until the
+    // anchor's tracks have ended, its score has passed its peak or its parallax saturates. A
+    // fixed limit of 20 left the bag clip (handheld, mostly turning) without a pair: it needs
+    // gaps near 40 (docs/sfm.md "Initial pair over the whole clip").
+    int init_max_frame_gap = 0;
+    int init_linear_gap = 10;
+    double init_gap_growth = 1.4;
+    // Initial pair: anchor frames are paired with the frames after them. First the
+    // init_num_anchors frames with the most tracked features, then anchors over the whole clip,
+    // one per stretch of init_anchor_spacing frames (the most tracked there), so that every part
+    // of the clip can start a model. Anchors are visited most tracked first; the first group's
+    // pairs are preferred.
     int init_num_anchors = 6;
-    // Initial pair: at most this many pairs are verified geometrically per search.
+    int init_anchor_spacing = 8;
+    // Initial pair: at most max(init_max_num_trials, init_trials_per_frame x frames) pairs are
+    // verified geometrically per search, so the search stays linear in the clip's length.
     int init_max_num_trials = 100;
+    int init_trials_per_frame = 2;
     // Initial pair: essential matrix RANSAC and homography check.
     TwoViewGeometryOptions two_view;
     // Registration of a new frame: PnP RANSAC on its tracks that have 3-D points.
@@ -121,6 +132,9 @@ class IncrementalMapper {
     std::vector<point2D_t> point2D_idxs2;
     // Parallax score, Σ over inliers of min(angle / init_tri_angle_deg, 1).
     double score = 0.0;
+    // Found from one of the init_num_anchors most tracked frames (the preferred group), not from
+    // the anchors over the whole clip.
+    bool most_tracked_anchor = false;
   };
 
   // What an initial pair search saw, so that a failure can say which check failed and by how
@@ -164,7 +178,8 @@ class IncrementalMapper {
   // tracks, too little parallax).
   // Frames (image ids) in `excluded` take no part.
   std::optional<InitialPair> FindInitialPair(const std::set<image_t>& excluded = {}) const;
-  // Every qualifying pair the search verified, best score first (FindInitialPair returns the
+  // Every qualifying pair the search verified: those of the most tracked anchors, then those of
+  // the anchors over the whole clip, each group best score first (FindInitialPair returns the
   // first). Pairs are independent of the mapper's state, so a pipeline may compute them once and
   // start several models from them.
   // With `search`, also says what the search saw (InitialPairSearch).
@@ -193,15 +208,26 @@ class IncrementalMapper {
   // number of new points.
   size_t TriangulateAllTracks();
 
-  // Model merging, for a sparse ring that fell apart into models sharing frames: `other` is a
-  // model of the same tracks (e.g. an earlier model of the pipeline). The similarity mapping it
-  // into this model is estimated from the point pairs the two give to one feature of a frame
-  // registered in both (RANSAC over triples with a fixed seed, Umeyama, refitted on the
-  // consistent pairs; see merge_max_relative_distance). The frames only `other` registered are
-  // then registered here with their poses mapped by it, and every track is triangulated or
-  // completed. Returns the number of frames added (0: no shared frame, or too few consistent
-  // pairs). The gauge stays this model's.
-  size_t MergeModel(const Reconstruction& other);
+  // A correspondence between a feature of this model's frame and one of another model's frame
+  // that the tracks do not hold (e.g. found by matching the frames at the seam between two
+  // models).
+  struct FeatureLink {
+    image_t image_id = 0;  // in this model
+    point2D_t point2D_idx = 0;
+    image_t other_image_id = 0;  // in the other model
+    point2D_t other_point2D_idx = 0;
+  };
+
+  // Model merging: `other` is a model of the same tracks (e.g. an earlier model of the
+  // pipeline). The similarity mapping it into this model is estimated from the point pairs the
+  // two models give to one physical point: one feature of a frame registered in both, one track
+  // with a point in both, or the two ends of a link (RANSAC over triples with a fixed seed,
+  // Umeyama, refitted on the consistent pairs; see merge_max_relative_distance). The frames only
+  // `other` registered are then registered here with their poses mapped by it, every track is
+  // triangulated or completed, and the points at the two ends of a link become one. Returns the
+  // number of frames added (0: nothing to add, or too few consistent pairs). The gauge stays
+  // this model's.
+  size_t MergeModel(const Reconstruction& other, const std::vector<FeatureLink>& links = {});
 
   // Bundle adjustment of the image and the num_images − 1 registered images sharing most points
   // with it; other images seeing those points are held constant. Filters the adjusted points.
@@ -218,6 +244,10 @@ class IncrementalMapper {
   // observations removed.
   size_t FilterPoints(const std::set<point3D_t>& point3D_ids = {});
 
+  // Replaces the model's camera (e.g. a self-calibrated one by its prior); poses and points
+  // stay. Throws comic::Error for an invalid camera.
+  void ResetCamera(const Camera& camera);
+
   const Reconstruction& reconstruction() const { return reconstruction_; }
   Reconstruction TakeReconstruction() { return std::move(reconstruction_); }
   // Image id of frame index `frame` and back.
@@ -227,13 +257,27 @@ class IncrementalMapper {
   const std::vector<image_t>& registration_order() const { return registration_order_; }
   // Inliers of the last successful RegisterNextImage.
   int last_num_pose_inliers() const { return last_num_pose_inliers_; }
+  // Per frame: the most PnP inliers a failed RegisterNextImage found (-1: never failed there).
+  const std::vector<int>& best_failed_pose_inliers() const { return best_failed_pose_inliers_; }
 
  private:
+  // One initial pair candidate: the tracks of `anchor_tracks` shared by the two frames, their
+  // relative pose and parallax score; returns how far it got (its stage) and the measure that
+  // ranks it among candidates of that stage (InitialPairSearch).
+  InitialPairSearch EvaluateInitialPair(int frame1, int frame2,
+                                        const std::vector<int>& anchor_tracks, InitialPair* pair,
+                                        double* measure) const;
   // The 3-D point of a track, or kInvalidPoint3DId.
   point3D_t TrackPoint(int track_id) const;
   // Triangulates a track without point, or completes the point of a track with one.
   // `retriangulate`: also re-triangulate incomplete tracks (if retriangulate_incomplete_tracks).
   bool TriangulateOrCompleteTrack(int track_id, bool retriangulate);
+  // Makes the points `a` and `b` (of one physical point) one: b's observations that a's position
+  // explains (within complete_max_reprojection_error_px) move to a, and b is deleted.
+  void FusePoints(point3D_t a, point3D_t b);
+  // The tracks do not know that the two ends of a link are one point: fuses the points of each
+  // link whose two frames are registered (after a merge).
+  void FuseLinkedPoints(const std::vector<FeatureLink>& links);
   // Sets the gauge of a problem: the first initial image constant, the second's scale fixed.
   void FixGauge(BundleAdjustmentConfig* config) const;
 
@@ -247,6 +291,7 @@ class IncrementalMapper {
   image_t init_image_id2_ = 0;
   std::vector<image_t> registration_order_;
   int last_num_pose_inliers_ = 0;
+  std::vector<int> best_failed_pose_inliers_;
 };
 
 }  // namespace comic::sfm

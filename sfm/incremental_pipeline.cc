@@ -7,6 +7,10 @@
 #include <set>
 
 #include "io/core/error.h"
+#include "sfm/model_growth.h"
+#include "sfm/pose_gap_filling.h"
+#include "sfm/unregistered_ranges.h"
+#include "sfm/working_resolution.h"
 
 namespace comic::sfm {
 
@@ -14,6 +18,8 @@ const char* ReconstructionStatusName(ReconstructionStatus status) {
   switch (status) {
     case ReconstructionStatus::kSuccess:
       return "success";
+    case ReconstructionStatus::kPartial:
+      return "partial";
     case ReconstructionStatus::kTooFewFrames:
       return "too_few_frames";
     case ReconstructionStatus::kNoInitialPair:
@@ -28,6 +34,8 @@ std::string ReconstructionStatusMessage(ReconstructionStatus status) {
   switch (status) {
     case ReconstructionStatus::kSuccess:
       return "reconstruction succeeded";
+    case ReconstructionStatus::kPartial:
+      return "partial reconstruction: the largest model holds too few of the frames";
     case ReconstructionStatus::kTooFewFrames:
       return "too few frames: at least two are needed";
     case ReconstructionStatus::kNoInitialPair:
@@ -37,6 +45,26 @@ std::string ReconstructionStatusMessage(ReconstructionStatus status) {
       return "too few points: the initial pair triangulated too few 3-D points";
   }
   return "unknown status";
+}
+
+bool HasModel(ReconstructionStatus status) {
+  return status == ReconstructionStatus::kSuccess || status == ReconstructionStatus::kPartial;
+}
+
+const char* PoseSourceName(PoseSource source) {
+  switch (source) {
+    case PoseSource::kRegistered:
+      return "registered";
+    case PoseSource::kRotationOnly:
+      return "rotation_only";
+    case PoseSource::kInterpolated:
+      return "interpolated";
+  }
+  return "unknown";
+}
+
+size_t IncrementalModel::NumObservedFrames() const {
+  return registered_frames.size() - interpolated_frames.size();
 }
 
 IncrementalPipelineOptions::IncrementalPipelineOptions() {
@@ -80,166 +108,308 @@ void IncrementalPipelineOptions::Check() const {
               "pipeline refine_intrinsics_min_num_images must be >= 2, got "
                   << refine_intrinsics_min_num_images);
   focal_observability.Check();
+  COMIC_CHECK(merge_overlap_frames >= 1, kInvalidArgument,
+              "pipeline merge_overlap_frames must be >= 1, got " << merge_overlap_frames);
+  COMIC_CHECK(seam_num_frames >= 1, kInvalidArgument,
+              "pipeline seam_num_frames must be >= 1, got " << seam_num_frames);
+  COMIC_CHECK(seam_max_frame_gap >= 1, kInvalidArgument,
+              "pipeline seam_max_frame_gap must be >= 1, got " << seam_max_frame_gap);
+  COMIC_CHECK(max_interpolated_gap >= 0, kInvalidArgument,
+              "pipeline max_interpolated_gap must be >= 0");
+  COMIC_CHECK(success_min_registered_fraction >= 0 && success_min_registered_fraction <= 1,
+              kInvalidArgument, "pipeline success_min_registered_fraction must be in [0, 1]");
+  plausible_intrinsics.Check();
+  COMIC_CHECK(max_working_image_size >= 0, kInvalidArgument,
+              "pipeline max_working_image_size must be >= 0 (0: any size)");
 }
 
 namespace {
 
-void Report(const MapperProgressCallback& progress, const IncrementalMapper& mapper,
-            image_t image_id, bool initial, int num_inliers, int attempt, bool merged = false) {
-  if (!progress) return;
-  MapperProgress p;
-  p.merged = merged;
-  p.frame = IncrementalMapper::FrameOfImageId(image_id);
-  p.frame_name = mapper.reconstruction().image(image_id).name;
-  p.initial_pair = initial;
-  p.attempt = attempt;
-  p.num_registered = mapper.reconstruction().NumRegisteredImages();
-  p.num_frames = mapper.reconstruction().NumImages();
-  p.num_points3D = mapper.reconstruction().NumPoints3D();
-  p.num_pose_inliers = num_inliers;
-  progress(p);
-}
+// The models grown so far, and what the run learnt about failures to start one.
+struct ModelSet {
+  std::vector<GrownModel> models;  // standing models, in the order they were started
+  ReconstructionStatus first_failure = ReconstructionStatus::kNoInitialPair;
+  size_t first_failure_num_points = 0;
+  int first_failure_frame1 = -1;
+  int first_failure_frame2 = -1;
+  IncrementalMapper::InitialPairSearch first_search;
+  int num_attempts = 0;
+  bool no_initial_pair_left = false;  // the growth stopped for want of an initial pair
+  int num_merges = 0;
+  int num_seam_links = 0;
+  int num_initial_pair_searches = 0;
+  double initial_pair_search_cpu_time_s = 0.0;
+  int num_seam_matches = 0;
+  double seam_matching_cpu_time_s = 0.0;
+  BundleAdjustmentTally ba;
+};
 
-// One model grown from `pair` (std::nullopt: no initial pair).
-IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
-                                          const Camera& camera,
-                                          const IncrementalPipelineOptions& options,
-                                          const std::optional<IncrementalMapper::InitialPair>& pair,
-                                          int attempt,
-                                          const std::vector<Reconstruction>& earlier_models,
-                                          const MapperProgressCallback& progress) {
-  IncrementalReconstruction result;
-  IncrementalMapper mapper(tracks, camera, options.mapper);
-  const auto finish = [&](ReconstructionStatus status) {
-    result.status = status;
-    result.reconstruction = mapper.TakeReconstruction();
-    if (status != ReconstructionStatus::kSuccess) {
-      // A model that failed to start is no model: nothing registered, no points.
-      for (image_t image_id : result.reconstruction.RegisteredImageIds()) {
-        result.reconstruction.DeRegisterImage(image_id);
-      }
-    }
-    for (const auto& [image_id, image] : result.reconstruction.images()) {
-      (image.registered ? result.registered_frames : result.unregistered_frames)
-          .push_back(IncrementalMapper::FrameOfImageId(image_id));
-    }
-    return std::move(result);
-  };
-  BundleAdjustmentOptions final_global_ba = options.global_ba;
-  final_global_ba.function_tolerance = options.final_global_ba_function_tolerance;
-  const auto global_ba = [&](bool final = false) {
-    BundleAdjustmentOptions ba_options = final ? final_global_ba : options.global_ba;
-    const Reconstruction& model = mapper.reconstruction();
-    if (static_cast<int>(model.NumRegisteredImages()) < options.refine_intrinsics_min_num_images) {
-      ba_options.refine_focal_length = false;
-      ba_options.refine_principal_point = false;
-      ba_options.refine_extra_params = false;
-    } else if (ba_options.refine_focal_length) {
-      result.focal_assessed = true;
-      result.focal_observability = AssessFocalObservability(model, options.focal_observability);
-      // Unobservable: keep the prior focal, and the prior distortion too, which would otherwise
-      // absorb the focal's error (KITTI without calib.txt: k drifts to 0.07 for a rectified
-      // image with f held 2x too long).
-      if (!result.focal_observability.observable) {
-        ba_options.refine_focal_length = false;
-        ba_options.refine_extra_params = false;
-      }
-    }
-    const BundleAdjustmentSummary summary = mapper.AdjustGlobalBundle(ba_options);
-    ++result.num_global_ba;
-    result.num_global_ba_iterations += summary.num_iterations;
-    result.global_ba_time_s += summary.wall_time_s;
-    result.global_ba_cpu_time_s += summary.cpu_time_s;
-    result.final_ba = summary;
-    result.intrinsics_refined = result.intrinsics_refined || summary.refined_intrinsics;
-  };
+// Links between `current` and `earlier` from matching the frames facing each other across the
+// gap between them: the last seam_num_frames registered frames of the earlier one in the clip
+// with the first seam_num_frames of the later one, when at most seam_max_frame_gap frames apart
+// and no other standing model holds a frame between them (so a clip of many fragments costs
+// matches in proportion to its fragments). FrameMatcher results are cached by frame pair.
+class SeamLinking {
+ public:
+  SeamLinking(const FrameMatcher& matcher, const IncrementalPipelineOptions& options,
+              ModelSet* models)
+      : matcher_(matcher), options_(options), models_(*models) {}
 
-  if (!pair) return finish(ReconstructionStatus::kNoInitialPair);
-  result.initial_frame1 = IncrementalMapper::FrameOfImageId(pair->image_id1);
-  result.initial_frame2 = IncrementalMapper::FrameOfImageId(pair->image_id2);
-  result.initial_pair_num_points = mapper.RegisterInitialPair(*pair);
-  if (result.initial_pair_num_points < static_cast<size_t>(options.min_num_initial_points)) {
-    return finish(ReconstructionStatus::kTooFewPoints);
-  }
-  global_ba();
-  result.initial_pair_num_points = mapper.reconstruction().NumPoints3D();
-  if (mapper.reconstruction().NumPoints3D() < static_cast<size_t>(options.min_num_initial_points)) {
-    return finish(ReconstructionStatus::kTooFewPoints);
-  }
-  Report(progress, mapper, pair->image_id1, true, 0, attempt);
-  Report(progress, mapper, pair->image_id2, true, 0, attempt);
-
-  std::map<image_t, int> num_trials;
-  size_t num_registered_at_last_global_ba = mapper.reconstruction().NumRegisteredImages();
-  size_t num_registered_at_last_retry = 0;
-  while (true) {
-    bool registered = false;
-    for (image_t image_id : mapper.NextImageCandidates()) {
-      if (num_trials[image_id] >= options.max_registration_trials) continue;
-      if (!mapper.RegisterNextImage(image_id)) {
-        ++num_trials[image_id];
-        continue;
-      }
-      const int num_inliers = mapper.last_num_pose_inliers();
-      mapper.TriangulateImage(image_id);
-      const BundleAdjustmentSummary summary =
-          mapper.AdjustLocalBundle(image_id, options.local_ba, options.local_ba_num_images);
-      ++result.num_local_ba;
-      result.num_local_ba_iterations += summary.num_iterations;
-      result.local_ba_time_s += summary.wall_time_s;
-      result.local_ba_cpu_time_s += summary.cpu_time_s;
-      const size_t num_registered = mapper.reconstruction().NumRegisteredImages();
-      if (static_cast<double>(num_registered) >=
-          options.global_ba_growth_ratio * static_cast<double>(num_registered_at_last_global_ba)) {
-        global_ba();
-        mapper.TriangulateAllTracks();
-        num_registered_at_last_global_ba = num_registered;
-        // The adjusted poses and the new points may now explain frames that failed before.
-        num_trials.clear();
-      }
-      Report(progress, mapper, image_id, false, num_inliers, attempt);
-      registered = true;
-      break;
+  std::vector<IncrementalMapper::FeatureLink> operator()(const Reconstruction& current,
+                                                         const Reconstruction& earlier) {
+    std::vector<IncrementalMapper::FeatureLink> links;
+    const std::vector<int> frames = Frames(current), other_frames = Frames(earlier);
+    if (frames.empty() || other_frames.empty()) return links;
+    // The two ends that face each other.
+    const bool current_first = frames.back() < other_frames.front();
+    if (!current_first && other_frames.back() >= frames.front()) return links;  // spans overlap
+    const int n = options_.seam_num_frames;
+    const std::vector<int> ends = current_first ? Last(frames, n) : First(frames, n);
+    const std::vector<int> other_ends =
+        current_first ? First(other_frames, n) : Last(other_frames, n);
+    const int low = current_first ? frames.back() : other_frames.back();
+    const int high = current_first ? other_frames.front() : frames.front();
+    if (high - low > options_.seam_max_frame_gap ||
+        OtherModelBetween(current, earlier, low, high)) {
+      return links;
     }
-    if (registered) continue;
-    // Stopped short of some frames: adjust everything, complete the tracks and retry the frames
-    // left out once more before giving up on them (a weakly textured stretch of video often
-    // registers once the points next to it are refined and triangulated from all views).
-    const size_t num_registered = mapper.reconstruction().NumRegisteredImages();
-    if (num_registered < mapper.reconstruction().NumImages() &&
-        num_registered > num_registered_at_last_retry) {
-      num_registered_at_last_retry = num_registered;
-      if (num_registered_at_last_global_ba < num_registered) {
-        global_ba();
-        mapper.TriangulateAllTracks();
-        num_registered_at_last_global_ba = num_registered;
-      }
-      num_trials.clear();
-      if (!mapper.NextImageCandidates().empty()) continue;
-    }
-    // Stopped short: merge the earlier models that share a frame with this one, then grow on.
-    size_t num_merged = 0;
-    if (options.merge_models) {
-      for (const Reconstruction& other : earlier_models) {
-        const size_t num_before = mapper.registration_order().size();
-        if (mapper.MergeModel(other) == 0) continue;
-        num_merged += mapper.registration_order().size() - num_before;
-        for (size_t i = num_before; i < mapper.registration_order().size(); ++i) {
-          Report(progress, mapper, mapper.registration_order()[i], false, 0, attempt, true);
+    for (int frame : ends) {
+      for (int other_frame : other_ends) {
+        const Image& image = current.image(IncrementalMapper::ImageIdOfFrame(frame));
+        const Image& other_image = earlier.image(IncrementalMapper::ImageIdOfFrame(other_frame));
+        for (const auto& [feature, other_feature] : Match(frame, other_frame)) {
+          if (feature < 0 || other_feature < 0 ||
+              feature >= static_cast<int>(image.points2D.size()) ||
+              other_feature >= static_cast<int>(other_image.points2D.size()) ||
+              !image.points2D[feature].HasPoint3D() ||
+              !other_image.points2D[other_feature].HasPoint3D()) {
+            continue;
+          }
+          links.push_back({image.image_id, static_cast<point2D_t>(feature), other_image.image_id,
+                           static_cast<point2D_t>(other_feature)});
         }
       }
     }
-    if (num_merged == 0) break;
-    global_ba();
-    mapper.TriangulateAllTracks();
-    num_registered_at_last_global_ba = mapper.reconstruction().NumRegisteredImages();
-    num_trials.clear();
+    return links;
   }
 
-  // Final refinement: adjust, recover tracks the improved poses now explain, adjust again.
-  global_ba(/*final=*/true);
-  if (mapper.TriangulateAllTracks() > 0) global_ba(/*final=*/true);
-  return finish(ReconstructionStatus::kSuccess);
+ private:
+  static std::vector<int> Frames(const Reconstruction& model) {
+    std::vector<int> frames;
+    for (image_t id : model.RegisteredImageIds()) {
+      frames.push_back(IncrementalMapper::FrameOfImageId(id));
+    }
+    return frames;
+  }
+  static std::vector<int> First(const std::vector<int>& frames, int n) {
+    return {frames.begin(), frames.begin() + std::min<long>(n, static_cast<long>(frames.size()))};
+  }
+  static std::vector<int> Last(const std::vector<int>& frames, int n) {
+    return {frames.end() - std::min<long>(n, static_cast<long>(frames.size())), frames.end()};
+  }
+
+  bool OtherModelBetween(const Reconstruction& a, const Reconstruction& b, int low,
+                         int high) const {
+    for (const GrownModel& model : models_.models) {
+      const Reconstruction& other = model.model.reconstruction;
+      if (&other == &a || &other == &b) continue;
+      for (int frame = low + 1; frame < high; ++frame) {
+        const image_t id = IncrementalMapper::ImageIdOfFrame(frame);
+        if (other.ExistsImage(id) && other.image(id).registered) return true;
+      }
+    }
+    return false;
+  }
+
+  const std::vector<std::pair<int, int>>& Match(int frame1, int frame2) {
+    const auto key = std::make_pair(frame1, frame2);
+    auto it = cache_.find(key);
+    if (it == cache_.end()) {
+      const double cpu_start = ProcessCpuSeconds();
+      it = cache_.emplace(key, matcher_(frame1, frame2)).first;
+      models_.seam_matching_cpu_time_s += ProcessCpuSeconds() - cpu_start;
+      ++models_.num_seam_matches;
+    }
+    return it->second;
+  }
+
+  const FrameMatcher& matcher_;
+  const IncrementalPipelineOptions& options_;
+  ModelSet& models_;
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> cache_;
+};
+
+// Frames no initial pair may use: those of the standing models and of the pairs tried.
+std::set<image_t> ExcludedFrames(const ModelSet& set, const std::set<image_t>& tried) {
+  std::set<image_t> excluded = tried;
+  for (const GrownModel& model : set.models) {
+    for (int frame : model.model.registered_frames) {
+      excluded.insert(IncrementalMapper::ImageIdOfFrame(frame));
+    }
+  }
+  return excluded;
+}
+
+// Grows models one after another (COLMAP's IncrementalMapperController): each from the best
+// initial pair among the frames no standing model holds, until every frame is in a model, no
+// pair qualifies or max_num_models were started. A model that merges earlier ones replaces them.
+ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
+                    const IncrementalPipelineOptions& options,
+                    const MapperProgressCallback& progress, const FrameMatcher& frame_matcher) {
+  ModelSet set;
+  // The initial pairs are searched once and reused; only when every remaining candidate touches
+  // an excluded frame is the search repeated without those frames.
+  IncrementalMapper::Options search_options = options.mapper;
+  std::optional<IncrementalMapper> searcher;
+  searcher.emplace(tracks, camera, search_options);
+  const auto search = [&](const std::set<image_t>& excluded,
+                          IncrementalMapper::InitialPairSearch* seen) {
+    const double cpu_start = ProcessCpuSeconds();
+    std::vector<IncrementalMapper::InitialPair> pairs = searcher->FindInitialPairs(excluded, seen);
+    set.initial_pair_search_cpu_time_s += ProcessCpuSeconds() - cpu_start;
+    ++set.num_initial_pair_searches;
+    return pairs;
+  };
+  std::vector<IncrementalMapper::InitialPair> candidates = search({}, &set.first_search);
+  if (candidates.empty() && options.relax_initial_pair) {
+    // COLMAP's relaxation; the diagnosis of a failure stays that of the strict search.
+    search_options.init_min_num_matches = std::max(5, search_options.init_min_num_matches / 2);
+    search_options.init_min_num_inliers = std::max(5, search_options.init_min_num_inliers / 2);
+    searcher.emplace(tracks, camera, search_options);
+    candidates = search({}, nullptr);
+  }
+  SeamLinking seam_linking(frame_matcher, options, &set);
+  SeamLinker linker;
+  if (frame_matcher) {
+    linker = [&](const Reconstruction& current, const Reconstruction& earlier) {
+      return seam_linking(current, earlier);
+    };
+  }
+  std::set<image_t> tried;
+  for (int attempt = 0; attempt < options.max_num_models; ++attempt) {
+    const std::set<image_t> excluded = ExcludedFrames(set, tried);
+    if (excluded.size() >= tracks.NumFrames()) break;
+    const auto usable = [&](const IncrementalMapper::InitialPair& pair) {
+      return !excluded.count(pair.image_id1) && !excluded.count(pair.image_id2);
+    };
+    auto it = std::find_if(candidates.begin(), candidates.end(), usable);
+    if (it == candidates.end() && attempt > 0) {
+      candidates = search(excluded, nullptr);
+      it = candidates.begin();
+    }
+    if (it == candidates.end()) {
+      set.no_initial_pair_left = true;
+      break;
+    }
+    const IncrementalMapper::InitialPair pair = *it;
+    tried.insert(pair.image_id1);
+    tried.insert(pair.image_id2);
+    std::vector<const IncrementalModel*> earlier;
+    for (const GrownModel& model : set.models) earlier.push_back(&model.model);
+    GrownModel grown = GrowModel(tracks, camera, options, pair, attempt, earlier, linker, progress);
+    ++set.num_attempts;
+    set.ba.Add(grown.ba);
+    if (grown.status != ReconstructionStatus::kSuccess) {
+      if (set.models.empty() && set.first_failure_frame1 < 0) {
+        set.first_failure = grown.status;
+        set.first_failure_num_points = grown.initial_pair_num_points;
+        set.first_failure_frame1 = grown.model.initial_frame1;
+        set.first_failure_frame2 = grown.model.initial_frame2;
+      }
+      continue;
+    }
+    set.num_merges += static_cast<int>(grown.merged.size());
+    set.num_seam_links += grown.num_seam_links;
+    std::vector<size_t> merged = grown.merged;
+    std::sort(merged.rbegin(), merged.rend());
+    for (size_t e : merged) set.models.erase(set.models.begin() + static_cast<long>(e));
+    set.models.push_back(std::move(grown));
+  }
+  return set;
+}
+
+// Poses for the frames in the models' gaps (sfm/pose_gap_filling.h), the largest model first; a
+// frame another model registered is left to that model.
+void FillGaps(const frontend::FeatureTracks& tracks, const IncrementalPipelineOptions& options,
+              std::vector<GrownModel*>* models) {
+  std::vector<char> fillable(tracks.NumFrames(), 1);
+  for (const GrownModel* model : *models) {
+    for (int frame : model->model.registered_frames) fillable[frame] = 0;
+  }
+  PoseGapFillingOptions gap_options;
+  gap_options.max_interpolated_gap = options.max_interpolated_gap;
+  for (GrownModel* grown : *models) {
+    IncrementalModel& model = grown->model;
+    const PoseGapFilling filled =
+        FillPoseGaps(tracks, fillable, gap_options, &model.reconstruction);
+    model.rotation_only_frames = filled.rotation_only_frames;
+    model.interpolated_frames = filled.interpolated_frames;
+    for (const std::vector<int>* frames :
+         {&filled.rotation_only_frames, &filled.interpolated_frames}) {
+      for (int frame : *frames) {
+        fillable[frame] = 0;
+        model.registered_frames.push_back(frame);
+      }
+    }
+    std::sort(model.registered_frames.begin(), model.registered_frames.end());
+  }
+}
+
+// The result from the grown models, largest first (frames registered from observations; ties by
+// the order they were started).
+void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOptions& options,
+              std::vector<GrownModel*> models, bool no_initial_pair_left,
+              IncrementalReconstruction* result) {
+  std::stable_sort(models.begin(), models.end(), [](const GrownModel* a, const GrownModel* b) {
+    return a->model.NumObservedFrames() > b->model.NumObservedFrames();
+  });
+  GrownModel& largest = *models.front();
+  for (size_t m = 1; m < models.size(); ++m) {
+    result->other_models.push_back(std::move(models[m]->model));
+  }
+  IncrementalModel& model = largest.model;
+  result->reconstruction = std::move(model.reconstruction);
+  result->registered_frames = model.registered_frames;
+  result->rotation_only_frames = model.rotation_only_frames;
+  result->interpolated_frames = model.interpolated_frames;
+  result->initial_frame1 = model.initial_frame1;
+  result->initial_frame2 = model.initial_frame2;
+  result->initial_pair_num_points = largest.initial_pair_num_points;
+  result->final_ba = largest.final_ba;
+  result->focal_assessed = largest.focal_assessed;
+  result->focal_observability = largest.focal_observability;
+  result->intrinsics_refined = largest.intrinsics_refined;
+  result->intrinsics_rejection = largest.intrinsics_rejection;
+  for (size_t frame = 0; frame < tracks.NumFrames(); ++frame) {
+    if (!std::binary_search(result->registered_frames.begin(), result->registered_frames.end(),
+                            static_cast<int>(frame))) {
+      result->unregistered_frames.push_back(static_cast<int>(frame));
+    }
+  }
+  result->unregistered_ranges = ExplainUnregisteredFrames(
+      tracks, result->reconstruction, result->other_models, largest.best_failed_pose_inliers,
+      options.mapper.absolute_pose, no_initial_pair_left);
+  const double observed =
+      static_cast<double>(result->registered_frames.size() - result->interpolated_frames.size());
+  result->status =
+      observed >= options.success_min_registered_fraction * static_cast<double>(tracks.NumFrames())
+          ? ReconstructionStatus::kSuccess
+          : ReconstructionStatus::kPartial;
+}
+
+// Every model back in the input's pixels (the work ran at `scale` of them).
+void ToInputPixels(double scale, const Camera& input, IncrementalReconstruction* result) {
+  if (scale == 1.0) return;
+  ScaleReconstruction(1.0 / scale, input.width, input.height, &result->reconstruction);
+  for (IncrementalModel& model : result->other_models) {
+    ScaleReconstruction(1.0 / scale, input.width, input.height, &model.reconstruction);
+  }
+  if (result->intrinsics_rejection.rejected) {
+    Camera& rejected = result->intrinsics_rejection.rejected_camera;
+    rejected = rejected.Scaled(1.0 / scale);
+    rejected.width = input.width;
+    rejected.height = input.height;
+  }
 }
 
 }  // namespace
@@ -247,95 +417,73 @@ IncrementalReconstruction ReconstructOnce(const frontend::FeatureTracks& tracks,
 IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks& tracks,
                                                    const Camera& camera,
                                                    const IncrementalPipelineOptions& options,
-                                                   const MapperProgressCallback& progress) {
+                                                   const MapperProgressCallback& progress,
+                                                   const FrameMatcher& frame_matcher) {
   options.Check();
   tracks.Check();
   camera.Check();
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ProcessCpuSeconds();
-  IncrementalReconstruction best;
-  if (tracks.NumFrames() < 2) {
-    best.status = ReconstructionStatus::kTooFewFrames;
-    for (size_t frame = 0; frame < tracks.NumFrames(); ++frame) {
-      best.unregistered_frames.push_back(static_cast<int>(frame));
-    }
-  } else {
-    // A model that stops short (a sparse ring that falls apart into segments) is kept only if no
-    // later attempt, started from frames it did not reach, registers more.
-    // The initial pairs are searched once and reused; only when every remaining candidate
-    // touches a frame an earlier model reached is the search repeated without those frames.
-    IncrementalMapper::Options search_options = options.mapper;
-    std::optional<IncrementalMapper> searcher;
-    searcher.emplace(tracks, camera, search_options);
-    IncrementalMapper::InitialPairSearch first_search;
-    std::vector<IncrementalMapper::InitialPair> candidates =
-        searcher->FindInitialPairs({}, &first_search);
-    if (candidates.empty() && options.relax_initial_pair) {
-      // COLMAP's relaxation; the diagnosis of a failure stays that of the strict search.
-      search_options.init_min_num_matches = std::max(5, search_options.init_min_num_matches / 2);
-      search_options.init_min_num_inliers = std::max(5, search_options.init_min_num_inliers / 2);
-      searcher.emplace(tracks, camera, search_options);
-      candidates = searcher->FindInitialPairs({});
-    }
-    std::set<image_t> excluded;
-    std::vector<Reconstruction> earlier_models;
-    for (int attempt = 0; attempt < options.max_num_models; ++attempt) {
-      const auto usable = [&](const IncrementalMapper::InitialPair& pair) {
-        return !excluded.count(pair.image_id1) && !excluded.count(pair.image_id2);
-      };
-      auto it = std::find_if(candidates.begin(), candidates.end(), usable);
-      if (it == candidates.end() && attempt > 0) {
-        candidates = searcher->FindInitialPairs(excluded);
-        it = candidates.begin();
-      }
-      std::optional<IncrementalMapper::InitialPair> pair;
-      if (it != candidates.end()) pair = *it;
-      IncrementalReconstruction model =
-          ReconstructOnce(tracks, camera, options, pair, attempt, earlier_models, progress);
-      const bool better =
-          attempt == 0 || (model.status == ReconstructionStatus::kSuccess &&
-                           (best.status != ReconstructionStatus::kSuccess ||
-                            model.registered_frames.size() > best.registered_frames.size()));
-      const int num_local_ba = best.num_local_ba + model.num_local_ba;
-      const int num_global_ba = best.num_global_ba + model.num_global_ba;
-      const int num_local_ba_iterations =
-          best.num_local_ba_iterations + model.num_local_ba_iterations;
-      const int num_global_ba_iterations =
-          best.num_global_ba_iterations + model.num_global_ba_iterations;
-      const double local_ba_time = best.local_ba_time_s + model.local_ba_time_s;
-      const double global_ba_time = best.global_ba_time_s + model.global_ba_time_s;
-      const double local_ba_cpu_time = best.local_ba_cpu_time_s + model.local_ba_cpu_time_s;
-      const double global_ba_cpu_time = best.global_ba_cpu_time_s + model.global_ba_cpu_time_s;
-      const bool complete = model.unregistered_frames.empty();
-      const bool started = model.initial_frame1 >= 0;
-      if (started) {
-        excluded.insert(IncrementalMapper::ImageIdOfFrame(model.initial_frame1));
-        excluded.insert(IncrementalMapper::ImageIdOfFrame(model.initial_frame2));
-      }
-      for (int frame : model.registered_frames) {
-        excluded.insert(IncrementalMapper::ImageIdOfFrame(frame));
-      }
-      if (options.merge_models && model.status == ReconstructionStatus::kSuccess) {
-        earlier_models.push_back(model.reconstruction);
-      }
-      if (better) best = std::move(model);
-      best.num_models = attempt + 1;
-      best.num_local_ba = num_local_ba;
-      best.num_global_ba = num_global_ba;
-      best.num_local_ba_iterations = num_local_ba_iterations;
-      best.num_global_ba_iterations = num_global_ba_iterations;
-      best.local_ba_time_s = local_ba_time;
-      best.global_ba_time_s = global_ba_time;
-      best.local_ba_cpu_time_s = local_ba_cpu_time;
-      best.global_ba_cpu_time_s = global_ba_cpu_time;
-      if (complete || !started) break;
-    }
-    best.initial_pair_search = first_search;
+  IncrementalReconstruction result;
+  const auto finish = [&]() {
+    result.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.cpu_time_s = ProcessCpuSeconds() - cpu_start;
+    return std::move(result);
+  };
+  for (size_t frame = 0; frame < tracks.NumFrames(); ++frame) {
+    result.unregistered_frames.push_back(static_cast<int>(frame));
   }
-  best.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  best.cpu_time_s = ProcessCpuSeconds() - cpu_start;
-  return best;
+  if (tracks.NumFrames() < 2) return finish();
+
+  // Stage 1: the working resolution.
+  result.working_scale = WorkingScale(camera.width, camera.height, options.max_working_image_size);
+  frontend::FeatureTracks scaled_tracks;
+  Camera working_camera = camera;
+  if (result.working_scale != 1.0) {
+    scaled_tracks = ScaleTracks(tracks, result.working_scale);
+    working_camera = camera.Scaled(result.working_scale);
+  }
+  const frontend::FeatureTracks& working_tracks =
+      result.working_scale != 1.0 ? scaled_tracks : tracks;
+
+  // Stage 2: the models.
+  ModelSet set = GrowModels(working_tracks, working_camera, options, progress, frame_matcher);
+  result.initial_pair_search = set.first_search;
+  result.num_models = set.num_attempts;
+  result.num_merges = set.num_merges;
+  result.num_seam_links = set.num_seam_links;
+  result.num_initial_pair_searches = set.num_initial_pair_searches;
+  result.initial_pair_search_cpu_time_s = set.initial_pair_search_cpu_time_s;
+  result.num_seam_matches = set.num_seam_matches;
+  result.seam_matching_cpu_time_s = set.seam_matching_cpu_time_s;
+  result.num_local_ba = set.ba.num_local_ba;
+  result.num_global_ba = set.ba.num_global_ba;
+  result.num_local_ba_iterations = set.ba.num_local_ba_iterations;
+  result.num_global_ba_iterations = set.ba.num_global_ba_iterations;
+  result.local_ba_time_s = set.ba.local_ba_time_s;
+  result.global_ba_time_s = set.ba.global_ba_time_s;
+  result.local_ba_cpu_time_s = set.ba.local_ba_cpu_time_s;
+  result.global_ba_cpu_time_s = set.ba.global_ba_cpu_time_s;
+  if (set.models.empty()) {
+    result.status = set.first_failure;
+    result.initial_pair_num_points = set.first_failure_num_points;
+    result.initial_frame1 = set.first_failure_frame1;
+    result.initial_frame2 = set.first_failure_frame2;
+    return finish();
+  }
+  std::vector<GrownModel*> models;
+  for (GrownModel& model : set.models) models.push_back(&model);
+  std::stable_sort(models.begin(), models.end(), [](const GrownModel* a, const GrownModel* b) {
+    return a->model.registered_frames.size() > b->model.registered_frames.size();
+  });
+
+  // Stage 3: poses through the gaps; stage 4: the largest model first, the status, the reasons.
+  if (options.fill_pose_gaps) FillGaps(working_tracks, options, &models);
+  result.unregistered_frames.clear();
+  Assemble(working_tracks, options, models, set.no_initial_pair_left, &result);
+  ToInputPixels(result.working_scale, camera, &result);
+  return finish();
 }
 
 }  // namespace comic::sfm

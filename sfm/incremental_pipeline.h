@@ -1,12 +1,18 @@
-// The incremental reconstruction of one sequence from its feature tracks: drives the
-// IncrementalMapper (initial pair, then register / triangulate / local bundle adjustment per
-// frame, global bundle adjustment as the model grows and at the end). Frames that cannot be
-// registered are reported, not fatal; failures to start return a status.
+// The incremental reconstruction of one sequence from its feature tracks, as COLMAP's
+// IncrementalMapperController: models grown one after another by the IncrementalMapper (initial
+// pair, then register / triangulate / local bundle adjustment per frame, global bundle adjustment
+// as a model grows and at the end; sfm/model_growth.h), each started among the frames no model
+// holds, merged where they share frames, points or seam matches; then poses for the frames left
+// in the gaps (sfm/pose_gap_filling.h), and the frames still missing from the largest model in
+// ranges with the reason (sfm/unregistered_ranges.h). Frames that cannot be registered are
+// reported, not fatal; failures to start return a status.
 //
 //   IncrementalPipelineOptions options;
 //   const IncrementalReconstruction result =
 //       ReconstructIncrementally(tracks, camera, options, [](const MapperProgress& p) { ... });
-//   if (result.status != ReconstructionStatus::kSuccess) { ... }
+//   if (!HasModel(result.status)) { ... no model: DiagnoseReconstruction says why ... }
+//   // result.reconstruction: the largest model; result.other_models: the rest;
+//   // result.unregistered_ranges: the frames missing from the largest, with the reason.
 #pragma once
 
 #include <functional>
@@ -18,21 +24,27 @@
 #include "sfm/camera.h"
 #include "sfm/focal_observability.h"
 #include "sfm/incremental_mapper.h"
+#include "sfm/intrinsics_plausibility.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {
 
 enum class ReconstructionStatus {
-  kSuccess,        // a model with at least the initial pair (see unregistered_frames)
+  // At least success_min_registered_fraction of the frames are in the largest model.
+  kSuccess,
+  // Models, but the largest holds fewer frames: unregistered_ranges say which and why.
+  kPartial,
   kTooFewFrames,   // fewer than two frames
   kNoInitialPair,  // no frame pair with enough matches and parallax (e.g. pure rotation)
   kTooFewPoints,   // the initial pair triangulated too few points
 };
 
-// "success", "too_few_frames", "no_initial_pair", "too_few_points".
+// "success", "partial", "too_few_frames", "no_initial_pair", "too_few_points".
 const char* ReconstructionStatusName(ReconstructionStatus status);
-// A sentence for users, e.g. for a status other than kSuccess in an app's error line.
+// A sentence for users, e.g. for a status without a model in an app's error line.
 std::string ReconstructionStatusMessage(ReconstructionStatus status);
+// kSuccess or kPartial: there is at least one model.
+bool HasModel(ReconstructionStatus status);
 
 struct IncrementalPipelineOptions {
   IncrementalMapper::Options mapper;
@@ -61,19 +73,51 @@ struct IncrementalPipelineOptions {
   int max_registration_trials = 3;
   // The initial pair must triangulate at least this many points.
   int min_num_initial_points = 30;
-  // Models grown at most: when a model leaves frames unregistered, another is started from an
-  // initial pair among the frames no earlier model reached, and the model with the most
-  // registered frames is returned.
-  int max_num_models = 4;
+  // Models started at most (COLMAP's max_num_models). When registration stops, a new model is
+  // started from an initial pair among the frames no model has registered, as COLMAP's mapper
+  // does, until every frame is in a model or no pair qualifies; every model is kept.
+  int max_num_models = 50;
   // When no frame pair qualifies as the initial pair, search once more with the minimum shared
   // tracks and inliers (mapper.init_min_num_matches, init_min_num_inliers) halved, as COLMAP
   // relaxes its initialisation constraints. A sparsely tracked sequence (MSER on the dino ring:
   // 774 tracks) then starts a model instead of none; sequences whose strict search succeeds are
   // unaffected.
   bool relax_initial_pair = true;
-  // When a model stops short, the earlier models sharing a registered frame with it are merged
-  // into it (IncrementalMapper::MergeModel), and it grows on from the merged frames.
+  // Models are merged into the model being grown (IncrementalMapper::MergeModel) when it stops
+  // short, and once it has registered merge_overlap_frames frames of an earlier model (and again
+  // at each doubling of that overlap), so that a model does not grow again all an earlier one
+  // holds (COLMAP stops a model at 20 shared images, max_model_overlap); the merged model grows
+  // on from the merged frames. Merging early takes the earlier model's poses of frames this one
+  // would have registered itself: at 3 shared frames the temple ring's hessian run merged two
+  // frames 19 and 43 deg off (ATE 1.6 % of the path instead of 0.03 %).
   bool merge_models = true;
+  int merge_overlap_frames = 20;
+  // When a model stops short and a FrameMatcher is given, its frames facing an earlier model it
+  // could not merge across a gap of at most seam_max_frame_gap frames (seam_num_frames on each
+  // side; no other model in between) are matched, and the matches link the two models
+  // (IncrementalMapper::FeatureLink): a stretch without texture, or where tracking failed, breaks
+  // the clip into two models that are joined again where the scene is seen again.
+  int seam_num_frames = 2;
+  int seam_max_frame_gap = 30;
+  // Frames without a pose after the models are grown (sfm/pose_gap_filling.h): a frame the
+  // camera reached by turning (or barely moving) from a registered neighbour gets its rotation
+  // against the map; a frame between two registered frames of a model at most
+  // max_interpolated_gap frames apart gets an interpolated pose. Both are flagged.
+  bool fill_pose_gaps = true;
+  int max_interpolated_gap = 10;
+  // kSuccess needs at least this fraction of the frames in the largest model (frames with
+  // interpolated poses do not count).
+  double success_min_registered_fraction = 0.95;
+  // The plausible range of a self-calibrated camera (sfm/intrinsics_plausibility.h): outside it
+  // the camera is reset to its prior, held fixed and the model adjusted again.
+  IntrinsicsPlausibilityOptions plausible_intrinsics;
+  // The mapper works on images whose larger side is at most this (pixels; 0: any size): larger
+  // tracks and cameras are scaled down for the work and the model is returned in the input's
+  // pixels (sfm/working_resolution.h), because its pixel thresholds (PnP, triangulation,
+  // filtering) are tuned at ~700 px. 1280 keeps KITTI (1226 x 370) as it is and takes 1080p
+  // video to 720p; Herz-Jesu at 3072 x 2048 self-calibrates to within 0.2 % at 1280 and 1600
+  // (docs/sfm.md "Working resolution"). comic_sfm tracks at the same size.
+  int max_working_image_size = 1280;
 
   IncrementalPipelineOptions();
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -94,19 +138,85 @@ struct MapperProgress {
 };
 using MapperProgressCallback = std::function<void(const MapperProgress&)>;
 
-struct IncrementalReconstruction {
-  ReconstructionStatus status = ReconstructionStatus::kTooFewFrames;
+// Matches between the features of two frames the tracks do not link (e.g. on both sides of a
+// stretch where tracking failed): pairs (feature index in frame1, feature index in frame2),
+// geometrically verified. Given by whoever has the images (sfm/sequence_reconstruction.h).
+using FrameMatcher = std::function<std::vector<std::pair<int, int>>(int frame1, int frame2)>;
+
+// How a frame of a model got its pose.
+enum class PoseSource {
+  kRegistered,    // initial pair, PnP, or a merged model's
+  kRotationOnly,  // its rotation against the map; the centre of a registered neighbour
+  kInterpolated,  // interpolated between registered frames of the model: a guess, flagged
+};
+// "registered", "rotation_only", "interpolated".
+const char* PoseSourceName(PoseSource source);
+
+// One model of the run.
+struct IncrementalModel {
   Reconstruction reconstruction;
-  std::vector<int> registered_frames;    // ascending
-  std::vector<int> unregistered_frames;  // ascending
+  std::vector<int> registered_frames;  // every frame with a pose in the model, ascending
+  // Of those, the frames posed by sfm/pose_gap_filling.h (ascending).
+  std::vector<int> rotation_only_frames;
+  std::vector<int> interpolated_frames;
   int initial_frame1 = -1;
   int initial_frame2 = -1;
+  int num_merged_models = 0;  // earlier models merged into it
+  // Frames registered from observations (registered_frames without the interpolated ones).
+  size_t NumObservedFrames() const;
+};
+
+// A run of consecutive frames missing from the largest model for one reason: the stage and the
+// check that failed, as DiagnoseReconstruction words a failed run.
+struct UnregisteredRange {
+  int first_frame = 0;
+  int last_frame = 0;
+  // "tracking" (check "features": too few features detected, a stretch without texture;
+  // "tracked_features": too few of them in tracks), "registration" ("visible_points": too few
+  // tracks with a 3-D point of the model; "pose_inliers": PnP found too few inliers),
+  // "linking" ("other_model": the frames are in another model that could not be merged).
+  std::string stage;
+  std::string check;
+  double value = 0.0;    // the best measured over the range
+  double needed = 0.0;   // the threshold it missed
+  int other_model = -1;  // check "other_model": its index in other_models
+  std::string message;   // one sentence
+};
+
+// What became of a self-calibrated camera that left the plausible range.
+struct IntrinsicsRejection {
+  bool rejected = false;
+  Camera rejected_camera;  // what self-calibration gave
+  std::string reason;      // e.g. "focal length 2880 px is 3.75x the prior 768 px (at most 3x)"
+};
+
+struct IncrementalReconstruction {
+  ReconstructionStatus status = ReconstructionStatus::kTooFewFrames;
+  // The largest model (most frames registered from observations; ties by the earlier start).
+  Reconstruction reconstruction;
+  std::vector<int> registered_frames;     // ascending, frames with a pose in the largest model
+  std::vector<int> unregistered_frames;   // ascending, the others
+  std::vector<int> rotation_only_frames;  // of registered_frames, see IncrementalModel
+  std::vector<int> interpolated_frames;
+  int initial_frame1 = -1;
+  int initial_frame2 = -1;
+  // Every other model, largest first.
+  std::vector<IncrementalModel> other_models;
+  // The frames missing from the largest model, in ranges with the reason.
+  std::vector<UnregisteredRange> unregistered_ranges;
   // What the first initial pair search saw: why kNoInitialPair, and how close it came
   // (sfm/reconstruction_diagnosis.h words it).
   IncrementalMapper::InitialPairSearch initial_pair_search;
   // The 3-D points the initial pair kept (after its bundle adjustment): why kTooFewPoints.
   size_t initial_pair_num_points = 0;
-  int num_models = 0;  // models grown (the best is returned)
+  int num_models = 0;      // models started (attempts; merged ones included)
+  int num_merges = 0;      // models merged into others
+  int num_seam_links = 0;  // of those, merged through matches at their seams
+  // The initial pair searches and the seam matches (FrameMatcher calls), with their CPU time.
+  int num_initial_pair_searches = 0;
+  double initial_pair_search_cpu_time_s = 0.0;
+  int num_seam_matches = 0;
+  double seam_matching_cpu_time_s = 0.0;
   // Over all models grown:
   int num_local_ba = 0;
   int num_global_ba = 0;
@@ -118,23 +228,33 @@ struct IncrementalReconstruction {
   // The same as CPU time of the process (all threads): stable when other jobs share the machine.
   double local_ba_cpu_time_s = 0.0;
   double global_ba_cpu_time_s = 0.0;
-  BundleAdjustmentSummary final_ba;  // the last global bundle adjustment
+  BundleAdjustmentSummary final_ba;  // the last global bundle adjustment of the largest model
   // When global_ba.refine_focal_length asked for the focal: whether the motion let it be
   // refined, as assessed before the last global adjustment (focal_assessed false otherwise).
   bool focal_assessed = false;
   FocalObservability focal_observability;
-  // Some intrinsic parameter was refined in at least one global adjustment.
+  // Some intrinsic parameter was refined in at least one global adjustment of the largest model
+  // (and kept: see intrinsics_rejection).
   bool intrinsics_refined = false;
+  IntrinsicsRejection intrinsics_rejection;
+  // The mapper worked at working_scale x the input's pixels (1: at the input's size); every
+  // model is returned in the input's pixels.
+  double working_scale = 1.0;
   double wall_time_s = 0.0;  // the whole reconstruction
   double cpu_time_s = 0.0;   // and its CPU time
+
+  size_t NumModels() const { return HasModel(status) ? 1 + other_models.size() : 0; }
 };
 
-// Reconstructs the frames of `tracks` seen by `camera`: one model, the largest of up to
-// options.max_num_models. Throws comic::Error only for invalid input (tracks, camera, options);
-// expected failures come back as the status (that of the first attempt when none succeeds).
+// Reconstructs the frames of `tracks` seen by `camera`: every model (see max_num_models), the
+// largest in `reconstruction`. With `frame_matcher`, models whose tracks do not meet are linked
+// through matches at their seams. Throws comic::Error only for invalid input (tracks, camera,
+// options); expected failures come back as the status (that of the first attempt when none
+// succeeds).
 IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks& tracks,
                                                    const Camera& camera,
                                                    const IncrementalPipelineOptions& options,
-                                                   const MapperProgressCallback& progress = {});
+                                                   const MapperProgressCallback& progress = {},
+                                                   const FrameMatcher& frame_matcher = {});
 
 }  // namespace comic::sfm

@@ -21,7 +21,7 @@ ReconstructionDiagnosis DiagnoseReconstruction(const IncrementalReconstruction& 
                                                const std::vector<std::string>& frame_names) {
   using Stage = IncrementalMapper::InitialPairSearch::Stage;
   ReconstructionDiagnosis diagnosis;
-  if (reconstruction.status == ReconstructionStatus::kSuccess) return diagnosis;
+  if (HasModel(reconstruction.status)) return diagnosis;
   diagnosis.failed = true;
   const IncrementalMapper::Options& mapper = options.mapper;
   std::ostringstream message;
@@ -70,9 +70,11 @@ ReconstructionDiagnosis DiagnoseReconstruction(const IncrementalReconstruction& 
     diagnosis.suggestion = suggestion.str();
     return diagnosis;
   }
-  // A larger --init-max-gap can only help while it reaches frames the search has not paired.
+  // A larger --init-max-gap can only help while it reaches frames the search has not paired
+  // (0: no limit, the search already grows each anchor's gap as far as its tracks reach).
   const int num_frames = static_cast<int>(frame_names.size());
-  const bool gap_can_grow = mapper.init_max_frame_gap + 1 < num_frames;
+  const bool gap_can_grow =
+      mapper.init_max_frame_gap > 0 && mapper.init_max_frame_gap + 1 < num_frames;
   const int larger_gap = std::min(2 * mapper.init_max_frame_gap, std::max(num_frames - 1, 1));
   diagnosis.frame1 = FrameName(frame_names, search.image_id1);
   diagnosis.frame2 = FrameName(frame_names, search.image_id2);

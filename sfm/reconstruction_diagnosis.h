@@ -19,7 +19,7 @@
 namespace comic::sfm {
 
 struct ReconstructionDiagnosis {
-  bool failed = false;  // false: status kSuccess, nothing else is set
+  bool failed = false;  // false: a model (kSuccess or kPartial), nothing else is set
   // "frames", "initial_pair" or "initial_points".
   std::string stage;
   // The check that failed: "frames", "shared_tracks", "two_view_geometry", "inliers",
@@ -37,7 +37,8 @@ struct ReconstructionDiagnosis {
 };
 
 // Diagnoses `reconstruction` made with `options` from frames named `frame_names` (image i + 1 is
-// frame i). For kSuccess returns {failed = false}.
+// frame i). With a model (HasModel) returns {failed = false}; a partial run says why in its
+// IncrementalReconstruction::unregistered_ranges.
 ReconstructionDiagnosis DiagnoseReconstruction(const IncrementalReconstruction& reconstruction,
                                                const IncrementalPipelineOptions& options,
                                                const std::vector<std::string>& frame_names);

@@ -35,6 +35,45 @@ Eigen::Matrix3d FitRotation(const std::vector<Eigen::Vector3d>& a,
 
 }  // namespace
 
+std::optional<RayRotation> EstimateRayRotation(const std::vector<Eigen::Vector3d>& a,
+                                               const std::vector<Eigen::Vector3d>& b,
+                                               double max_angle, int min_num_inliers,
+                                               int num_trials, std::mt19937* random) {
+  COMIC_CHECK(a.size() == b.size(), kInvalidArgument,
+              "ray rotation: " << a.size() << " rays against " << b.size());
+  if (static_cast<int>(a.size()) < min_num_inliers || a.size() < 2) return std::nullopt;
+  const auto inliers_of = [&](const Eigen::Matrix3d& rotation) {
+    std::vector<int> inliers;
+    for (size_t i = 0; i < a.size(); ++i) {
+      if ((rotation * a[i]).cross(b[i]).norm() < max_angle) inliers.push_back(static_cast<int>(i));
+    }
+    return inliers;
+  };
+  std::vector<int> best;
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(a.size()) - 1);
+  for (int trial = 0; trial < num_trials; ++trial) {
+    const int i = pick(*random), j = pick(*random);
+    if (i == j || a[i].cross(a[j]).norm() < 1e-3) continue;
+    std::vector<int> inliers = inliers_of(FitRotation(a, b, {i, j}));
+    if (inliers.size() > best.size()) best = std::move(inliers);
+  }
+  if (static_cast<int>(best.size()) < min_num_inliers) return std::nullopt;
+  // Refit on the inliers, and once more on the inliers of the refit.
+  RayRotation result;
+  result.rotation = FitRotation(a, b, best);
+  best = inliers_of(result.rotation);
+  if (static_cast<int>(best.size()) < min_num_inliers) return std::nullopt;
+  result.rotation = FitRotation(a, b, best);
+  double sum_squared = 0.0;
+  for (int i : best) {
+    const double angle = (result.rotation * a[i]).cross(b[i]).norm();
+    sum_squared += angle * angle;
+  }
+  result.rms_angle = std::sqrt(sum_squared / best.size());
+  result.inliers = std::move(best);
+  return result;
+}
+
 RotationOnlyPath EstimateRotationOnlyPath(const frontend::FeatureTracks& tracks,
                                           const Camera& camera,
                                           const RotationOnlyPathOptions& options) {
@@ -83,34 +122,17 @@ RotationOnlyPath EstimateRotationOnlyPath(const frontend::FeatureTracks& tracks,
       a.push_back(ray(static_cast<int>(frame), feature1));
       b.push_back(ray(static_cast<int>(frame) + 1, feature2));
     }
-    const auto inliers_of = [&](const Eigen::Matrix3d& rotation) {
-      std::vector<int> inliers;
-      for (size_t i = 0; i < a.size(); ++i) {
-        if ((rotation * a[i]).cross(b[i]).norm() < max_angle)
-          inliers.push_back(static_cast<int>(i));
-      }
-      return inliers;
-    };
-    std::vector<int> best;
-    std::uniform_int_distribution<int> pick(0, static_cast<int>(a.size()) - 1);
-    for (int trial = 0; trial < options.num_trials; ++trial) {
-      const int i = pick(random), j = pick(random);
-      if (i == j || a[i].cross(a[j]).norm() < 1e-3) continue;
-      std::vector<int> inliers = inliers_of(FitRotation(a, b, {i, j}));
-      if (inliers.size() > best.size()) best = std::move(inliers);
-    }
-    if (static_cast<int>(best.size()) < options.min_num_inliers) break;
-    // Refit on the inliers, and once more on the inliers of the refit.
-    Eigen::Matrix3d next_from_this = FitRotation(a, b, best);
-    best = inliers_of(next_from_this);
-    if (static_cast<int>(best.size()) < options.min_num_inliers) break;
-    next_from_this = FitRotation(a, b, best);
+    const std::optional<RayRotation> fit =
+        EstimateRayRotation(a, b, max_angle, options.min_num_inliers, options.num_trials, &random);
+    if (!fit) break;
+    const Eigen::Matrix3d& next_from_this = fit->rotation;
     double sum_squared = 0.0;
-    for (int i : best) {
+    for (int i : fit->inliers) {
       const double error =
           (next_from_this * a[i]).cross(b[i]).norm() * 0.5 * (camera.fx + camera.fy);
       sum_squared += error * error;
     }
+    const std::vector<int>& best = fit->inliers;
     cam_from_world = next_from_this * cam_from_world;
     const image_t image_id = static_cast<image_t>(frame + 2);
     path.reconstruction.image(image_id).cam_from_world =

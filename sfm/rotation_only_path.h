@@ -10,6 +10,9 @@
 //   if (path.num_registered > 1) WriteColmapTextModel(ToColmapTextModel(path.reconstruction), ...);
 #pragma once
 
+#include <Eigen/Core>
+#include <optional>
+#include <random>
 #include <vector>
 
 #include "frontend/matching/track.h"
@@ -41,6 +44,19 @@ struct RotationOnlyPath {
   std::vector<int> num_inliers;
   std::vector<double> rms_error_px;
 };
+
+// The rotation R with b_i ≈ R a_i for unit rays a_i, b_i: RANSAC over ray pairs drawn with
+// `random`, then Kabsch refits on the inliers (rays within max_angle radians) twice.
+struct RayRotation {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  std::vector<int> inliers;
+  double rms_angle = 0.0;  // of the inliers, radians
+};
+// std::nullopt with fewer than min_num_inliers inliers.
+std::optional<RayRotation> EstimateRayRotation(const std::vector<Eigen::Vector3d>& a,
+                                               const std::vector<Eigen::Vector3d>& b,
+                                               double max_angle, int min_num_inliers,
+                                               int num_trials, std::mt19937* random);
 
 // Throws comic::Error(kInvalidArgument) for invalid tracks, camera or options.
 RotationOnlyPath EstimateRotationOnlyPath(const frontend::FeatureTracks& tracks,

@@ -61,7 +61,13 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
   run.tracking_time_s = Seconds(start);
 
   const auto mapping_start = std::chrono::steady_clock::now();
-  run.mapping = ReconstructIncrementally(run.tracks, camera, options.mapper, mapper_progress);
+  run.input_size = sequence.SourceFrameSize();
+  run.frame_size = sequence.FrameSize();
+  const FrameMatcher seam_matcher =
+      options.match_seams ? MakeSeamMatcher(sequence, detector, run.tracks, options.tracker)
+                          : FrameMatcher();
+  run.mapping =
+      ReconstructIncrementally(run.tracks, camera, options.mapper, mapper_progress, seam_matcher);
   run.mapping_time_s = Seconds(mapping_start);
 
   const auto coloring_start = std::chrono::steady_clock::now();
@@ -71,6 +77,29 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
   run.coloring_time_s = Seconds(coloring_start);
   run.wall_time_s = Seconds(start);
   return run;
+}
+
+FrameMatcher MakeSeamMatcher(const io::ImageSequence& sequence, const frontend::Detector& detector,
+                             const frontend::FeatureTracks& tracks,
+                             const frontend::TrackerOptions& tracker) {
+  frontend::TrackerOptions options = tracker;
+  options.prediction = frontend::MotionPrediction::kCoarseToFine;
+  options.match_window = 1;
+  options.verify_min_gap = 1;
+  options.match_turned_180 = false;
+  options.Check();
+  return [&sequence, &detector, &tracks, options](int frame1, int frame2) {
+    frontend::Tracker matcher(options, detector.Name(), &detector);
+    matcher.AddFrame(sequence.ReadFrame(frame1).gray, tracks.features[frame1]);
+    matcher.AddFrame(sequence.ReadFrame(frame2).gray, tracks.features[frame2]);
+    const frontend::TrackingResult result = matcher.Result();
+    std::vector<std::pair<int, int>> matches;
+    if (result.accepted_matches.empty()) return matches;
+    for (const frontend::PatchMatch& match : result.accepted_matches.front()) {
+      matches.emplace_back(match.index1, match.index2);
+    }
+    return matches;
+  };
 }
 
 void ColorizeReconstruction(const io::ImageSequence& sequence, Reconstruction* reconstruction) {

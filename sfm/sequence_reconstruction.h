@@ -8,7 +8,7 @@
 //   SequenceReconstructionOptions options;          // tracker set up for video SfM
 //   auto detector = frontend::MakeDetector("harris");
 //   SequenceReconstruction run = ReconstructSequence(sequence, *detector, camera, options);
-//   if (run.mapping.status == ReconstructionStatus::kSuccess) { ... run.mapping.reconstruction }
+//   if (HasModel(run.mapping.status)) { ... run.mapping.reconstruction (the largest model) }
 #pragma once
 
 #include <optional>
@@ -34,6 +34,10 @@ struct SequenceReconstructionOptions {
   std::optional<frontend::ImageSetMatchingOptions> image_set;
   // Incremental mapping.
   IncrementalPipelineOptions mapper;
+  // Models whose tracks do not meet are linked through matches between the frames at their
+  // seams (IncrementalPipelineOptions::seam_num_frames): the tracker's matcher on the two frames
+  // with coarse-to-fine prediction and geometric verification (MakeSeamMatcher).
+  bool match_seams = true;
 
   SequenceReconstructionOptions();
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -48,7 +52,11 @@ struct SequenceReconstruction {
   frontend::TrackBuildSummary track_building;
   // With options.image_set: what descriptor matching met and cost.
   std::optional<frontend::ImageSetMatchingSummary> image_set_matching;
-  IncrementalReconstruction mapping;
+  IncrementalReconstruction mapping;  // in the pixels of the frames (the working size)
+  // The size of the frames as stored; the frames were worked on at `frame_size` (resized, e.g. to
+  // the working resolution: sfm/working_resolution.h). Models are written in the input's pixels.
+  cv::Size input_size;
+  cv::Size frame_size;
   double tracking_time_s = 0.0;  // detection and tracking (or description and matching)
   double mapping_time_s = 0.0;   // incremental reconstruction
   double coloring_time_s = 0.0;  // reading frames again for point colours
@@ -64,6 +72,13 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
                                            const SequenceReconstructionOptions& options,
                                            const frontend::TrackingProgress& tracking_progress = {},
                                            const MapperProgressCallback& mapper_progress = {});
+
+// The seam matcher of `sequence` (its frames as tracked into `tracks` with `tracker`): the
+// features of the two frames matched by the tracker's patch matcher with coarse-to-fine
+// prediction (`detector` finds the coarse features), then verified geometrically.
+FrameMatcher MakeSeamMatcher(const io::ImageSequence& sequence, const frontend::Detector& detector,
+                             const frontend::FeatureTracks& tracks,
+                             const frontend::TrackerOptions& tracker);
 
 // Sets each point's colour to the mean colour (bilinear) of its observations in the frames of
 // `sequence`; image i + 1 of the reconstruction is frame i (as the mapper numbers them).

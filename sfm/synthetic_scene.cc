@@ -1,12 +1,22 @@
 #include "sfm/synthetic_scene.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "io/core/error.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {
+
+namespace {
+
+Camera MakeCamera(const SyntheticSceneOptions& options);
+void RenderTracks(const SyntheticSceneOptions& options, std::mt19937* random,
+                  SyntheticScene* scene);
+
+}  // namespace
 
 void SyntheticSceneOptions::Check() const {
   COMIC_CHECK(num_frames >= 1, kInvalidArgument, "synthetic num_frames must be >= 1");
@@ -47,22 +57,10 @@ SyntheticScene MakeSyntheticScene(const SyntheticSceneOptions& options) {
   options.Check();
   std::mt19937 rng(options.seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::normal_distribution<double> noise(0.0, options.noise_px > 0 ? options.noise_px : 1.0);
   const auto in = [&](double lo, double hi) { return lo + (hi - lo) * uniform(rng); };
 
   SyntheticScene scene;
-  scene.camera.model = options.model;
-  scene.camera.width = options.width;
-  scene.camera.height = options.height;
-  scene.camera.fx = scene.camera.fy = options.focal;
-  if (options.focal_y != 0.0) scene.camera.fy = options.focal_y;
-  scene.camera.cx = (options.width - 1) / 2.0;
-  scene.camera.cy = (options.height - 1) / 2.0;
-  scene.camera.k1 = options.k1;
-  scene.camera.k2 = options.k2;
-  scene.camera.p1 = options.p1;
-  scene.camera.p2 = options.p2;
-  scene.camera.Check();
+  scene.camera = MakeCamera(options);
 
   const int n = options.num_frames;
   const double step = 1.2;  // metres per frame for forward motion
@@ -122,6 +120,83 @@ SyntheticScene MakeSyntheticScene(const SyntheticSceneOptions& options) {
     }
   }
 
+  RenderTracks(options, &rng, &scene);
+  return scene;
+}
+
+SyntheticScene MakeSyntheticSceneFromPath(const SyntheticSceneOptions& path_options,
+                                          std::vector<Rigid3d> cams_from_world,
+                                          std::vector<Eigen::Vector3d> points3D) {
+  SyntheticSceneOptions options = path_options;
+  options.num_frames = std::max<int>(1, static_cast<int>(cams_from_world.size()));
+  options.num_points = std::max<int>(1, static_cast<int>(points3D.size()));
+  options.Check();
+  SyntheticScene scene;
+  scene.camera = MakeCamera(options);
+  scene.cams_from_world = std::move(cams_from_world);
+  scene.points3D = std::move(points3D);
+  std::mt19937 rng(options.seed);
+  RenderTracks(options, &rng, &scene);
+  return scene;
+}
+
+std::vector<std::pair<int, int>> MatchSyntheticFrames(const SyntheticScene& scene, int frame1,
+                                                      int frame2, double max_view_angle_deg) {
+  const int num_frames = static_cast<int>(scene.tracks.NumFrames());
+  COMIC_CHECK(frame1 >= 0 && frame1 < num_frames && frame2 >= 0 && frame2 < num_frames,
+              kInvalidArgument,
+              "synthetic match: frames " << frame1 << ", " << frame2 << " of " << num_frames);
+  // Per point, its feature in each frame.
+  std::map<int, int> in1, in2;
+  for (size_t t = 0; t < scene.tracks.tracks.size(); ++t) {
+    for (const frontend::TrackObservation& obs : scene.tracks.tracks[t].observations) {
+      if (obs.frame == frame1) in1[scene.track_point_index[t]] = obs.feature;
+      if (obs.frame == frame2) in2[scene.track_point_index[t]] = obs.feature;
+    }
+  }
+  const Eigen::Vector3d center1 = ProjectionCenter(scene.cams_from_world[frame1]);
+  const Eigen::Vector3d center2 = ProjectionCenter(scene.cams_from_world[frame2]);
+  const double max_cos = std::cos(max_view_angle_deg * M_PI / 180.0);
+  std::vector<std::pair<int, int>> matches;
+  for (const auto& [point, feature1] : in1) {
+    const auto it = in2.find(point);
+    if (it == in2.end()) continue;
+    const Eigen::Vector3d& xyz = scene.points3D[point];
+    if ((xyz - center1).normalized().dot((xyz - center2).normalized()) < max_cos) continue;
+    matches.emplace_back(feature1, it->second);
+  }
+  return matches;
+}
+
+namespace {
+
+Camera MakeCamera(const SyntheticSceneOptions& options) {
+  Camera camera;
+  camera.model = options.model;
+  camera.width = options.width;
+  camera.height = options.height;
+  camera.fx = camera.fy = options.focal;
+  if (options.focal_y != 0.0) camera.fy = options.focal_y;
+  camera.cx = (options.width - 1) / 2.0;
+  camera.cy = (options.height - 1) / 2.0;
+  camera.k1 = options.k1;
+  camera.k2 = options.k2;
+  camera.p1 = options.p1;
+  camera.p2 = options.p2;
+  camera.Check();
+  return camera;
+}
+
+// The tracks a tracker would make of scene->points3D seen from scene->cams_from_world.
+void RenderTracks(const SyntheticSceneOptions& options, std::mt19937* random,
+                  SyntheticScene* scene_out) {
+  SyntheticScene& scene = *scene_out;
+  std::mt19937& rng = *random;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, options.noise_px > 0 ? options.noise_px : 1.0);
+  const auto in = [&](double lo, double hi) { return lo + (hi - lo) * uniform(rng); };
+  const int n = static_cast<int>(scene.cams_from_world.size());
+  const int num_points = static_cast<int>(scene.points3D.size());
   frontend::FeatureTracks& tracks = scene.tracks;
   tracks.detector_name = "synthetic";
   tracks.image_size = cv::Size(options.width, options.height);
@@ -133,7 +208,7 @@ SyntheticScene MakeSyntheticScene(const SyntheticSceneOptions& options) {
     tracks.frame_names.push_back(name);
   }
   constexpr double kMargin = 2.0;
-  for (int p = 0; p < options.num_points; ++p) {
+  for (int p = 0; p < num_points; ++p) {
     frontend::Track track;
     const auto close_track = [&]() {
       if (!track.observations.empty()) {
@@ -174,7 +249,8 @@ SyntheticScene MakeSyntheticScene(const SyntheticSceneOptions& options) {
     }
     close_track();
   }
-  return scene;
 }
+
+}  // namespace
 
 }  // namespace comic::sfm

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "frontend/matching/track.h"
@@ -59,6 +60,21 @@ struct SyntheticScene {
 
 // Throws comic::Error(kInvalidArgument) for invalid options.
 SyntheticScene MakeSyntheticScene(const SyntheticSceneOptions& options);
+
+// A scene along a given camera path among given points (a pan, a stretch that sees no texture, a
+// return to an earlier view): the tracks as MakeSyntheticScene makes them, with the options'
+// camera, noise, outliers, track breaks and seed (motion, num_frames and num_points are not
+// used). A frame that sees no point has no features.
+SyntheticScene MakeSyntheticSceneFromPath(const SyntheticSceneOptions& options,
+                                          std::vector<Rigid3d> cams_from_world,
+                                          std::vector<Eigen::Vector3d> points3D);
+
+// What a feature matcher would find between two frames of `scene` that the tracks do not link:
+// pairs (feature in frame1, feature in frame2) observing the same point (wrong observations
+// included, as a matcher's mistakes), for points whose viewing directions from the two cameras
+// differ by at most max_view_angle_deg (a matcher's invariance).
+std::vector<std::pair<int, int>> MatchSyntheticFrames(const SyntheticScene& scene, int frame1,
+                                                      int frame2, double max_view_angle_deg = 30.0);
 
 // The pose of a camera at `center` looking at `target`, image y axis as close to world +y as
 // possible (y down, as in KITTI and OpenCV).

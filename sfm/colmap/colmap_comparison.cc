@@ -199,7 +199,7 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
   our_row.local_ba_time_s = ours->local_ba_time_s;
   our_row.global_ba_time_s = ours->global_ba_time_s;
   our_row.cpu_time_s = ours->cpu_time_s;
-  if (ours->status == ReconstructionStatus::kSuccess) {
+  if (HasModel(ours->status)) {
     const Reconstruction& reconstruction = ours->reconstruction;
     our_row.num_registered = static_cast<int>(reconstruction.NumRegisteredImages());
     our_row.num_points3D = static_cast<int64_t>(reconstruction.NumPoints3D());
@@ -260,7 +260,7 @@ ColmapComparison CompareWithColmap(const frontend::FeatureTracks& tracks, const 
 
   // Our model read back through COLMAP: our text model, converted to binary by COLMAP, measured
   // by COLMAP, converted back to text and evaluated like COLMAP's own.
-  if (ours->status == ReconstructionStatus::kSuccess) {
+  if (HasModel(ours->status)) {
     io::WriteColmapTextModel(ToColmapTextModel(ours->reconstruction), path("ours_text"));
     ConvertColmapModel(path("ours_text"), path("ours_bin"), "BIN", comparison.log_path,
                        options.colmap_executable);

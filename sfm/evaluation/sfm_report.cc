@@ -1,6 +1,34 @@
 #include "sfm/evaluation/sfm_report.h"
 
+#include "sfm/working_resolution.h"
+
 namespace comic::sfm {
+
+namespace {
+
+SfmModelReport ModelReport(int index, const Reconstruction& reconstruction,
+                           const std::vector<int>& registered_frames,
+                           const std::vector<int>& rotation_only_frames,
+                           const std::vector<int>& interpolated_frames, int initial_frame1,
+                           int initial_frame2, int num_merged_models) {
+  SfmModelReport model;
+  model.index = index;
+  model.num_registered = registered_frames.size();
+  model.num_rotation_only = rotation_only_frames.size();
+  model.num_interpolated = interpolated_frames.size();
+  model.num_points = reconstruction.NumPoints3D();
+  if (!registered_frames.empty()) {
+    model.first_frame = registered_frames.front();
+    model.last_frame = registered_frames.back();
+  }
+  model.registered_frames = registered_frames;
+  model.initial_frame1 = initial_frame1;
+  model.initial_frame2 = initial_frame2;
+  model.num_merged_models = num_merged_models;
+  return model;
+}
+
+}  // namespace
 
 SfmRunReport MakeRunReport(const SequenceReconstruction& run, const ReconstructionStats& stats,
                            const std::optional<TrajectoryEvaluation>& trajectory) {
@@ -19,6 +47,45 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.unregistered_frames = run.mapping.unregistered_frames;
   report.initial_frame1 = run.mapping.initial_frame1;
   report.initial_frame2 = run.mapping.initial_frame2;
+  const IncrementalReconstruction& mapping = run.mapping;
+  if (HasModel(mapping.status)) {
+    report.models.push_back(ModelReport(0, mapping.reconstruction, mapping.registered_frames,
+                                        mapping.rotation_only_frames, mapping.interpolated_frames,
+                                        mapping.initial_frame1, mapping.initial_frame2, 0));
+    for (size_t m = 0; m < mapping.other_models.size(); ++m) {
+      const IncrementalModel& model = mapping.other_models[m];
+      report.models.push_back(ModelReport(static_cast<int>(m) + 1, model.reconstruction,
+                                          model.registered_frames, model.rotation_only_frames,
+                                          model.interpolated_frames, model.initial_frame1,
+                                          model.initial_frame2, model.num_merged_models));
+    }
+  }
+  report.rotation_only_frames = mapping.rotation_only_frames;
+  report.interpolated_frames = mapping.interpolated_frames;
+  if (report.num_frames > 0) {
+    report.registered_fraction =
+        static_cast<double>(mapping.registered_frames.size() - mapping.interpolated_frames.size()) /
+        static_cast<double>(report.num_frames);
+  }
+  report.unregistered_ranges = mapping.unregistered_ranges;
+  report.num_models_started = mapping.num_models;
+  report.num_merges = mapping.num_merges;
+  report.num_seam_links = mapping.num_seam_links;
+  report.num_initial_pair_searches = mapping.num_initial_pair_searches;
+  report.initial_pair_search_cpu_time_s = mapping.initial_pair_search_cpu_time_s;
+  report.num_seam_matches = mapping.num_seam_matches;
+  report.seam_matching_cpu_time_s = mapping.seam_matching_cpu_time_s;
+  if (mapping.intrinsics_rejection.rejected) {
+    const Camera& rejected = mapping.intrinsics_rejection.rejected_camera;
+    const Camera in_input_pixels =
+        run.input_size.height > 0
+            ? ResizedCamera(rejected, run.input_size.width, run.input_size.height)
+            : rejected;
+    report.intrinsics_rejection = "self-calibration gave " + in_input_pixels.Describe() + ": " +
+                                  mapping.intrinsics_rejection.reason +
+                                  "; the camera was reset to its prior and held fixed";
+  }
+  report.working_scale = mapping.working_scale;
   report.stats = stats;
   report.trajectory = trajectory;
   report.tracking_time_s = run.tracking_time_s;
@@ -46,14 +113,63 @@ nlohmann::json PointSetToJson(const PointSetStats& stats) {
 
 }  // namespace
 
+std::string DescribeUnregisteredRanges(const std::vector<UnregisteredRange>& ranges) {
+  std::string text;
+  for (const UnregisteredRange& range : ranges) {
+    if (!text.empty()) text += "; ";
+    text += std::to_string(range.first_frame);
+    if (range.last_frame > range.first_frame) text += "-" + std::to_string(range.last_frame);
+    text += " " + range.stage + "/" + range.check;
+    if (range.check == "other_model") text += " " + std::to_string(range.other_model + 1);
+  }
+  return text;
+}
+
 nlohmann::json RunReportToJson(const SfmRunReport& report) {
   nlohmann::json json;
   json["detector"] = report.detector;
   json["status"] = report.status;
   json["frames"] = report.num_frames;
   json["registered_frames"] = report.stats.num_registered;
+  json["registered_fraction"] = report.registered_fraction;
   json["registered_frame_indices"] = report.registered_frames;
   json["unregistered_frame_indices"] = report.unregistered_frames;
+  json["pose_sources"] = {{"rotation_only", report.rotation_only_frames},
+                          {"interpolated", report.interpolated_frames}};
+  json["unregistered_ranges"] = nlohmann::json::array();
+  for (const UnregisteredRange& range : report.unregistered_ranges) {
+    json["unregistered_ranges"].push_back({{"first", range.first_frame},
+                                           {"last", range.last_frame},
+                                           {"stage", range.stage},
+                                           {"check", range.check},
+                                           {"value", range.value},
+                                           {"needed", range.needed},
+                                           {"message", range.message}});
+    if (range.other_model >= 0) json["unregistered_ranges"].back()["model"] = range.other_model + 1;
+  }
+  json["models"] = nlohmann::json::array();
+  for (const SfmModelReport& model : report.models) {
+    json["models"].push_back({{"index", model.index},
+                              {"path", "sparse/" + std::to_string(model.index)},
+                              {"registered_frames", model.num_registered},
+                              {"rotation_only_frames", model.num_rotation_only},
+                              {"interpolated_frames", model.num_interpolated},
+                              {"points3D", model.num_points},
+                              {"first_frame", model.first_frame},
+                              {"last_frame", model.last_frame},
+                              {"registered_frame_indices", model.registered_frames},
+                              {"initial_pair", {model.initial_frame1, model.initial_frame2}},
+                              {"merged_models", model.num_merged_models}});
+  }
+  json["mapping"] = {{"models_started", report.num_models_started},
+                     {"merges", report.num_merges},
+                     {"seam_links", report.num_seam_links},
+                     {"initial_pair_searches", report.num_initial_pair_searches},
+                     {"seam_matches", report.num_seam_matches},
+                     {"working_scale", report.working_scale}};
+  json["intrinsics_rejection"] = report.intrinsics_rejection.empty()
+                                     ? nlohmann::json(nullptr)
+                                     : nlohmann::json(report.intrinsics_rejection);
   json["initial_pair"] = {report.initial_frame1, report.initial_frame2};
   json["tracker"] = {{"tracks", report.num_tracks},
                      {"mean_track_length", report.mean_tracker_track_length}};
@@ -90,6 +206,8 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
       {"total", report.wall_time_s},
       {"cpu",
        {{"mapping", report.mapping_cpu_time_s},
+        {"initial_pair_search", report.initial_pair_search_cpu_time_s},
+        {"seam_matching", report.seam_matching_cpu_time_s},
         {"local_bundle_adjustment", report.local_ba_cpu_time_s},
         {"global_bundle_adjustment", report.global_ba_cpu_time_s}}},
       {"num_local_bundle_adjustments", report.num_local_ba},
@@ -116,10 +234,23 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
 io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
   bool regions = false;
   for (const SfmRunReport& report : reports) regions = regions || report.stats.boundary.has_value();
-  std::vector<std::string> columns = {
-      "detector",     "status",           "registered", "frames",        "points",
-      "track length", "reproj. error px", "ATE m",      "ATE % of path", "rot. error deg",
-      "wall time s",  "tracking s",       "mapping s",  "local BA s",    "global BA s"};
+  std::vector<std::string> columns = {"detector",
+                                      "status",
+                                      "registered",
+                                      "frames",
+                                      "models",
+                                      "points",
+                                      "track length",
+                                      "reproj. error px",
+                                      "ATE m",
+                                      "ATE % of path",
+                                      "rot. error deg",
+                                      "wall time s",
+                                      "tracking s",
+                                      "mapping s",
+                                      "local BA s",
+                                      "global BA s",
+                                      "unregistered (stage/check)"};
   if (regions) {
     for (const char* column : {"boundary points", "boundary track length", "boundary reproj. px",
                                "interior points", "interior reproj. px"}) {
@@ -152,6 +283,7 @@ io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
                                               report.status,
                                               static_cast<int64_t>(report.stats.num_registered),
                                               static_cast<int64_t>(report.num_frames),
+                                              static_cast<int64_t>(report.models.size()),
                                               static_cast<int64_t>(report.stats.all.num_points),
                                               number(report.stats.all.mean_track_length),
                                               number(report.stats.all.mean_reprojection_error_px)};
@@ -167,6 +299,7 @@ io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports) {
     row.push_back(report.mapping_time_s);
     row.push_back(report.local_ba_time_s);
     row.push_back(report.global_ba_time_s);
+    row.push_back(DescribeUnregisteredRanges(report.unregistered_ranges));
     if (regions) {
       if (report.stats.boundary && report.stats.interior) {
         row.push_back(static_cast<int64_t>(report.stats.boundary->num_points));

@@ -18,6 +18,21 @@
 
 namespace comic::sfm {
 
+// One model of a run (sparse/<index>; 0 is the largest).
+struct SfmModelReport {
+  int index = 0;
+  size_t num_registered = 0;     // frames with a pose
+  size_t num_rotation_only = 0;  // of those, posed by their rotation against the map
+  size_t num_interpolated = 0;   // of those, interpolated
+  size_t num_points = 0;
+  int first_frame = -1;  // the first and last frames with a pose
+  int last_frame = -1;
+  std::vector<int> registered_frames;
+  int initial_frame1 = -1;
+  int initial_frame2 = -1;
+  int num_merged_models = 0;
+};
+
 struct SfmRunReport {
   std::string detector;
   std::string status;  // ReconstructionStatusName
@@ -28,6 +43,26 @@ struct SfmRunReport {
   std::vector<int> unregistered_frames;
   int initial_frame1 = -1;
   int initial_frame2 = -1;
+  // Every model, the largest first (models[0] is the one `stats` describes).
+  std::vector<SfmModelReport> models;
+  // Frames of the largest model posed without PnP (sfm/pose_gap_filling.h).
+  std::vector<int> rotation_only_frames;
+  std::vector<int> interpolated_frames;
+  // Frames with a pose from observations in the largest model over all frames (kSuccess at
+  // >= success_min_registered_fraction).
+  double registered_fraction = 0.0;
+  // The frames missing from the largest model, with the stage and check that failed.
+  std::vector<UnregisteredRange> unregistered_ranges;
+  int num_models_started = 0;
+  int num_merges = 0;
+  int num_seam_links = 0;
+  int num_initial_pair_searches = 0;
+  double initial_pair_search_cpu_time_s = 0.0;
+  int num_seam_matches = 0;
+  double seam_matching_cpu_time_s = 0.0;
+  // A self-calibrated camera reset to its prior (empty reason: kept or never refined).
+  std::string intrinsics_rejection;
+  double working_scale = 1.0;  // the mapper's pixels over the frames'
   ReconstructionStats stats;
   std::optional<TrajectoryEvaluation> trajectory;
   double tracking_time_s = 0.0;
@@ -49,11 +84,15 @@ struct SfmRunReport {
 SfmRunReport MakeRunReport(const SequenceReconstruction& run, const ReconstructionStats& stats,
                            const std::optional<TrajectoryEvaluation>& trajectory);
 
+// "0-24 registration/visible_points; 36 tracking/features": the ranges in one cell or line.
+std::string DescribeUnregisteredRanges(const std::vector<UnregisteredRange>& ranges);
+
 // Every number of the report (the table's and more: per-frame errors, timings, the alignment).
 nlohmann::json RunReportToJson(const SfmRunReport& report);
 
-// One row per run: detector, status, registered / frames, points, mean track length, mean
-// reprojection error, ATE (m and % of the path), mean rotation error, wall time; boundary and
+// One row per run: detector, status, registered / frames, models, points, mean track length, mean
+// reprojection error, ATE (m and % of the path), mean rotation error, wall time, the unregistered
+// ranges with their failed check (e.g. "0-24 registration/visible_points"); boundary and
 // interior points and their errors when any report has region statistics. Missing numbers
 // (no ground truth, failed run) are empty cells.
 io::ReportTable MakeComparisonTable(const std::vector<SfmRunReport>& reports);

@@ -4,21 +4,31 @@
 #include <nlohmann/json.hpp>
 
 #include "frontend/matching/image_set_matching.h"
+#include "frontend/matching/pairing.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/report/json_text.h"
 #include "sfm/colmap/colmap_comparison.h"
 #include "sfm/colmap/colmap_export.h"
+#include "sfm/colmap/colmap_pipeline.h"
 #include "sfm/colmap/colmap_runner.h"
+#include "sfm/working_resolution.h"
 
 namespace comic::sfm {
 
 namespace {
 
-// The camera exported as known intrinsics (held fixed by COLMAP), or none for COLMAP's guess.
-std::optional<Camera> KnownCamera(const RunInputs& inputs) {
+// The camera exported as known intrinsics (held fixed by COLMAP), or none for COLMAP's guess; in
+// the pixels of `size` (the image files').
+std::optional<Camera> KnownCamera(const RunInputs& inputs, cv::Size size) {
   if (inputs.camera.self_calibrating) return std::nullopt;
-  return inputs.camera.camera;
+  return ResizedCamera(inputs.camera.camera, size.width, size.height);
+}
+
+// A folder's frames are COLMAP's images at their stored size; a video's are written as the run
+// saw them.
+cv::Size FileSize(const DetectorRun& run, const RunInputs& inputs) {
+  return inputs.sequence->IsVideo() ? run.run.frame_size : run.run.input_size;
 }
 
 // The tracks a database is written from, with a descriptor for every feature (an image set's
@@ -49,12 +59,34 @@ ColmapExportOptions RunExportOptions(const ReconstructionRunOptions& options,
   return export_options;
 }
 
-ColmapExportSummary WriteTracksDatabase(const frontend::FeatureTracks& tracks,
+frontend::FeatureTracks TracksInFilePixels(const DetectorRun& run) {
+  const double factor = static_cast<double>(run.run.input_size.height) /
+                        static_cast<double>(run.run.frame_size.height);
+  return factor == 1.0 ? run.run.tracks : ScaleTracks(run.run.tracks, factor);
+}
+
+namespace {
+
+// The tracks a database is written from: described in the pixels they were found in, then, for an
+// image set, in the pixels of the files (a video's frames are written at the working size).
+frontend::FeatureTracks DatabaseTracks(const DetectorRun& run,
+                                       const ReconstructionRunOptions& options,
+                                       const RunInputs& inputs) {
+  frontend::FeatureTracks tracks = TracksWithDescriptors(run.run.tracks, options, inputs);
+  if (inputs.sequence->IsVideo()) return tracks;
+  const double factor = static_cast<double>(run.run.input_size.height) /
+                        static_cast<double>(run.run.frame_size.height);
+  return factor == 1.0 ? tracks : ScaleTracks(tracks, factor);
+}
+
+}  // namespace
+
+ColmapExportSummary WriteTracksDatabase(const DetectorRun& run,
                                         const ReconstructionRunOptions& options,
                                         const RunInputs& inputs, const std::string& path) {
-  return ExportTracksToColmapDatabase(TracksWithDescriptors(tracks, options, inputs),
-                                      KnownCamera(inputs), RunExportOptions(options, inputs), path,
-                                      /*overwrite=*/true);
+  return ExportTracksToColmapDatabase(DatabaseTracks(run, options, inputs),
+                                      KnownCamera(inputs, FileSize(run, inputs)),
+                                      RunExportOptions(options, inputs), path, /*overwrite=*/true);
 }
 
 ColmapDatabaseOutput WriteRunColmapDatabase(const DetectorRun& run,
@@ -64,7 +96,7 @@ ColmapDatabaseOutput WriteRunColmapDatabase(const DetectorRun& run,
   ColmapDatabaseOutput output;
   output.path = options.colmap.colmap_db;
   output.summary = ExportTracksToColmapDatabase(
-      TracksWithDescriptors(run.run.tracks, options, inputs), KnownCamera(inputs),
+      DatabaseTracks(run, options, inputs), KnownCamera(inputs, FileSize(run, inputs)),
       RunExportOptions(options, inputs), output.path, options.colmap.overwrite);
   ColmapMapperOptions mapper = RecommendedColmapMapperOptions(output.summary);
   mapper.num_threads = options.colmap.colmap_threads;
@@ -83,9 +115,12 @@ ColmapComparisonOutput CompareRunWithColmap(const DetectorRun& run,
   const std::vector<std::optional<Rigid3d>> truth = inputs.ground_truth
                                                         ? inputs.ground_truth->cams_from_world
                                                         : std::vector<std::optional<Rigid3d>>();
+  // COLMAP reads the folder's images at their stored size: the tracks in those pixels.
   const ColmapComparison comparison = CompareWithColmap(
-      run.run.tracks, inputs.camera.camera, !inputs.camera.self_calibrating, truth, options.frames,
-      io::JoinPaths(out.path(), "colmap"), comparison_options, &run.run.mapping);
+      TracksInFilePixels(run),
+      ResizedCamera(inputs.camera.camera, run.run.input_size.width, run.run.input_size.height),
+      !inputs.camera.self_calibrating, truth, options.frames, io::JoinPaths(out.path(), "colmap"),
+      comparison_options, &run.run.mapping);
   const io::ReportTable table = comparison.Table();
   io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.md"), table.ToMarkdown());
   io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_compare.csv"), table.ToCsv());
@@ -112,7 +147,47 @@ ColmapComparisonOutput CompareRunWithColmap(const DetectorRun& run,
           out.ToTargetPaths(comparison.log_path)};
 }
 
+ColmapPipelineOutput RunColmapPipelineBeside(const DetectorRun& run,
+                                             const ReconstructionRunOptions& options,
+                                             const RunInputs& inputs, const io::StagedFolder& out) {
+  ColmapPipelineOptions pipeline;
+  pipeline.sequential = inputs.pairing.chosen.mode == frontend::PairingMode::kSequential;
+  if (options.colmap.colmap_threads != -1) pipeline.num_threads = options.colmap.colmap_threads;
+  const ColmapPipelineRun colmap = RunColmapPipeline(
+      options.frames, inputs.sequence->FrameNames(), io::JoinPaths(out.path(), "colmap_sift"),
+      inputs.ground_truth ? inputs.ground_truth->cams_from_world
+                          : std::vector<std::optional<Rigid3d>>(),
+      pipeline);
+  const io::ReportTable table = ColmapPipelineTable(run.report, colmap);
+  ColmapPipelineOutput output;
+  output.table_markdown = table.ToMarkdown();
+  output.log_path = out.ToTargetPaths(colmap.log_path);
+  nlohmann::json json = {{"table", table.ToJson()},
+                         {"registered_per_model", colmap.num_registered_per_model},
+                         {"commands", nlohmann::json::array()},
+                         {"log", output.log_path}};
+  for (const std::string& command : colmap.commands) {
+    output.commands.push_back(out.ToTargetPaths(command));
+    json["commands"].push_back(output.commands.back());
+  }
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_sift_compare.md"),
+                          output.table_markdown);
+  io::WriteFileAtomically(io::JoinPaths(out.path(), "colmap_sift_compare.json"),
+                          json.dump(2) + "\n");
+  return output;
+}
+
 void CheckColmapOutputs(const ReconstructionRunOptions& options) {
+  if (options.compare_colmap_sift) {
+    COMIC_CHECK(io::IsDirectory(options.frames), kInvalidArgument,
+                "--compare-colmap-sift needs FRAMES to be a folder of images");
+    COMIC_CHECK(IsColmapAvailable(), kNotFound,
+                "--compare-colmap-sift: colmap is not installed (apt-get install colmap)");
+    const std::string work = io::JoinPaths(options.output, "colmap_sift");
+    COMIC_CHECK(!io::PathExists(work), kIo,
+                work << ": exists from an earlier --compare-colmap-sift; remove it or use another "
+                        "--output");
+  }
   if (options.colmap.colmap_db.empty() && !options.compare_colmap) return;
   // A folder's frames are COLMAP's images as stored; a video's are written by --write-frames as
   // the model sees them (resized too), so only a folder needs --resize-height 0.

@@ -23,6 +23,14 @@ struct ColmapDatabaseOutput {
   std::string mapper_command;
 };
 
+// --compare-colmap-sift's result: the side-by-side table (also written as
+// colmap_sift_compare.md and .json) and the COLMAP commands, with paths as after the commit.
+struct ColmapPipelineOutput {
+  std::string table_markdown;
+  std::vector<std::string> commands;
+  std::string log_path;
+};
+
 // --compare-colmap's result: the side-by-side table (compare tables are also written as
 // colmap_compare.md, .csv and .json), with paths as they are after the commit.
 struct ColmapComparisonOutput {
@@ -36,8 +44,9 @@ struct ColmapComparisonOutput {
 ColmapExportOptions RunExportOptions(const ReconstructionRunOptions& options,
                                      const RunInputs& inputs);
 
-// Writes `tracks` as a COLMAP database at `path` (replacing a file there).
-ColmapExportSummary WriteTracksDatabase(const frontend::FeatureTracks& tracks,
+// Writes `run`'s tracks (in the image files' pixels) as a COLMAP database at `path` (replacing a
+// file there).
+ColmapExportSummary WriteTracksDatabase(const DetectorRun& run,
                                         const ReconstructionRunOptions& options,
                                         const RunInputs& inputs, const std::string& path);
 
@@ -53,7 +62,20 @@ ColmapComparisonOutput CompareRunWithColmap(const DetectorRun& run,
                                             const ReconstructionRunOptions& options,
                                             const RunInputs& inputs, const io::StagedFolder& out);
 
-// The checks of --colmap-db and --compare-colmap that look at the file system (the frames, the
+// --compare-colmap-sift: COLMAP's own pipeline on the frames of FRAMES (a folder), in
+// `out`/colmap_sift/, with the table beside `run`'s report (sfm/colmap/colmap_pipeline.h).
+// Sequential matching when the run paired frames sequentially, else exhaustive; one thread unless
+// --colmap-threads. Throws comic::Error(kExternal) if COLMAP fails.
+ColmapPipelineOutput RunColmapPipelineBeside(const DetectorRun& run,
+                                             const ReconstructionRunOptions& options,
+                                             const RunInputs& inputs, const io::StagedFolder& out);
+
+// The tracks of `run` in the pixels of the image files as stored (a folder's frames are read at
+// their stored size by COLMAP; the run may have worked at a smaller size).
+frontend::FeatureTracks TracksInFilePixels(const DetectorRun& run);
+
+// The checks of --colmap-db, --compare-colmap and --compare-colmap-sift that look at the file
+// system (the frames, the
 // database, the colmap program, --output/colmap/), before any work. Throws comic::Error.
 void CheckColmapOutputs(const ReconstructionRunOptions& options);
 

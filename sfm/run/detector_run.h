@@ -54,7 +54,13 @@ struct DetectorRun {
   // report.json as written (without an output folder: without "outputs").
   nlohmann::json report_json;
 
-  bool success() const { return run.mapping.status == ReconstructionStatus::kSuccess; }
+  // A model (status success or partial: HasModel).
+  bool success() const { return HasModel(run.mapping.status); }
+  // The largest model holds at least `fraction` of the frames (frames with interpolated poses not
+  // counted): --min-registered.
+  bool RegistersAtLeast(double fraction) const {
+    return success() && report.registered_fraction >= fraction;
+  }
 };
 
 // Runs `detector` on `inputs` with `options`; `writes_outputs` says whether the outputs will be

@@ -1,5 +1,6 @@
 #include "sfm/run/reconstruction_run.h"
 
+#include <cmath>
 #include <functional>
 #include <memory>
 
@@ -111,10 +112,16 @@ void WriteFrames(const RunOutputFolders& folders, const RunCallbacks& callbacks,
   result->frames_folder = folders.frames_target();
 }
 
-// --colmap-db and --compare-colmap, on a single detector's model.
+// --colmap-db and --compare-colmap, on a single detector's model; --compare-colmap-sift, COLMAP's
+// own pipeline on the frames, whatever became of ours.
 void HandToColmap(const ReconstructionRunOptions& options, const RunOutputFolders& folders,
                   ReconstructionRunResult* result) {
-  if (options.compare || !result->runs.front().success()) return;
+  if (options.compare) return;
+  if (options.compare_colmap_sift) {
+    result->colmap_pipeline =
+        RunColmapPipelineBeside(result->runs.front(), options, result->inputs, folders.out());
+  }
+  if (!result->runs.front().success()) return;
   const DetectorRun& run = result->runs.front();
   if (!options.colmap.colmap_db.empty()) {
     const std::string image_path =
@@ -130,13 +137,23 @@ void HandToColmap(const ReconstructionRunOptions& options, const RunOutputFolder
 // by how much, and what to try).
 std::string FailureLine(const ReconstructionRunOptions& options,
                         const ReconstructionRunResult& result) {
-  if (options.compare || result.runs.front().success()) return "";
-  const ReconstructionDiagnosis& diagnosis = result.runs.front().diagnosis;
-  std::string line = diagnosis.message + "; try " + diagnosis.suggestion;
-  if (!options.output.empty()) {
-    line += " (report: " + io::JoinPaths(options.output, "report.json") + ")";
+  if (options.compare) return "";
+  const DetectorRun& run = result.runs.front();
+  const std::string report =
+      options.output.empty() ? std::string()
+                             : " (report: " + io::JoinPaths(options.output, "report.json") + ")";
+  if (run.success()) {
+    if (run.RegistersAtLeast(options.min_registered)) return "";
+    // --min-registered: a partial model too small for the caller; its models are written.
+    return "partial: the largest model holds " +
+           std::to_string(std::lround(100.0 * run.report.registered_fraction)) +
+           " % of the frames, --min-registered asks for " +
+           std::to_string(std::lround(100.0 * options.min_registered)) +
+           " % (every model is written; the unregistered frames and why: " +
+           DescribeUnregisteredRanges(run.report.unregistered_ranges) + ")" + report;
   }
-  return line;
+  const ReconstructionDiagnosis& diagnosis = run.diagnosis;
+  return diagnosis.message + "; try " + diagnosis.suggestion + report;
 }
 
 }  // namespace

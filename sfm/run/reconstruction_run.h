@@ -35,8 +35,10 @@ struct ReconstructionRunResult {
   std::string frames_folder;
   std::optional<ColmapDatabaseOutput> colmap_database;      // --colmap-db
   std::optional<ColmapComparisonOutput> colmap_comparison;  // --compare-colmap
+  std::optional<ColmapPipelineOutput> colmap_pipeline;      // --compare-colmap-sift
   // One detector (no --compare) and no model: the error line, saying which check failed, by how
-  // much, what to try and where the report is. Empty otherwise.
+  // much, what to try and where the report is; or a model holding fewer frames than
+  // --min-registered asks for: the line saying so, with the unregistered ranges. Empty otherwise.
   std::string failure;
 
   bool success() const { return failure.empty(); }

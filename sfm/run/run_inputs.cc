@@ -8,14 +8,26 @@
 #include "io/datasets/region_annotations.h"
 #include "io/image/mask_folder.h"
 #include "sfm/run/run_outputs.h"
+#include "sfm/working_resolution.h"
 
 namespace comic::sfm {
 
 namespace {
 
+// The frames, at the working size when they are larger and --resize-height does not say otherwise
+// (sfm/working_resolution.h).
 void OpenFrames(const ReconstructionRunOptions& options, RunInputs* inputs) {
   inputs->sequence = std::make_unique<io::ImageSequence>(
       io::ImageSequence::Open(options.frames, options.sequence));
+  const int working_height =
+      WorkingResizeHeight(inputs->sequence->SourceFrameSize(), options.max_working_size);
+  if (options.sequence.resize_height == 0 && working_height > 0) {
+    io::ImageSequenceOptions working = options.sequence;
+    working.resize_height = working_height;
+    inputs->sequence =
+        std::make_unique<io::ImageSequence>(io::ImageSequence::Open(options.frames, working));
+    inputs->at_working_size = true;
+  }
   for (size_t k = 0; k < inputs->sequence->NumFrames(); ++k) {
     inputs->source_indices.push_back(options.sequence.first_frame +
                                      static_cast<int>(k) * options.sequence.stride);

@@ -24,6 +24,9 @@ namespace comic::sfm {
 struct RunInputs {
   std::unique_ptr<io::ImageSequence> sequence;
   std::vector<int> source_indices;  // per frame: its index in the folder or video
+  // The frames were opened at the working size (--max-working-size), smaller than stored; the
+  // models are written at the stored size (sequence->SourceFrameSize()).
+  bool at_working_size = false;
   ResolvedCamera camera;
   std::optional<FrameGroundTruth> ground_truth;
   io::GroundTruthFormat gt_format = io::GroundTruthFormat::kAuto;

@@ -4,23 +4,11 @@
 
 #include "frontend/matching/pairing.h"
 #include "io/core/file_utils.h"
+#include "sfm/working_resolution.h"
 
 namespace comic::sfm {
 
 namespace {
-
-// Frames by index in runs: " 3 40-47".
-std::string FrameRuns(const std::vector<int>& frames) {
-  std::ostringstream text;
-  for (size_t i = 0; i < frames.size();) {
-    size_t j = i;
-    while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
-    text << " " << frames[i];
-    if (j > i) text << "-" << frames[j];
-    i = j + 1;
-  }
-  return text.str();
-}
 
 std::string WithoutFinalNewline(std::string text) {
   if (!text.empty() && text.back() == '\n') text.pop_back();
@@ -32,8 +20,12 @@ std::string WithoutFinalNewline(std::string text) {
 std::vector<std::string> RunInputsLines(const RunInputs& inputs, const std::string& program) {
   std::ostringstream frames;
   frames << program << ": " << inputs.sequence->NumFrames() << " frames "
-         << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height
-         << ", camera " << inputs.camera.camera.Describe() << " (" << inputs.camera.source << ")";
+         << inputs.sequence->FrameSize().width << "x" << inputs.sequence->FrameSize().height;
+  if (inputs.at_working_size) {
+    frames << " (working size; stored " << inputs.sequence->SourceFrameSize().width << "x"
+           << inputs.sequence->SourceFrameSize().height << ", the models are written at it)";
+  }
+  frames << ", camera " << inputs.camera.camera.Describe() << " (" << inputs.camera.source << ")";
   if (inputs.ground_truth) {
     frames << ", ground truth for " << inputs.ground_truth->num_matched << " frames";
   }
@@ -62,9 +54,21 @@ std::string DetectorSummaryLine(const DetectorRun& run) {
   const SfmRunReport& report = run.report;
   std::ostringstream line;
   line << "[" << report.detector << "] " << report.status << ": " << report.stats.num_registered
-       << "/" << report.num_frames << " frames registered, " << report.stats.all.num_points
-       << " points, mean track length " << report.stats.all.mean_track_length
-       << ", mean reprojection error " << report.stats.all.mean_reprojection_error_px << " px";
+       << "/" << report.num_frames << " frames registered";
+  if (!report.rotation_only_frames.empty() || !report.interpolated_frames.empty()) {
+    line << " (" << report.rotation_only_frames.size() << " by rotation only, "
+         << report.interpolated_frames.size() << " interpolated)";
+  }
+  if (report.models.size() > 1) {
+    line << " in the largest of " << report.models.size() << " models (";
+    for (size_t m = 1; m < report.models.size(); ++m) {
+      line << (m > 1 ? ", " : "") << report.models[m].num_registered;
+    }
+    line << " frames in the others)";
+  }
+  line << ", " << report.stats.all.num_points << " points, mean track length "
+       << report.stats.all.mean_track_length << ", mean reprojection error "
+       << report.stats.all.mean_reprojection_error_px << " px";
   if (report.trajectory) {
     line << ", ATE " << report.trajectory->ate_rmse << " ("
          << 100.0 * report.trajectory->ate_fraction_of_path << " % of "
@@ -75,15 +79,23 @@ std::string DetectorSummaryLine(const DetectorRun& run) {
   const IncrementalReconstruction& mapping = run.run.mapping;
   if (mapping.reconstruction.NumRegisteredImages() > 0 &&
       !mapping.reconstruction.cameras().empty()) {
-    line << "; camera " << mapping.reconstruction.cameras().begin()->second.Describe()
+    // In the input's pixels, as the models are written.
+    const Camera& camera = mapping.reconstruction.cameras().begin()->second;
+    line << "; camera "
+         << ResizedCamera(camera, run.run.input_size.width, run.run.input_size.height).Describe()
          << (mapping.intrinsics_refined ? " (refined)" : "");
+    if (!report.intrinsics_rejection.empty()) {
+      line << " (held at the prior: " << report.intrinsics_rejection << ")";
+    }
     if (mapping.focal_assessed && !mapping.focal_observability.observable) {
       line << ", focal unobservable (optical axes within "
            << mapping.focal_observability.max_viewing_angle_deg << " deg): prior kept";
     }
   }
-  if (report.stats.num_registered > 0 && !report.unregistered_frames.empty()) {
-    line << "; unregistered frames:" << FrameRuns(report.unregistered_frames);
+  // The frames the largest model could not take, in ranges with the check that failed (e.g.
+  // "40-47 registration/visible_points"; report.json words each).
+  if (report.stats.num_registered > 0 && !report.unregistered_ranges.empty()) {
+    line << "; unregistered frames: " << DescribeUnregisteredRanges(report.unregistered_ranges);
   }
   return line.str();
 }
@@ -103,6 +115,12 @@ std::vector<std::string> RunOutcomeLines(const ReconstructionRunResult& result,
          << database.summary.num_verified_pairs << " of " << database.summary.num_matched_pairs
          << " pairs verified); run COLMAP on it with:\n  " << database.mapper_command;
     lines.push_back(line.str());
+  }
+  if (result.colmap_pipeline) {
+    const ColmapPipelineOutput& pipeline = *result.colmap_pipeline;
+    std::string line = pipeline.table_markdown + "COLMAP ran (log: " + pipeline.log_path + "):";
+    for (const std::string& command : pipeline.commands) line += "\n  " + command;
+    lines.push_back(line);
   }
   if (result.colmap_comparison) {
     const ColmapComparisonOutput& comparison = *result.colmap_comparison;

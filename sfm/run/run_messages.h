@@ -22,8 +22,10 @@ std::vector<std::string> RunInputsLines(const RunInputs& inputs, const std::stri
 std::string FrameRegisteredLine(const std::string& detector, const MapperProgress& progress);
 
 // "[harris] success: 12/12 frames registered, 1586 points, ...": status, registered frames,
-// points, track length, reprojection error, the trajectory error with ground truth, time, the
-// camera of the model and the unregistered frames in runs ("40-47").
+// the models, points, track length, reprojection error, the trajectory error with ground truth,
+// time, the camera of the model (in the input's pixels; held at the prior and why, when
+// self-calibration left the plausible range) and the unregistered frames in ranges with the check
+// that failed ("40-47 registration/visible_points").
 std::string DetectorSummaryLine(const DetectorRun& run);
 
 // After the run, in order: where a video's frames went (unless `quiet`), the --colmap-db

@@ -58,8 +58,13 @@ void ReconstructionRunOptions::Check() const {
               "--global-ba-growth must be > 1, got " << global_ba_growth);
   COMIC_CHECK(init_angle > 0.0 && init_angle < 90.0, kInvalidArgument,
               "--init-angle must be in (0, 90) degrees, got " << init_angle);
-  COMIC_CHECK(init_max_gap >= 1, kInvalidArgument,
-              "--init-max-gap must be >= 1, got " << init_max_gap);
+  COMIC_CHECK(init_max_gap >= 0, kInvalidArgument,
+              "--init-max-gap must be >= 0 (0: no limit), got " << init_max_gap);
+  COMIC_CHECK(
+      max_working_size == 0 || max_working_size >= 64, kInvalidArgument,
+      "--max-working-size must be 0 (the input's size) or >= 64 pixels, got " << max_working_size);
+  COMIC_CHECK(min_registered >= 0.0 && min_registered <= 1.0, kInvalidArgument,
+              "--min-registered must be in [0, 1], got " << min_registered);
   MakeSequenceReconstructionOptions(*this, tracker.ToTrackerOptions(), false);
   camera.Check();
   // The outputs.
@@ -75,6 +80,9 @@ void ReconstructionRunOptions::Check() const {
   }
   COMIC_CHECK(!compare_colmap || !output.empty(), kInvalidArgument,
               "--compare-colmap needs --output (COLMAP's files go to --output/colmap/)");
+  COMIC_CHECK(!compare_colmap_sift || (!compare && !output.empty()), kInvalidArgument,
+              "--compare-colmap-sift works on one detector's run (not --compare) and needs "
+              "--output (COLMAP's files go to --output/colmap_sift/)");
   COMIC_CHECK(write_frames != kFramesInOutput || !output.empty(), kInvalidArgument,
               "--write-frames without a folder needs --output (the frames go to images/ in it)");
   // The evaluation.
@@ -108,6 +116,7 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
   options.mapper.mapper.init_max_frame_gap = run.init_max_gap;
   // An image set's frame order says nothing about which views are near: any two may start.
   if (image_set) options.mapper.mapper.init_max_frame_gap = 1 << 30;
+  options.mapper.max_working_image_size = run.max_working_size;
   // `threads` is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no output may depend
   // on the thread count. They stay on one thread; detection and the export use `threads`.

@@ -45,6 +45,11 @@ struct ReconstructionRunOptions {
   frontend::DetectorOptions detector_options;
   // --resize-height, --first, --last, --stride, --allow-truncated, --max-pixels.
   io::ImageSequenceOptions sequence;
+  // --max-working-size N: frames whose larger side exceeds N pixels are tracked and mapped at N
+  // (the tracker's and the mapper's pixel thresholds are tuned at ~700 px; COLMAP caps its SIFT
+  // at 3200) and the models are written in the input's pixels (sfm/working_resolution.h). 0: the
+  // input's size. --resize-height, when given, decides instead.
+  int max_working_size = IncrementalPipelineOptions().max_working_image_size;
 
   // ---- the camera and the truth
   CameraChoice camera;             // --intrinsics, --camera-model, --fixed-intrinsics, ...
@@ -69,7 +74,9 @@ struct ReconstructionRunOptions {
   int local_ba_images = IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
   double init_angle = 4.0;  // degrees
-  int init_max_gap = 20;    // a video's; see `matcher`
+  // A video's initial-pair gap (0: no limit, the gap grows as far as the tracks reach); see
+  // `matcher`.
+  int init_max_gap = 0;
   int threads = 0;  // detection and the export (0: one per core); never the bundle adjustments
 
   // ---- evaluation
@@ -86,6 +93,16 @@ struct ReconstructionRunOptions {
   std::string ply_format = "binary";  // binary or ascii
   ColmapDatabaseOptions colmap;       // --colmap-db and its flags
   bool compare_colmap = false;        // --compare-colmap
+  // --compare-colmap-sift: COLMAP's own pipeline (SIFT, matcher, mapper; its defaults, one thread
+  // unless --colmap-threads) on the same frames, in --output/colmap_sift/, and the table
+  // colmap_sift_compare.md (sfm/colmap/colmap_pipeline.h).
+  bool compare_colmap_sift = false;
+  // --min-registered F: a run whose largest model holds fewer than this fraction of the frames is
+  // a failure (exit 1), its models written all the same. 0.5: below half the frames the largest
+  // model is not a reconstruction of the clip but of a part of it (which part is a matter of where
+  // tracking held), and a script that takes exit 0 for "the clip is reconstructed" would be wrong;
+  // between half and 95 % the run is `partial` but the model is the clip's main part.
+  double min_registered = 0.5;
   // --write-frames: where a video's frames are written as PNGs (empty: not written, unless
   // --colmap-db needs them; kFramesInOutput: images/ in --output).
   std::string write_frames;

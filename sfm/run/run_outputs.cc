@@ -12,6 +12,7 @@
 #include "io/report/json_text.h"
 #include "io/report/ply.h"
 #include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/colmap/model_set_writer.h"
 #include "sfm/run/colmap_outputs.h"
 #include "sfm/run/run_page.h"
 #include "sfm/run/run_report.h"
@@ -21,18 +22,23 @@ namespace comic::sfm {
 namespace {
 
 const char* const kTextModelFiles[] = {"cameras.txt", "images.txt", "points3D.txt"};
-const char* const kBinaryModelFiles[] = {"sparse/0/cameras.bin", "sparse/0/images.bin",
-                                         "sparse/0/points3D.bin"};
+
+// Every model, in the input's pixels: sparse/<k>/ as COLMAP's mapper numbers its models (sparse/0,
+// the largest, is where nerfstudio and the Gaussian-splatting tools look), the largest also as
+// text at the top (sfm/colmap/model_set_writer.h).
+ModelSetWriteOptions ModelWriteOptions(const DetectorRun& run,
+                                       const ReconstructionRunOptions& options) {
+  ModelSetWriteOptions write;
+  write.text = options.model_format != "bin";
+  write.binary = options.model_format != "txt";
+  write.width = run.run.input_size.width;
+  write.height = run.run.input_size.height;
+  return write;
+}
 
 void WriteModel(const DetectorRun& run, const ReconstructionRunOptions& options,
                 const std::string& folder) {
-  const io::ColmapTextModel model = ToColmapTextModel(run.run.mapping.reconstruction);
-  if (options.model_format != "bin") io::WriteColmapTextModel(model, folder);
-  // sparse/0/: where COLMAP's mapper puts its first model, and where nerfstudio and the
-  // Gaussian-splatting tools look for it.
-  if (options.model_format != "txt") {
-    io::WriteColmapBinaryModel(model, io::JoinPaths(folder, "sparse/0"));
-  }
+  WriteModelSet(run.run.mapping, folder, ModelWriteOptions(run, options));
 }
 
 void WritePointCloud(const DetectorRun& run, const ReconstructionRunOptions& options,
@@ -56,7 +62,7 @@ void WriteTrajectoryPlot(const DetectorRun& run, const ReconstructionRunOptions&
 // docs/footage.md), and the rotation-only path when there is one.
 void WriteWhatWasFound(const DetectorRun& run, const ReconstructionRunOptions& options,
                        const RunInputs& inputs, const std::string& folder) {
-  WriteTracksDatabase(run.run.tracks, options, inputs, io::JoinPaths(folder, "tracks.db"));
+  WriteTracksDatabase(run, options, inputs, io::JoinPaths(folder, "tracks.db"));
   if (run.rotation_only && run.rotation_only->num_registered >= 2) {
     io::WriteColmapTextModel(ToColmapTextModel(run.rotation_only->reconstruction),
                              io::JoinPaths(folder, "rotation_only"));
@@ -69,11 +75,7 @@ std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
                                              const ReconstructionRunOptions& options) {
   std::vector<std::string> files;
   if (run.success()) {
-    if (options.model_format != "bin")
-      files.assign(std::begin(kTextModelFiles), std::end(kTextModelFiles));
-    if (options.model_format != "txt") {
-      files.insert(files.end(), std::begin(kBinaryModelFiles), std::end(kBinaryModelFiles));
-    }
+    files = ModelSetFiles(run.run.mapping, ModelWriteOptions(run, options));
     files.insert(files.end(), {"points.ply", "trajectory.png"});
   } else if (run.keeps_tracks) {
     files.push_back("tracks.db");

@@ -3,6 +3,7 @@
 #include "frontend/matching/pairing.h"
 #include "sfm/focal_observability.h"
 #include "sfm/run/run_outputs.h"
+#include "sfm/working_resolution.h"
 
 namespace comic::sfm {
 
@@ -64,8 +65,16 @@ nlohmann::json CameraReportJson(const SequenceReconstruction& run, const RunInpu
   const Camera& camera = reconstruction.cameras().empty()
                              ? inputs.camera.camera
                              : reconstruction.cameras().begin()->second;
-  json["final"] = CameraToJson(camera);
-  json["focal_length_px"] = camera.fx;
+  // In the input's pixels, as the models are written (the prior is at the frames' size,
+  // options.frame_size).
+  const Camera final_camera = ResizedCamera(camera, run.input_size.width, run.input_size.height);
+  json["final"] = CameraToJson(final_camera);
+  json["focal_length_px"] = final_camera.fx;
+  if (mapping.intrinsics_rejection.rejected) {
+    json["rejected"] = CameraToJson(ResizedCamera(mapping.intrinsics_rejection.rejected_camera,
+                                                  run.input_size.width, run.input_size.height));
+    json["rejection_reason"] = mapping.intrinsics_rejection.reason;
+  }
   if (mapping.focal_assessed) {
     json["focal_observable"] = mapping.focal_observability.observable;
     json["max_viewing_angle_deg"] = mapping.focal_observability.max_viewing_angle_deg;
@@ -126,6 +135,10 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"init_angle_deg", options.init_angle},
           {"init_max_gap", inputs.image_set ? nlohmann::json("all frames (image set)")
                                             : nlohmann::json(options.init_max_gap)},
+          {"max_working_size", options.max_working_size},
+          {"input_size",
+           {inputs.sequence->SourceFrameSize().width, inputs.sequence->SourceFrameSize().height}},
+          {"min_registered", options.min_registered},
           {"threads", options.threads},
           {"regions", options.regions},
           {"masks", options.masks},

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
 
@@ -30,10 +32,25 @@ TEST(IncrementalMapper, FindsAnInitialPairUnderForwardMotion) {
   // below COLMAP's 16 degree initial-pair threshold; the parallax score still finds the pair.
   EXPECT_LT(pair->geometry.median_triangulation_angle_deg, 16.0);
   EXPECT_GT(pair->image_id2, pair->image_id1);
-  // Candidates come best first.
+  // Candidates come best first: those of the most tracked anchors, then those of the anchors
+  // over the whole clip.
   const auto pairs = mapper.FindInitialPairs();
   ASSERT_FALSE(pairs.empty());
-  for (size_t i = 1; i < pairs.size(); ++i) EXPECT_GE(pairs[i - 1].score, pairs[i].score);
+  EXPECT_TRUE(pairs.front().most_tracked_anchor);
+  for (size_t i = 1; i < pairs.size(); ++i) {
+    EXPECT_GE(pairs[i - 1].most_tracked_anchor, pairs[i].most_tracked_anchor);
+    if (pairs[i - 1].most_tracked_anchor == pairs[i].most_tracked_anchor) {
+      EXPECT_GE(pairs[i - 1].score, pairs[i].score);
+    }
+  }
+  // The anchors over the whole clip reach its start and its end.
+  int first_frame = 1 << 30, last_frame = -1;
+  for (const auto& candidate : pairs) {
+    first_frame = std::min(first_frame, IncrementalMapper::FrameOfImageId(candidate.image_id1));
+    last_frame = std::max(last_frame, IncrementalMapper::FrameOfImageId(candidate.image_id2));
+  }
+  EXPECT_LT(first_frame, 8);
+  EXPECT_GT(last_frame, static_cast<int>(scene.tracks.NumFrames()) - 9);
   // Excluded frames take no part.
   std::set<image_t> excluded = {pair->image_id1, pair->image_id2};
   const auto other = mapper.FindInitialPair(excluded);

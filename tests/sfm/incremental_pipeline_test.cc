@@ -6,11 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 
+#include "io/colmap/colmap_binary_model.h"
 #include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "sfm/colmap/model_set_writer.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/synthetic_scene.h"
 #include "sfm/trajectory_evaluation.h"
+#include "tests/test_support.h"
 
 namespace comic::sfm {
 namespace {
@@ -280,6 +286,187 @@ TEST(IncrementalPipeline, SameInputGivesIdenticalOutput) {
     EXPECT_EQ(point.xyz, it->second.xyz);
     ++it;
   }
+}
+
+// Points on a deep wall ahead (z from 8 to 14 m), x from -25 to 30 m, 6 m high.
+std::vector<Eigen::Vector3d> WallPoints(int num_points, uint32_t seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> x(-25.0, 30.0), y(-3.0, 3.0), z(8.0, 14.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int p = 0; p < num_points; ++p) points.emplace_back(x(random), y(random), z(random));
+  return points;
+}
+
+// 36 frames walking along the wall; in the middle third the camera looks away from it, at
+// nothing (no texture). Afterwards it looks at the wall again from where it left it (a return to
+// the first part's scene), or, if `moves_on`, from 16 m farther along (new texture only).
+SyntheticScene WalkWithBlankMiddle(bool moves_on, int scale = 1) {
+  std::vector<Rigid3d> path;
+  for (int i = 0; i < 36; ++i) {
+    double x = -12.0 + 0.3 * std::min(i, 11);
+    if (i >= 24) x = (moves_on ? 8.0 : x) + 0.3 * (i - 24);
+    const Eigen::Vector3d center(x, 0.2 * std::sin(0.5 * i), 0.0);
+    const bool blank = i >= 12 && i < 24;
+    const Eigen::Vector3d ahead(0.5 * std::sin(0.3 * i), 0.0, blank ? -10.0 : 10.0);
+    path.push_back(LookAt(center, center + ahead));
+  }
+  SyntheticSceneOptions options;
+  options.width *= scale;
+  options.height *= scale;
+  options.focal *= scale;
+  options.noise_px *= scale;
+  return MakeSyntheticSceneFromPath(options, path, WallPoints(1500, 5));
+}
+
+FrameMatcher SyntheticMatcher(const SyntheticScene& scene) {
+  return [&scene](int frame1, int frame2) { return MatchSyntheticFrames(scene, frame1, frame2); };
+}
+
+std::vector<int> Range(int first, int last) {
+  std::vector<int> frames;
+  for (int frame = first; frame <= last; ++frame) frames.push_back(frame);
+  return frames;
+}
+
+// A stretch without texture breaks the clip into two models; both are kept, the status is
+// partial, and the gap is named with the check that failed.
+TEST(IncrementalPipeline, AStretchWithoutTextureLeavesTwoModelsAndNamesTheGap) {
+  const SyntheticScene scene = WalkWithBlankMiddle(/*moves_on=*/true);
+  const IncrementalReconstruction result = ReconstructIncrementally(
+      scene.tracks, scene.camera, IncrementalPipelineOptions(), {}, SyntheticMatcher(scene));
+  ASSERT_EQ(result.status, ReconstructionStatus::kPartial);
+  ASSERT_EQ(result.NumModels(), 2u);
+  std::vector<std::vector<int>> thirds = {result.registered_frames,
+                                          result.other_models[0].registered_frames};
+  std::sort(thirds.begin(), thirds.end());
+  EXPECT_EQ(thirds[0], Range(0, 11));
+  EXPECT_EQ(thirds[1], Range(24, 35));
+  // The blank third: no features, the first check a frame fails.
+  const auto gap =
+      std::find_if(result.unregistered_ranges.begin(), result.unregistered_ranges.end(),
+                   [](const UnregisteredRange& range) { return range.first_frame == 12; });
+  ASSERT_NE(gap, result.unregistered_ranges.end());
+  EXPECT_EQ(gap->last_frame, 23);
+  EXPECT_EQ(gap->stage, "tracking");
+  EXPECT_EQ(gap->check, "features");
+  EXPECT_EQ(gap->value, 0.0);
+  EXPECT_NE(gap->message.find("frames 12-23"), std::string::npos) << gap->message;
+  // The other third is named as another model's.
+  const auto other =
+      std::find_if(result.unregistered_ranges.begin(), result.unregistered_ranges.end(),
+                   [](const UnregisteredRange& range) { return range.check == "other_model"; });
+  ASSERT_NE(other, result.unregistered_ranges.end());
+  EXPECT_EQ(other->other_model, 0);
+  EXPECT_EQ(other->last_frame - other->first_frame, 11);
+  // Both models are written: sparse/0 the largest, sparse/1 the other.
+  const test::ScopedTempDir folder;
+  WriteModelSet(result, folder.path(), ModelSetWriteOptions());
+  EXPECT_EQ(io::ReadColmapBinaryModel(folder.File("sparse/1")).images.size(), 12u);
+  EXPECT_TRUE(io::PathExists(folder.File("sparse/0/points3D.bin")));
+  // And a rerun gives the same models, bit for bit.
+  const IncrementalReconstruction again = ReconstructIncrementally(
+      scene.tracks, scene.camera, IncrementalPipelineOptions(), {}, SyntheticMatcher(scene));
+  ASSERT_EQ(again.NumModels(), 2u);
+  const auto expect_same = [](const Reconstruction& a, const Reconstruction& b) {
+    ASSERT_EQ(a.RegisteredImageIds(), b.RegisteredImageIds());
+    for (image_t id : a.RegisteredImageIds()) {
+      EXPECT_EQ(a.image(id).cam_from_world.translation, b.image(id).cam_from_world.translation);
+      EXPECT_EQ(a.image(id).cam_from_world.rotation.coeffs(),
+                b.image(id).cam_from_world.rotation.coeffs());
+    }
+    ASSERT_EQ(a.NumPoints3D(), b.NumPoints3D());
+  };
+  expect_same(result.reconstruction, again.reconstruction);
+  expect_same(result.other_models[0].reconstruction, again.other_models[0].reconstruction);
+}
+
+// The same clip, but after the blank third the camera sees the first part's scene again: the
+// matches between the frames facing each other across the gap link the two models into one.
+TEST(IncrementalPipeline, AReturnToTheSceneLinksTheModelsAcrossTheGap) {
+  const SyntheticScene scene = WalkWithBlankMiddle(/*moves_on=*/false);
+  // Without a matcher the tracks alone cannot join them.
+  const IncrementalReconstruction unlinked =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  EXPECT_EQ(unlinked.NumModels(), 2u);
+  const IncrementalReconstruction result = ReconstructIncrementally(
+      scene.tracks, scene.camera, IncrementalPipelineOptions(), {}, SyntheticMatcher(scene));
+  ASSERT_TRUE(HasModel(result.status));
+  EXPECT_EQ(result.NumModels(), 1u);
+  EXPECT_EQ(result.num_seam_links, 1);
+  std::vector<int> expected = Range(0, 11);
+  for (int frame : Range(24, 35)) expected.push_back(frame);
+  EXPECT_EQ(result.registered_frames, expected);
+  const auto evaluation = Evaluate(result, scene);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_LT(evaluation->ate_fraction_of_path, 0.01)
+      << "ATE " << evaluation->ate_rmse << " over a path of " << evaluation->path_length;
+  EXPECT_LT(evaluation->mean_rotation_error_deg, 0.5);
+}
+
+// Work at a working size: the same clip at 3x the image size (and 3x the pixel noise, as if the
+// frames were upsampled) registers the same frames in the same models, in the input's pixels.
+TEST(IncrementalPipeline, ThreeTimesTheImageSizeRegistersTheSameFrames) {
+  const SyntheticScene small = WalkWithBlankMiddle(/*moves_on=*/false);
+  const SyntheticScene large = WalkWithBlankMiddle(/*moves_on=*/false, /*scale=*/3);
+  const IncrementalPipelineOptions options;
+  const IncrementalReconstruction a =
+      ReconstructIncrementally(small.tracks, small.camera, options, {}, SyntheticMatcher(small));
+  const IncrementalReconstruction b =
+      ReconstructIncrementally(large.tracks, large.camera, options, {}, SyntheticMatcher(large));
+  EXPECT_EQ(a.working_scale, 1.0);
+  EXPECT_DOUBLE_EQ(b.working_scale, options.max_working_image_size / 1920.0);
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.NumModels(), b.NumModels());
+  EXPECT_EQ(a.registered_frames, b.registered_frames);
+  const Camera& camera = b.reconstruction.cameras().begin()->second;
+  EXPECT_EQ(camera.width, 1920);
+  EXPECT_NEAR(camera.fx, 1800.0, 1e-6);
+  EXPECT_NEAR(b.reconstruction.ComputeMeanReprojectionError(),
+              3.0 * a.reconstruction.ComputeMeanReprojectionError(),
+              0.5 * a.reconstruction.ComputeMeanReprojectionError());
+}
+
+// A walk along the wall that stops, pans 90 degrees to a side wall it never mapped and back, and
+// walks on: the frames PnP cannot register (nothing mapped in view) get their rotation about the
+// centre they turn on, and no frame is left without a pose.
+TEST(IncrementalPipeline, APanInTheMiddleOfAWalkLeavesNoFrameWithoutAPose) {
+  std::vector<Rigid3d> path;
+  for (int i = 0; i < 32; ++i) {
+    const double x = -6.0 + 0.3 * std::min(i, 9) + (i >= 22 ? 0.3 * (i - 21) : 0.0);
+    const double yaw = i >= 10 && i < 22 ? 0.5 * M_PI * std::sin(M_PI * (i - 9) / 13.0) : 0.0;
+    const Eigen::Vector3d center(x, 0.2 * std::sin(0.5 * i), 0.0);
+    path.push_back(
+        LookAt(center, center + Eigen::Vector3d(10.0 * std::sin(yaw), 0.0, 10.0 * std::cos(yaw))));
+  }
+  // The wall ahead ends at x = 6; a side wall at x = 14..18 is seen only while panning.
+  std::vector<Eigen::Vector3d> points;
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int p = 0; p < 2000; ++p) {
+    const bool side = p % 4 == 3;
+    points.emplace_back(side ? 14.0 + 4.0 * unit(random) : -20.0 + 26.0 * unit(random),
+                        -3.0 + 6.0 * unit(random),
+                        side ? -6.0 + 18.0 * unit(random) : 8.0 + 6.0 * unit(random));
+  }
+  const SyntheticScene scene = MakeSyntheticSceneFromPath(SyntheticSceneOptions(), path, points);
+  // Registration alone leaves the far end of the pan out.
+  IncrementalPipelineOptions no_gap_filling;
+  no_gap_filling.fill_pose_gaps = false;
+  const IncrementalReconstruction registered = ReconstructIncrementally(
+      scene.tracks, scene.camera, no_gap_filling, {}, SyntheticMatcher(scene));
+  EXPECT_LT(registered.registered_frames.size(), 32u);
+  const IncrementalReconstruction result = ReconstructIncrementally(
+      scene.tracks, scene.camera, IncrementalPipelineOptions(), {}, SyntheticMatcher(scene));
+  ASSERT_TRUE(HasModel(result.status));
+  EXPECT_EQ(result.registered_frames, Range(0, 31));
+  EXPECT_EQ(result.NumModels(), 1u);
+  EXPECT_FALSE(result.rotation_only_frames.empty());
+  EXPECT_TRUE(result.interpolated_frames.empty());
+  const auto evaluation = Evaluate(result, scene);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_LT(evaluation->ate_fraction_of_path, 0.02)
+      << "ATE " << evaluation->ate_rmse << " over a path of " << evaluation->path_length;
+  EXPECT_LT(evaluation->mean_rotation_error_deg, 1.0);
 }
 
 TEST(IncrementalPipeline, RejectsInvalidOptions) {

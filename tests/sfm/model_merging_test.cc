@@ -3,6 +3,7 @@
 // and a model whose points do not agree is refused.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <random>
 #include <set>
 
@@ -89,17 +90,58 @@ TEST(ModelMerging, JoinsModelsSharingOneFrameWithTheRightScale) {
   EXPECT_EQ(first.MergeModel(second.reconstruction()), 0u);
 }
 
+// The scene's tracks with every track cut between frames `frame` and `frame` + 1, so that models
+// on either side share neither a frame nor a track.
+SyntheticScene CutTracks(SyntheticScene scene, int frame) {
+  std::vector<frontend::Track> tracks;
+  std::vector<int> points;
+  for (size_t t = 0; t < scene.tracks.tracks.size(); ++t) {
+    frontend::Track before, after;
+    for (const frontend::TrackObservation& obs : scene.tracks.tracks[t].observations) {
+      (obs.frame <= frame ? before : after).observations.push_back(obs);
+    }
+    for (frontend::Track* part : {&before, &after}) {
+      if (part->Length() < 2) continue;
+      tracks.push_back(std::move(*part));
+      points.push_back(scene.track_point_index[t]);
+    }
+  }
+  scene.tracks.tracks = std::move(tracks);
+  scene.track_point_index = std::move(points);
+  return scene;
+}
+
+TEST(ModelMerging, JoinsModelsSharingOnlyTracks) {
+  const SyntheticScene scene = HandHeldScene();
+  const int n = static_cast<int>(scene.cams_from_world.size());
+  IncrementalMapper first(scene.tracks, scene.camera, IncrementalMapper::Options());
+  IncrementalMapper second(scene.tracks, scene.camera, IncrementalMapper::Options());
+  // No frame in common (frame 10 in neither), but the tracks running through frame 10 have
+  // points in both models.
+  GrowModel(&first, 0, 9, n);
+  GrowModel(&second, 11, n - 1, n);
+  ASSERT_EQ(first.MergeModel(second.reconstruction()), static_cast<size_t>(n - 11));
+  const auto merged = Evaluate(first.reconstruction(), scene);
+  ASSERT_TRUE(merged.has_value());
+  EXPECT_LT(merged->ate_fraction_of_path, 0.01)
+      << "ATE " << merged->ate_rmse << " over a path of " << merged->path_length;
+}
+
 TEST(ModelMerging, RefusesModelsWithoutSharedFrameOrAgreeingPoints) {
+  {
+    // No frame and no track in common.
+    const SyntheticScene cut = CutTracks(HandHeldScene(), 10);
+    const int n = static_cast<int>(cut.cams_from_world.size());
+    IncrementalMapper first(cut.tracks, cut.camera, IncrementalMapper::Options());
+    IncrementalMapper second(cut.tracks, cut.camera, IncrementalMapper::Options());
+    GrowModel(&first, 0, 9, n);
+    GrowModel(&second, 11, n - 1, n);
+    EXPECT_EQ(first.MergeModel(second.reconstruction()), 0u);
+  }
   const SyntheticScene scene = HandHeldScene();
   const int n = static_cast<int>(scene.cams_from_world.size());
   IncrementalMapper first(scene.tracks, scene.camera, IncrementalMapper::Options());
   GrowModel(&first, 0, 9, n);
-  {
-    // No frame in common.
-    IncrementalMapper second(scene.tracks, scene.camera, IncrementalMapper::Options());
-    GrowModel(&second, 11, n - 1, n);
-    EXPECT_EQ(first.MergeModel(second.reconstruction()), 0u);
-  }
   // Frames in common, but the other model's points are scrambled: no similarity maps them.
   IncrementalMapper second(scene.tracks, scene.camera, IncrementalMapper::Options());
   GrowModel(&second, 8, n - 1, n);
@@ -113,6 +155,52 @@ TEST(ModelMerging, RefusesModelsWithoutSharedFrameOrAgreeingPoints) {
   EXPECT_EQ(first.reconstruction().NumRegisteredImages(), 10u);
   // The same model unscrambled is merged.
   EXPECT_EQ(first.MergeModel(second.reconstruction()), static_cast<size_t>(n - 10));
+}
+
+// Models that share neither frames nor tracks are joined through links between their features
+// (what matching the frames at the seam finds), and the linked points become one.
+TEST(ModelMerging, JoinsModelsThroughFeatureLinks) {
+  const SyntheticScene scene = CutTracks(HandHeldScene(), 10);
+  const int n = static_cast<int>(scene.cams_from_world.size());
+  IncrementalMapper first(scene.tracks, scene.camera, IncrementalMapper::Options());
+  IncrementalMapper second(scene.tracks, scene.camera, IncrementalMapper::Options());
+  GrowModel(&first, 0, 9, n);
+  GrowModel(&second, 11, n - 1, n);
+  ASSERT_EQ(first.MergeModel(second.reconstruction()), 0u);
+  // Links between frame 9 (first) and frame 11 (second): the features of one scene point.
+  std::map<int, int> feature_of_point_in_9, feature_of_point_in_11;
+  for (size_t t = 0; t < scene.tracks.tracks.size(); ++t) {
+    for (const frontend::TrackObservation& obs : scene.tracks.tracks[t].observations) {
+      if (scene.is_outlier[obs.frame][obs.feature]) continue;
+      if (obs.frame == 9) feature_of_point_in_9[scene.track_point_index[t]] = obs.feature;
+      if (obs.frame == 11) feature_of_point_in_11[scene.track_point_index[t]] = obs.feature;
+    }
+  }
+  std::vector<IncrementalMapper::FeatureLink> links;
+  for (const auto& [point, feature] : feature_of_point_in_9) {
+    const auto it = feature_of_point_in_11.find(point);
+    if (it == feature_of_point_in_11.end()) continue;
+    links.push_back({IncrementalMapper::ImageIdOfFrame(9), static_cast<point2D_t>(feature),
+                     IncrementalMapper::ImageIdOfFrame(11), static_cast<point2D_t>(it->second)});
+  }
+  ASSERT_GT(links.size(), 50u);
+  ASSERT_EQ(first.MergeModel(second.reconstruction(), links), static_cast<size_t>(n - 11));
+  const auto merged = Evaluate(first.reconstruction(), scene);
+  ASSERT_TRUE(merged.has_value());
+  EXPECT_LT(merged->ate_fraction_of_path, 0.01)
+      << "ATE " << merged->ate_rmse << " over a path of " << merged->path_length;
+  // Linked features observe one point: seen from both sides of the cut.
+  size_t num_joined = 0;
+  for (const IncrementalMapper::FeatureLink& link : links) {
+    const point3D_t a =
+        first.reconstruction().image(link.image_id).points2D[link.point2D_idx].point3D_id;
+    const point3D_t b = first.reconstruction()
+                            .image(link.other_image_id)
+                            .points2D[link.other_point2D_idx]
+                            .point3D_id;
+    num_joined += a != kInvalidPoint3DId && a == b;
+  }
+  EXPECT_GT(num_joined, links.size() / 3);
 }
 
 }  // namespace

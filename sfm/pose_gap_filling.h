@@ -1,0 +1,52 @@
+// Poses for the frames a model could not register although the camera was near a registered
+// frame (issue 30, "frames through hard stretches"):
+//  - rotation against the map: a frame adjacent to a posed frame n whose observed rays are
+//    explained by a rotation about n's centre (the camera only turned, or moved too little for
+//    its tracks to show it). The rays come from the frame's tracks that have a 3-D point (the
+//    point's direction from n's centre) or an observation in n (n's ray); RANSAC over ray pairs,
+//    Kabsch (sfm/rotation_only_path.h). Chained: a frame posed so serves its own neighbours.
+//  - interpolation: a frame between two posed frames of the model at most max_interpolated_gap
+//    frames apart gets the pose interpolated by frame index (slerp, linear centre); a guess,
+//    flagged as such.
+// Neither adds observations or points; the posed frames are registered in the model (so they are
+// written with it) and listed, so that reports can tell them from registered frames.
+//
+//   const PoseGapFilling filled = FillPoseGaps(tracks, fillable, options, &model);
+#pragma once
+
+#include <vector>
+
+#include "frontend/matching/track.h"
+#include "sfm/reconstruction.h"
+
+namespace comic::sfm {
+
+struct PoseGapFillingOptions {
+  // Rotation against the map: at least this many rays, and this fraction of the frame's rays,
+  // consistent with one rotation within max_error_px (at the focal length), from num_trials
+  // RANSAC draws (fixed seed). The fraction keeps out a camera that moved: its far points would
+  // still fit a rotation, its near ones not.
+  int min_num_inliers = 30;
+  double min_inlier_ratio = 0.5;
+  double max_error_px = 2.0;
+  int num_trials = 200;
+  // Interpolation between posed frames at most this many frames apart (0: none).
+  int max_interpolated_gap = 10;
+
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+struct PoseGapFilling {
+  std::vector<int> rotation_only_frames;  // ascending
+  std::vector<int> interpolated_frames;   // ascending
+};
+
+// Poses the frames of `model` (image i + 1 is frame i of `tracks`) that are unregistered and
+// `fillable` (one flag per frame). Throws comic::Error for a model that does not hold the
+// tracks' frames.
+PoseGapFilling FillPoseGaps(const frontend::FeatureTracks& tracks,
+                            const std::vector<char>& fillable, const PoseGapFillingOptions& options,
+                            Reconstruction* model);
+
+}  // namespace comic::sfm
