@@ -106,7 +106,8 @@ std::vector<int> JsonFields::Integers(const std::string& key) const {
 }
 
 void JsonFields::CheckKnown(std::initializer_list<const char*> known) const {
-  for (const auto& [key, value] : object_.items()) {
+  for (const auto& item : object_.items()) {
+    const std::string& key = item.key();  // a name, not a structured binding: clang's lambdas
     if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
       std::string list;
       for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;

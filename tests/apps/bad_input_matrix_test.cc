@@ -295,6 +295,10 @@ const std::vector<Case> kCases = {
   {"comic_render_eval", "{d}/frames --detectors sift --output {d}/out", 2, {"sift"}},
   {"comic_render_eval", "{d}/frames --boundary-band -1 --output {d}/out", 2, {"boundary band"}},
   {"comic_render_eval", "{d}/frames --output {d}/notes.txt", 1, {"notes.txt", "not a folder"}},
+  // comic_track_survival (prints its tables; writes nothing)
+  {"comic_track_survival", "{d}/missing", 1, {"missing", "no such file"}},
+  {"comic_track_survival", "{d}/notes.txt", 1, {"notes.txt", "cannot open"}},
+  {"comic_track_survival", "{d}/frames --horizon -1", 2, {"--horizon"}},
   // comic_bench
   {"comic_bench", "{d}/missing.png", 1, {"missing.png", "no such file"}},
   {"comic_bench", "{d}/garbage.png", 1, {"garbage.png", "cannot decode"}},

@@ -62,6 +62,34 @@ std::string WithoutThreadCount(std::string text) {
   return text;
 }
 
+// report.html: the page around its data, and the data (a JSON script) without the sections that
+// hold measured durations and without the volatile keys of the report.json it embeds.
+std::string PageWithoutDurations(const std::string& html) {
+  const std::string open = "<script type=\"application/json\" id=\"comic-page-data\">";
+  const size_t begin = html.find(open);
+  if (begin == std::string::npos) return html;
+  const size_t data_begin = begin + open.size();
+  const size_t data_end = html.find("</script>", data_begin);
+  if (data_end == std::string::npos) return html;
+  nlohmann::json data = nlohmann::json::parse(html.substr(data_begin, data_end - data_begin));
+  if (data.contains("sections") && data["sections"].is_array()) {
+    nlohmann::json kept = nlohmann::json::array();
+    for (const auto& section : data["sections"]) {
+      if (!section.contains("durations")) kept.push_back(section);
+    }
+    data["sections"] = kept;
+  }
+  DropVolatileKeys(&data);
+  // The options table's ["threads", N] row.
+  for (auto& section : data["sections"]) {
+    if (!section.contains("rows") || !section["rows"].is_array()) continue;
+    for (auto& row : section["rows"]) {
+      if (row.is_array() && row.size() == 2 && row[0] == "threads") row[1] = "N";
+    }
+  }
+  return html.substr(0, data_begin) + data.dump() + html.substr(data_end);
+}
+
 // Every file below `folder` by relative path: its bytes, or for JSON its content without the
 // volatile keys; in text files the echoed --threads value is masked.
 std::map<std::string, std::string> OutputFiles(const std::string& folder) {
@@ -76,7 +104,8 @@ std::map<std::string, std::string> OutputFiles(const std::string& folder) {
       DropVolatileKeys(&json);
       bytes = json.dump();
     }
-    if (extension == ".json" || extension == ".md" || extension == ".csv") {
+    if (extension == ".html") bytes = PageWithoutDurations(bytes);
+    if (extension == ".json" || extension == ".md" || extension == ".csv" || extension == ".html") {
       bytes = WithoutThreadCount(bytes);
     }
     files[name] = bytes;

@@ -178,6 +178,8 @@ TEST(RunPage, StaysUnderTwentyMegabytesForTenThousandFrames) {
   inputs.camera.source = "synthetic";
   DetectorRun run;
   run.detector = "synthetic";
+  run.run.input_size = cv::Size(64, 48);  // the frames as stored = as worked
+  run.run.frame_size = cv::Size(64, 48);
   Reconstruction& model = run.run.mapping.reconstruction;
   const camera_t camera = model.AddCamera(inputs.camera.camera);
   FrameGroundTruth truth;
