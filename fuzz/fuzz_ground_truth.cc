@@ -2,8 +2,8 @@
 // calib.txt, a Middlebury *_par.txt, a Strecha *.camera file (alone and as a folder), the
 // intrinsics file reader (fx fy cx cy / K / P, also COLMAP- and OpenCV-style numbers), the
 // calibration-file reader of --intrinsics (the same bytes as an OpenCV FileStorage .yml and .xml,
-// as a COLMAP cameras.txt and as plain numbers), a NeRF transforms.json and the format detection. comic::Error is the
-// expected answer to bad bytes.
+// as a COLMAP cameras.txt and as plain numbers), a NeRF transforms.json and the format detection.
+// comic::Error is the expected answer to bad bytes.
 #include <filesystem>
 
 #include "fuzz/fuzz_input.h"

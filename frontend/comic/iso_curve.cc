@@ -77,11 +77,11 @@ void IsoCurveTracer::TraceImpl(const CurveEdge& seed, int max_points_each_way,
     const int turn = forward ? (w->direction + 3) & 3 : (w->direction + 1) & 3;
     // The pair's pixels are in the domain and `turn` is perpendicular to their direction: a and b
     // share the one coordinate that moved, so a single compare decides whether both are in.
-    const bool ahead_in_domain =
-        (turn & 1) == 0 ? static_cast<unsigned>(w->x + kDx[turn] - domain_.x) <
-                              static_cast<unsigned>(domain_.width)
-                        : static_cast<unsigned>(w->y + kDy[turn] - domain_.y) <
-                              static_cast<unsigned>(domain_.height);
+    const bool ahead_in_domain = (turn & 1) == 0
+                                     ? static_cast<unsigned>(w->x + kDx[turn] - domain_.x) <
+                                           static_cast<unsigned>(domain_.width)
+                                     : static_cast<unsigned>(w->y + kDy[turn] - domain_.y) <
+                                           static_cast<unsigned>(domain_.height);
     if (!ahead_in_domain) return false;
     const uint8_t* a = w->inside + offset[turn];
     const uint8_t* b = a + offset[w->direction];

@@ -46,7 +46,7 @@ struct ColmapExportOptions {
   // can add pairs to the database; without them COLMAP matches nothing, and its
   // feature_extractor replaces them with a different number of its own (then its matchers crash).
   bool write_descriptors = true;
-    // The camera model written when no intrinsics are known (COLMAP's feature extractor default:
+  // The camera model written when no intrinsics are known (COLMAP's feature extractor default:
   // SIMPLE_RADIAL, f = 1.2 max(w, h), principal point at the centre, no distortion).
   CameraModelId default_camera_model = CameraModelId::kSimpleRadial;
 
@@ -57,7 +57,7 @@ struct ColmapExportOptions {
 struct ColmapExportSummary {
   int num_images = 0;
   int64_t num_keypoints = 0;
-  int64_t num_descriptors = 0;  // rows of `descriptors` written (0: the tracks had none)
+  int64_t num_descriptors = 0;     // rows of `descriptors` written (0: the tracks had none)
   int num_matched_pairs = 0;       // pairs with raw matches (rows of `matches`)
   int num_verified_pairs = 0;      // pairs whose two-view geometry is not DEGENERATE
   int64_t num_matches = 0;         // raw matches over all pairs
