@@ -14,6 +14,7 @@
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/image/image_io.h"
 #include "render/nerf_composite.h"
@@ -129,6 +130,11 @@ int Run(int argc, char** argv) {
               "--stereo-pairs must be >= 0, got " << stereo_pairs);
   stereo.boundary.depth_ratio = options.boundary.depth_ratio;
   stereo.Check();
+  std::vector<io::NamedPath> inputs = {{"SCENE", scene_file}, {"--nerf", nerf}};
+  for (const std::string& entry : comic::apps::SplitList(photos, "photos")) {
+    inputs.push_back({"--photos", entry});
+  }
+  io::CheckOutputFolderAvoidsInputs({"--output", out_dir}, inputs);
   io::CheckCreatableFolder(out_dir);  // before the photographs are read
 
   const render::BuiltScene built =

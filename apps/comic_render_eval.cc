@@ -17,6 +17,7 @@
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/datasets/rendered_truth.h"
 #include "io/image/image_sequence.h"
@@ -84,6 +85,7 @@ int Run(int argc, char** argv) {
   const sfm::TrackerSettings tracker_settings = comic::apps::ToTrackerSettings(tracker, parser);
   tracker_settings.ToTrackerOptions();  // bad flags fail before any work
   options.Check();
+  io::CheckOutputsAvoidInputs({{"--output", out_dir}}, {{"RENDERED", folder}});
   io::CheckCreatableFolder(out_dir);
 
   // The tracker as comic_sfm sets it up for these frames (video or image set), and its mapper

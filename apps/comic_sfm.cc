@@ -193,6 +193,16 @@ class ConsoleProgress {
                                         const sfm::MapperProgress& progress) {
       if (!quiet_) std::cout << sfm::FrameRegisteredLine(detector, progress) << std::endl;
     };
+    callbacks.adjustment_progress = [this](const std::string& detector,
+                                           const sfm::BundleAdjustmentProgress& progress) {
+      // A solve reports every iteration once it has run a second: one line a second at most.
+      if (progress.iteration <= last_adjustment_iteration_) last_adjustment_second_ = 0;
+      last_adjustment_iteration_ = progress.iteration;
+      const int second = static_cast<int>(progress.elapsed_s);
+      if (quiet_ || second <= last_adjustment_second_) return;
+      last_adjustment_second_ = second;
+      std::cout << sfm::AdjustmentProgressLine(detector, progress) << std::endl;
+    };
     callbacks.detector_finished = [](const sfm::DetectorRun& run) {
       std::cout << sfm::DetectorSummaryLine(run) << std::endl;
     };
@@ -202,6 +212,8 @@ class ConsoleProgress {
  private:
   bool quiet_;
   std::unique_ptr<apps::ProgressLine> line_;
+  int last_adjustment_iteration_ = 0;
+  int last_adjustment_second_ = 0;
 };
 
 int Run(int argc, char** argv) {

@@ -40,6 +40,8 @@ void BundleAdjustmentOptions::Check() const {
   COMIC_CHECK(function_tolerance >= 0 && gradient_tolerance >= 0 && parameter_tolerance >= 0,
               kInvalidArgument, "bundle adjustment tolerances must be >= 0");
   COMIC_CHECK(num_threads >= 1, kInvalidArgument, "bundle adjustment num_threads must be >= 1");
+  COMIC_CHECK(progress_after_s >= 0, kInvalidArgument,
+              "bundle adjustment progress_after_s must be >= 0");
 }
 
 bool EvaluateReprojection(const double* pose, const double* point, const double* intrinsics,
@@ -557,6 +559,33 @@ void WriteBack(const ProblemContents& contents, const ParameterBlocks& blocks,
   }
 }
 
+// Passes Ceres' per-iteration state to BundleAdjustmentOptions::progress once the solve has run
+// long enough to deserve a line.
+class ProgressReporter : public ceres::IterationCallback {
+ public:
+  ProgressReporter(const BundleAdjustmentOptions& options, BundleAdjustmentProgress base,
+                   std::chrono::steady_clock::time_point start)
+      : options_(options), base_(base), start_(start) {}
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& iteration) override {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (elapsed >= options_.progress_after_s) {
+      BundleAdjustmentProgress progress = base_;
+      progress.iteration = iteration.iteration;
+      progress.cost = iteration.cost;
+      progress.elapsed_s = elapsed;
+      options_.progress(progress);
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const BundleAdjustmentOptions& options_;
+  const BundleAdjustmentProgress base_;
+  const std::chrono::steady_clock::time_point start_;
+};
+
 }  // namespace
 
 BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) const {
@@ -592,8 +621,14 @@ BundleAdjustmentSummary BundleAdjuster::Solve(Reconstruction* reconstruction) co
                               blocks.poses.at(image_id), &problem);
   }
   HoldConstantPointsAndIntrinsics(*reconstruction, config_, blocks, &problem);
-  const ceres::Solver::Options solver_options =
+  ceres::Solver::Options solver_options =
       SolverOptions(options_, summary.num_variable_images, SchurOrdering(contents, blocks));
+  BundleAdjustmentProgress progress_base;
+  progress_base.max_num_iterations = options_.max_num_iterations;
+  progress_base.num_variable_images = summary.num_variable_images;
+  progress_base.num_points = summary.num_points;
+  ProgressReporter reporter(options_, progress_base, start);
+  if (options_.progress) solver_options.callbacks.push_back(&reporter);
 
   summary.initial_rmse_px =
       RmsReprojectionError(*reconstruction, contents.image_ids, contents.point_ids);

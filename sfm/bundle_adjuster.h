@@ -12,6 +12,7 @@
 //   const BundleAdjustmentSummary summary = adjuster.Solve(&reconstruction);
 #pragma once
 
+#include <functional>
 #include <set>
 #include <string>
 
@@ -26,6 +27,18 @@ enum class BundleAdjustmentLoss { kTrivial, kHuber, kSoftL1 };
 
 // "trivial", "huber", "soft_l1".
 const char* BundleAdjustmentLossName(BundleAdjustmentLoss loss);
+
+// Where a long adjustment stands, for progress lines (issue 26: a 196-frame clip's last global
+// adjustment ran 8 s without a word).
+struct BundleAdjustmentProgress {
+  int iteration = 0;  // Levenberg-Marquardt iterations done
+  int max_num_iterations = 0;
+  int num_variable_images = 0;
+  int num_points = 0;
+  double cost = 0.0;       // Ceres cost ½ Σ ρ(‖r‖²) after this iteration, pixels²
+  double elapsed_s = 0.0;  // wall time since the solve started
+};
+using BundleAdjustmentProgressCallback = std::function<void(const BundleAdjustmentProgress&)>;
 
 struct BundleAdjustmentOptions {
   // Robust loss and its scale (pixels; ignored by kTrivial). A robust loss costs iterations: with
@@ -51,6 +64,10 @@ struct BundleAdjustmentOptions {
   // threaded sums depend on the thread schedule), so the result is identical bit for bit for any
   // value; kept so that one --threads reaches every stage.
   int num_threads = 1;
+  // Called after each iteration once the solve has run progress_after_s seconds (wall time); it
+  // only reports: the solution is the same with or without it.
+  BundleAdjustmentProgressCallback progress;
+  double progress_after_s = 1.0;
 
   void Check() const;
 };

@@ -9,8 +9,7 @@
 namespace comic::frontend {
 
 IsoCurveTracer::IsoCurveTracer(const cv::Mat& image, const cv::Rect& domain, double threshold)
-    : image_(image),
-      domain_(domain & cv::Rect(0, 0, image.cols, image.rows)),
+    : domain_(domain & cv::Rect(0, 0, image.cols, image.rows)),
       threshold_(threshold),
       data_(image.data),
       step_(static_cast<ptrdiff_t>(image.step[0])),

@@ -79,7 +79,6 @@ class IsoCurveTracer {
   template <bool kWithEdges>
   void TraceImpl(const CurveEdge& seed, int max_points_each_way, IsoCurve* curve) const;
 
-  const cv::Mat& image_;
   cv::Rect domain_;
   double threshold_;
   const uint8_t* data_;

@@ -60,4 +60,15 @@ void CheckOutputsAvoidInputs(const std::vector<NamedPath>& outputs,
   }
 }
 
+void CheckOutputFolderAvoidsInputs(const NamedPath& output_folder,
+                                   const std::vector<NamedPath>& inputs) {
+  CheckOutputsAvoidInputs({output_folder}, inputs);
+  for (const NamedPath& input : inputs) {
+    if (input.path.empty() || !IsSameOrInside(input.path, output_folder.path)) continue;
+    throw Error(ErrorKind::kInvalidArgument,
+                output_folder.path + ": " + output_folder.name + " holds the input " + input.name +
+                    " " + input.path + "; refusing to write where it could be replaced");
+  }
+}
+
 }  // namespace comic::io

@@ -30,4 +30,10 @@ bool IsSameOrInside(const std::string& path, const std::string& input);
 void CheckOutputsAvoidInputs(const std::vector<NamedPath>& outputs,
                              const std::vector<NamedPath>& inputs);
 
+// For an output folder the app fills with files of its own naming (comic_render's images/,
+// scene.json, ...): throws comic::Error(kInvalidArgument) if an input is that folder or lies
+// inside it, where a written file could replace it; then as CheckOutputsAvoidInputs.
+void CheckOutputFolderAvoidsInputs(const NamedPath& output_folder,
+                                   const std::vector<NamedPath>& inputs);
+
 }  // namespace comic::io

@@ -1,7 +1,5 @@
 #include "sfm/colmap/colmap_comparison.h"
 
-#include <sys/resource.h>
-
 #include <chrono>
 #include <filesystem>
 
@@ -9,6 +7,7 @@
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/colmap/colmap_runner.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/trajectory_evaluation.h"
 
@@ -16,16 +15,6 @@ namespace comic::sfm {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// User and system CPU time of the terminated and waited-for child processes (all threads).
-double ChildrenCpuSeconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  const auto seconds = [](const timeval& t) {
-    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
-  };
-  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
-}
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();

@@ -1,7 +1,5 @@
 #include "sfm/colmap/colmap_pipeline.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -17,15 +15,6 @@ namespace comic::sfm {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ChildrenCpuSeconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  const auto seconds = [](const timeval& t) {
-    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
-  };
-  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
-}
 
 // Runs one COLMAP program, records its command line, returns its wall time.
 double Run(const std::vector<std::string>& args, const ColmapPipelineOptions& options,

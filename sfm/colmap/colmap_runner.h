@@ -28,6 +28,10 @@ bool IsColmapAvailable(const std::string& executable = "colmap");
 // it, for printing commands users can paste.
 std::string ShellCommandLine(const std::vector<std::string>& args);
 
+// User and system CPU time, in seconds, of every child process this process has waited for
+// (RunColmap waits for each), all threads: the CPU column of the COLMAP comparisons.
+double ChildrenCpuSeconds();
+
 // Runs `executable args...` with QT_QPA_PLATFORM=offscreen (no display needed) and stdin from
 // /dev/null, appending a line "$ <command>" and then the program's stdout and stderr to
 // `log_path`. Returns when the program has exited; throws comic::Error(kExternal) unless it exited

@@ -31,7 +31,9 @@ ReconstructionStats ComputeReconstructionStats(const Reconstruction& reconstruct
   stats.num_images = reconstruction.NumImages();
   stats.num_registered = reconstruction.NumRegisteredImages();
   Accumulator all, boundary, interior;
-  for (const auto& [point3D_id, point] : reconstruction.points3D()) {
+  for (const auto& point3D_entry : reconstruction.points3D()) {
+    // A named reference, not a structured binding: the lambda below captures it (C++17).
+    const Point3D& point = point3D_entry.second;
     double error_sum = 0.0;
     size_t num_boundary = 0, num_interior = 0;
     for (const TrackElement& element : point.track) {

@@ -63,8 +63,13 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
                         const RunInputs& inputs, bool writes_outputs,
                         const RunCallbacks& callbacks) {
   const std::unique_ptr<frontend::Detector> made = MakeRunDetector(detector, options);
-  const SequenceReconstructionOptions sfm_options = MakeSequenceReconstructionOptions(
+  SequenceReconstructionOptions sfm_options = MakeSequenceReconstructionOptions(
       options, inputs.tracker, inputs.camera.refine_intrinsics, inputs.image_set);
+  if (callbacks.adjustment_progress) {
+    sfm_options.mapper.global_ba.progress = [&](const BundleAdjustmentProgress& progress) {
+      callbacks.adjustment_progress(detector, progress);
+    };
+  }
   DetectorRun result;
   result.detector = detector;
   result.run = Reconstruct(detector, *made, sfm_options, inputs, callbacks);

@@ -37,6 +37,9 @@ struct RunCallbacks {
   std::function<void(size_t done, size_t total)> frame_done;
   // The mapper registered a frame.
   std::function<void(const std::string& detector, const MapperProgress&)> frame_registered;
+  // A global bundle adjustment has run more than a second: once per iteration from then on.
+  std::function<void(const std::string& detector, const BundleAdjustmentProgress&)>
+      adjustment_progress;
   // A detector's run is complete (its outputs not yet written).
   std::function<void(const DetectorRun&)> detector_finished;
 };

@@ -1,5 +1,6 @@
 #include "sfm/run/run_messages.h"
 
+#include <iomanip>
 #include <sstream>
 
 #include "frontend/matching/pairing.h"
@@ -47,6 +48,16 @@ std::string FrameRegisteredLine(const std::string& detector, const MapperProgres
   } else if (!p.initial_pair) {
     line << ", " << p.num_pose_inliers << " PnP inliers";
   }
+  return line.str();
+}
+
+std::string AdjustmentProgressLine(const std::string& detector,
+                                   const BundleAdjustmentProgress& progress) {
+  std::ostringstream line;
+  line << "[" << detector << "] bundle adjustment of " << progress.num_variable_images
+       << " frames, " << progress.num_points << " points: iteration " << progress.iteration
+       << " of " << progress.max_num_iterations << ", " << std::fixed << std::setprecision(1)
+       << progress.elapsed_s << " s";
   return line.str();
 }
 

@@ -21,6 +21,10 @@ std::vector<std::string> RunInputsLines(const RunInputs& inputs, const std::stri
 // "[harris] registered 000004.png: 5/12 frames, 612 points, 270 PnP inliers".
 std::string FrameRegisteredLine(const std::string& detector, const MapperProgress& progress);
 
+// "[harris] bundle adjustment of 196 frames, 14210 points: iteration 7 of 50, 2.3 s".
+std::string AdjustmentProgressLine(const std::string& detector,
+                                   const BundleAdjustmentProgress& progress);
+
 // "[harris] success: 12/12 frames registered, 1586 points, ...": status, registered frames,
 // the models, points, track length, reprojection error, the trajectory error with ground truth,
 // time, the camera of the model (in the input's pixels; held at the prior and why, when

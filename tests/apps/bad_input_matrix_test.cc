@@ -288,6 +288,13 @@ const std::vector<Case> kCases = {
    "--output {d}/out", 2, {"depth format", "exr"}},
   {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --shutter 3 "
    "--output {d}/out", 2, {"shutter"}},
+  // comic_render: outputs never among the inputs, nor inputs where the render writes
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/frames --output {d}/frames",
+   2, {"--output is the input --photos"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/frames --output "
+   "{d}/frames/render", 2, {"lies inside the input --photos"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --output {d}", 2,
+   {"holds the input --photos"}},
   // comic_render_eval
   {"comic_render_eval", "{d}/missing --output {d}/out", 1, {"missing", "no such folder"}},
   {"comic_render_eval", "{d}/frames --output {d}/out", 1, {"frames", "--frames-only"}},
@@ -295,6 +302,9 @@ const std::vector<Case> kCases = {
   {"comic_render_eval", "{d}/frames --detectors sift --output {d}/out", 2, {"sift"}},
   {"comic_render_eval", "{d}/frames --boundary-band -1 --output {d}/out", 2, {"boundary band"}},
   {"comic_render_eval", "{d}/frames --output {d}/notes.txt", 1, {"notes.txt", "not a folder"}},
+  {"comic_render_eval", "{d}/frames --output {d}/frames", 2, {"--output is the input RENDERED"}},
+  {"comic_render_eval", "{d}/frames --output {d}/frames/eval", 2,
+   {"lies inside the input RENDERED"}},
   // comic_track_survival (prints its tables; writes nothing)
   {"comic_track_survival", "{d}/missing", 1, {"missing", "no such file"}},
   {"comic_track_survival", "{d}/notes.txt", 1, {"notes.txt", "cannot open"}},

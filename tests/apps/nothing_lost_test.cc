@@ -19,6 +19,7 @@
 
 #include "io/colmap/colmap_database.h"
 #include "io/core/file_utils.h"
+#include "tests/sqlite_other_process.h"
 #include "tests/test_support.h"
 
 extern char** environ;
@@ -29,6 +30,8 @@ namespace fs = std::filesystem;
 using comic::test::AppPath;
 using comic::test::CountLines;
 using comic::test::ExampleDir;
+using comic::test::FileInode;
+using comic::test::OtherSqliteProcess;
 using comic::test::RunCommand;
 using comic::test::ScopedTempDir;
 
@@ -43,11 +46,6 @@ std::string AppArgs(const std::string& app, const std::string& database,
                     const std::string& output) {
   if (app == "comic_sfm") return ExportArgs(database) + " --output " + output;
   return ExportArgs(database);
-}
-
-ino_t Inode(const std::string& path) {
-  struct stat info;
-  return ::stat(path.c_str(), &info) == 0 ? info.st_ino : 0;
 }
 
 int64_t Rows(const std::string& path, const std::string& table) {
@@ -65,56 +63,6 @@ int64_t Rows(const std::string& path, const std::string& table) {
   sqlite3_close(db);
   return rows;
 }
-
-// Another process running `sql` on the database and keeping its connection (and the locks the
-// SQL took) until Release(), or dying without a word by Kill().
-class OtherProcess {
- public:
-  OtherProcess(const std::string& path, const std::string& sql) {
-    int ready[2], release[2];
-    if (::pipe(ready) != 0 || ::pipe(release) != 0) return;
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::close(ready[0]);
-      ::close(release[1]);
-      sqlite3* db = nullptr;
-      const bool ok = sqlite3_open(path.c_str(), &db) == SQLITE_OK &&
-                      sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) == SQLITE_OK;
-      const char answer = ok ? 'y' : 'n';
-      if (::write(ready[1], &answer, 1) != 1) ::_exit(3);
-      char byte;
-      while (::read(release[0], &byte, 1) > 0) {
-      }
-      sqlite3_exec(db, "COMMIT", nullptr, nullptr, nullptr);
-      sqlite3_close(db);
-      ::_exit(0);
-    }
-    ::close(ready[1]);
-    ::close(release[0]);
-    release_ = release[1];
-    char answer = 'n';
-    ok_ = ::read(ready[0], &answer, 1) == 1 && answer == 'y';
-    ::close(ready[0]);
-  }
-  ~OtherProcess() { Release(); }
-  bool ok() const { return ok_; }
-  pid_t pid() const { return pid_; }
-  void Release() {
-    if (release_ >= 0) ::close(release_);
-    release_ = -1;
-    if (pid_ > 0) ::waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
-  void Kill() {
-    if (pid_ > 0) ::kill(pid_, SIGKILL);
-    Release();
-  }
-
- private:
-  pid_t pid_ = -1;
-  int release_ = -1;
-  bool ok_ = false;
-};
 
 void MakeTable(const std::string& path) {
   sqlite3* db = nullptr;
@@ -138,10 +86,11 @@ TEST(NothingLost, OverwriteBesideAHotJournalLeavesAWholeDatabase) {
     const std::string database = dir.File(app + "_hot.db");
     MakeTable(database);
     {
-      OtherProcess writer(database,
-                          "PRAGMA cache_size=2; BEGIN; WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL "
-                          "SELECT i + 1 FROM n WHERE i < 300) INSERT INTO t SELECT "
-                          "printf('%03000d', i) FROM n;");
+      OtherSqliteProcess writer(
+          database,
+          "PRAGMA cache_size=2; BEGIN; WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL "
+          "SELECT i + 1 FROM n WHERE i < 300) INSERT INTO t SELECT "
+          "printf('%03000d', i) FROM n;");
       ASSERT_TRUE(writer.ok());
       writer.Kill();
     }
@@ -165,8 +114,8 @@ TEST(NothingLost, OverwriteRefusesADatabaseAnotherProcessHolds) {
     SCOPED_TRACE(app);
     const std::string database = dir.File(app + "_held.db");
     MakeTable(database);
-    const ino_t inode = Inode(database);
-    OtherProcess other(database, "BEGIN EXCLUSIVE; INSERT INTO t VALUES('theirs');");
+    const ino_t inode = FileInode(database);
+    OtherSqliteProcess other(database, "BEGIN EXCLUSIVE; INSERT INTO t VALUES('theirs');");
     ASSERT_TRUE(other.ok());
     const auto result =
         RunCommand(AppPath(app) + " " + AppArgs(app, database, dir.File(app)) + " --overwrite");
@@ -178,7 +127,7 @@ TEST(NothingLost, OverwriteRefusesADatabaseAnotherProcessHolds) {
                                   0),
               0u)
         << result.output;
-    EXPECT_EQ(Inode(database), inode);
+    EXPECT_EQ(FileInode(database), inode);
     other.Release();
     EXPECT_EQ(Rows(database, "t"), 51);  // their row landed in the file
     EXPECT_FALSE(fs::exists(dir.File(app))) << "comic_sfm worked before it refused";

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <vector>
 
 #include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
@@ -283,6 +284,48 @@ TEST(BundleAdjuster, IsIdenticalBitForBitAtOneAndTwoThreads) {
     EXPECT_EQ(point.xyz, two.perturbed.point3D(id).xyz);
     EXPECT_EQ(point.xyz, again.perturbed.point3D(id).xyz);
   }
+}
+
+// Issue 26: long adjustments report each iteration once progress_after_s has passed; the report
+// changes nothing in the solution.
+TEST(BundleAdjuster, ReportsProgressWithoutChangingTheSolution) {
+  Scene quiet = MakeScene(16);
+  Scene reported = MakeScene(16);
+  const BundleAdjustmentSummary expected =
+      BundleAdjuster(BundleAdjustmentOptions(), FullConfig(quiet.perturbed))
+          .Solve(&quiet.perturbed);
+  std::vector<BundleAdjustmentProgress> lines;
+  BundleAdjustmentOptions options;
+  options.progress_after_s = 0;
+  options.progress = [&](const BundleAdjustmentProgress& p) { lines.push_back(p); };
+  const BundleAdjustmentSummary summary =
+      BundleAdjuster(options, FullConfig(reported.perturbed)).Solve(&reported.perturbed);
+  ASSERT_GT(expected.num_iterations, 1);
+  EXPECT_EQ(summary.num_iterations, expected.num_iterations);
+  EXPECT_EQ(summary.final_cost, expected.final_cost);
+  // Ceres reports the state before the first step as iteration 0, then one per iteration.
+  ASSERT_EQ(static_cast<int>(lines.size()), expected.num_iterations);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_EQ(lines[i].iteration, static_cast<int>(i));
+    EXPECT_EQ(lines[i].num_variable_images, summary.num_variable_images);
+    EXPECT_EQ(lines[i].num_points, summary.num_points);
+    EXPECT_EQ(lines[i].max_num_iterations, options.max_num_iterations);
+    if (i > 0) {
+      EXPECT_GE(lines[i].elapsed_s, lines[i - 1].elapsed_s);
+    }
+  }
+  EXPECT_EQ(lines.front().cost, summary.initial_cost);
+  for (const auto& [id, point] : quiet.perturbed.points3D()) {
+    EXPECT_EQ(point.xyz, reported.perturbed.point3D(id).xyz);
+  }
+  // A solve shorter than progress_after_s says nothing.
+  Scene fast = MakeScene(16);
+  lines.clear();
+  options.progress_after_s = 3600;
+  BundleAdjuster(options, FullConfig(fast.perturbed)).Solve(&fast.perturbed);
+  EXPECT_TRUE(lines.empty());
+  options.progress_after_s = -1;
+  EXPECT_THROW(options.Check(), Error);
 }
 
 TEST(BundleAdjuster, ConstantNeighboursAreTheRegisteredImagesSeeingTheWindowsPoints) {

@@ -12,12 +12,15 @@
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "tests/sqlite_other_process.h"
 #include "tests/test_support.h"
 
 namespace comic::io {
 namespace {
 
 namespace fs = std::filesystem;
+using comic::test::FileInode;
+using comic::test::OtherSqliteProcess;
 using comic::test::ScopedTempDir;
 
 // A database with one table `t` of `rows` rows of 1 kB text.
@@ -55,67 +58,6 @@ int64_t CheckedRows(const std::string& path) {
   return rows;
 }
 
-ino_t Inode(const std::string& path) {
-  struct stat info;
-  return ::stat(path.c_str(), &info) == 0 ? info.st_ino : 0;
-}
-
-// Another process with the database open: it runs `sql` (e.g. holds BEGIN EXCLUSIVE), says so,
-// and keeps the connection until Release() (or is killed mid-transaction by Kill()).
-class OtherProcess {
- public:
-  OtherProcess(const std::string& path, const std::string& sql) {
-    int ready[2], release[2];
-    if (::pipe(ready) != 0 || ::pipe(release) != 0) return;
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::close(ready[0]);
-      ::close(release[1]);
-      sqlite3* db = nullptr;
-      const bool ok = sqlite3_open(path.c_str(), &db) == SQLITE_OK &&
-                      sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) == SQLITE_OK;
-      const char answer = ok ? 'y' : 'n';
-      if (::write(ready[1], &answer, 1) != 1) ::_exit(3);
-      char byte;
-      while (::read(release[0], &byte, 1) > 0) {
-      }
-      sqlite3_exec(db, "COMMIT", nullptr, nullptr, nullptr);
-      sqlite3_close(db);
-      ::_exit(0);
-    }
-    ::close(ready[1]);
-    ::close(release[0]);
-    release_ = release[1];
-    char answer = 'n';
-    ok_ = ::read(ready[0], &answer, 1) == 1 && answer == 'y';
-    ::close(ready[0]);
-  }
-  ~OtherProcess() { Release(); }
-  bool ok() const { return ok_; }
-  pid_t pid() const { return pid_; }
-  void Release() {
-    if (release_ >= 0) ::close(release_);
-    release_ = -1;
-    Wait();
-  }
-  // Dies mid-transaction, as a killed writer: its journal stays behind.
-  void Kill() {
-    if (pid_ > 0) ::kill(pid_, SIGKILL);
-    Wait();
-    if (release_ >= 0) ::close(release_);
-    release_ = -1;
-  }
-
- private:
-  void Wait() {
-    if (pid_ > 0) ::waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
-  pid_t pid_ = -1;
-  int release_ = -1;
-  bool ok_ = false;
-};
-
 SqliteFileOptions ShortWait() {
   SqliteFileOptions options;
   options.busy_timeout_ms = 200;
@@ -146,8 +88,8 @@ TEST(SqliteFile, RefusesADatabaseAnotherProcessHoldsAndNamesIt) {
   ScopedTempDir dir;
   const std::string target = dir.File("held.db");
   MakeDatabase(target, 3);
-  const ino_t inode = Inode(target);
-  OtherProcess other(target, "BEGIN EXCLUSIVE; INSERT INTO t VALUES('theirs');");
+  const ino_t inode = FileInode(target);
+  OtherSqliteProcess other(target, "BEGIN EXCLUSIVE; INSERT INTO t VALUES('theirs');");
   ASSERT_TRUE(other.ok());
   MakeDatabase(dir.File("new.db"), 5);
   for (const bool replace : {false, true}) {
@@ -168,7 +110,7 @@ TEST(SqliteFile, RefusesADatabaseAnotherProcessHoldsAndNamesIt) {
       EXPECT_NE(message.find("refusing to replace it"), std::string::npos) << message;
     }
   }
-  EXPECT_EQ(Inode(target), inode);
+  EXPECT_EQ(FileInode(target), inode);
   EXPECT_TRUE(PathExists(dir.File("new.db")));  // the caller's temporary file, not renamed
   other.Release();                              // their commit lands in the file, not lost
   EXPECT_EQ(CheckedRows(target), 4);
@@ -178,7 +120,7 @@ TEST(SqliteFile, RefusesADatabaseOpenInAnotherProcessWithoutALock) {
   ScopedTempDir dir;
   const std::string target = dir.File("open.db");
   MakeDatabase(target, 3);
-  OtherProcess other(target, "SELECT COUNT(*) FROM t");  // open, idle: no lock held
+  OtherSqliteProcess other(target, "SELECT COUNT(*) FROM t");  // open, idle: no lock held
   ASSERT_TRUE(other.ok());
   MakeDatabase(dir.File("new.db"), 5);
   try {
@@ -204,11 +146,12 @@ TEST(SqliteFile, RollsAHotJournalBackBeforeReplacing) {
   MakeDatabase(target, 50);
   {
     // A small page cache, so the uncommitted rows spill into the database file itself.
-    OtherProcess writer(target,
-                        "PRAGMA cache_size=2; BEGIN; DELETE FROM t; INSERT INTO t SELECT "
-                        "printf('%02000d', rowid) FROM (SELECT 1 AS rowid UNION SELECT 2);"
-                        "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE "
-                        "i < 300) INSERT INTO t SELECT printf('%03000d', i) FROM n;");
+    OtherSqliteProcess writer(
+        target,
+        "PRAGMA cache_size=2; BEGIN; DELETE FROM t; INSERT INTO t SELECT "
+        "printf('%02000d', rowid) FROM (SELECT 1 AS rowid UNION SELECT 2);"
+        "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE "
+        "i < 300) INSERT INTO t SELECT printf('%03000d', i) FROM n;");
     ASSERT_TRUE(writer.ok());
     writer.Kill();
   }
@@ -219,10 +162,11 @@ TEST(SqliteFile, RollsAHotJournalBackBeforeReplacing) {
   EXPECT_EQ(CheckedRows(target), 50);
   // And a replacement over a fresh hot journal leaves the new database whole, journal gone.
   {
-    OtherProcess writer(target,
-                        "PRAGMA cache_size=2; BEGIN; WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL "
-                        "SELECT i + 1 FROM n WHERE i < 300) INSERT INTO t SELECT "
-                        "printf('%03000d', i) FROM n;");
+    OtherSqliteProcess writer(
+        target,
+        "PRAGMA cache_size=2; BEGIN; WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL "
+        "SELECT i + 1 FROM n WHERE i < 300) INSERT INTO t SELECT "
+        "printf('%03000d', i) FROM n;");
     ASSERT_TRUE(writer.ok());
     writer.Kill();
   }
@@ -256,7 +200,7 @@ TEST(SqliteFile, ReplacesAWalDatabaseOnlyWhenNobodyHoldsIt) {
   MakeDatabase(target, 3, "WAL");
   MakeDatabase(dir.File("new.db"), 6);
   {
-    OtherProcess reader(target, "SELECT COUNT(*) FROM t");
+    OtherSqliteProcess reader(target, "SELECT COUNT(*) FROM t");
     ASSERT_TRUE(reader.ok());
     EXPECT_THROW(ReplaceSqliteFile(dir.File("new.db"), target, ShortWait()), Error);
     EXPECT_EQ(CheckedRows(target), 3);

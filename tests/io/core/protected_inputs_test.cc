@@ -91,5 +91,29 @@ TEST_F(ProtectedInputs, TheErrorNamesOutputOptionAndInput) {
       CheckOutputsAvoidInputs({{"--output", dir_.File("out")}}, {{"FRAMES", dir_.File("frames")}}));
 }
 
+// comic_render fills its output folder with files of its own naming (images/000000.png,
+// scene.json): an input inside that folder could be replaced, so it is refused too.
+TEST_F(ProtectedInputs, AnOutputFolderMayNotHoldAnInput) {
+  const std::string photo = dir_.File("frames/000000.png");
+  try {
+    CheckOutputFolderAvoidsInputs({"--output", dir_.File("frames")},
+                                  {{"SCENE", dir_.File("img.png")}, {"--photos", photo}});
+    FAIL() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
+    EXPECT_EQ(std::string(e.what()), dir_.File("frames") + ": --output holds the input --photos " +
+                                         photo + "; refusing to write where it could be replaced");
+  }
+  // The output inside an input folder is refused as by CheckOutputsAvoidInputs.
+  EXPECT_THROW(CheckOutputFolderAvoidsInputs({"--output", dir_.File("frames/sub")},
+                                             {{"--photos", dir_.File("frames")}}),
+               Error);
+  // Beside the inputs, or with unset (empty) inputs, or a folder that does not exist yet: fine.
+  EXPECT_NO_THROW(CheckOutputFolderAvoidsInputs({"--output", dir_.File("out")},
+                                                {{"--nerf", ""}, {"--photos", photo}}));
+  EXPECT_NO_THROW(CheckOutputFolderAvoidsInputs({"--output", dir_.File("frames/sub")},
+                                                {{"--photos", dir_.File("img.png")}}));
+}
+
 }  // namespace
 }  // namespace comic::io
