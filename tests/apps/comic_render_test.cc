@@ -3,6 +3,7 @@
 // calib.txt beside it, and --masks masks/) reconstructs them.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -72,14 +73,19 @@ TEST(ComicRender, BadInputGivesOneLineAndWritesNothing) {
       {Scene() + " --photos " + photo + " --supersampling 0 -o " + dir.File("out"), 2,
        "supersampling must be in 1..8"},
       {Scene() + " --photos " + photo + " --seed -1 -o " + dir.File("out"), 2, "--seed"},
-      {Scene() + " --photos " + dir.path() + " -o " + dir.File("out"), 2, "no images"},
+      {Scene() + " --photos " + dir.File("empty") + " -o " + dir.File("out"), 2, "no images"},
+      // The output inside a --photos folder would write among the photographs.
+      {Scene() + " --photos " + dir.File("empty") + " -o " + dir.File("empty/out"), 2,
+       "lies inside the input --photos"},
   };
+  std::filesystem::create_directories(dir.File("empty"));
   for (const Case& c : cases) {
     const auto result = RunCommand(AppPath("comic_render") + " " + c.args);
     EXPECT_EQ(result.exit_code, c.exit_code) << c.args << "\n" << result.output;
     EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n" << result.output;
     EXPECT_EQ(comic::test::CountLines(result.output), 1) << result.output;
     EXPECT_FALSE(comic::io::PathExists(dir.File("out")));
+    EXPECT_FALSE(comic::io::PathExists(dir.File("empty/out")));
   }
 }
 
