@@ -209,6 +209,11 @@ CameraCalibration ReadColmapCameras(
 
 CameraCalibration ReadCameraCalibrationFile(const std::string& path) {
   const std::string text = ReadText(path);
+  // Every format here is text. OpenCV 4.6's FileStorage parser dereferences null on an XML
+  // header with NUL bytes in it (found by fuzz_calibration_values), so none reaches it.
+  const size_t nul = text.find('\0');
+  COMIC_CHECK(nul == std::string::npos, kInvalidData,
+              path << ": not a text file (a NUL byte at offset " << nul << ")");
   size_t start = text.find_first_not_of(" \t\r\n");
   const std::string head = start == std::string::npos ? "" : text.substr(start, 16);
   if (EndsWith(path, ".yml") || EndsWith(path, ".yaml") || EndsWith(path, ".xml") ||

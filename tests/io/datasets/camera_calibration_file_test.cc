@@ -173,5 +173,19 @@ TEST(CameraCalibrationFile, RefusesBadFilesWithOneLine) {
   EXPECT_THROW(ReadCameraCalibrationFile(dir.File("missing.txt")), Error);
 }
 
+// fuzz_calibration_values: an XML header with NUL bytes inside made OpenCV 4.6's FileStorage
+// parser dereference null. No calibration format holds a NUL byte, so none reaches a parser.
+TEST(CameraCalibrationFile, RefusesFilesWithNulBytesBeforeAnyParser) {
+  ScopedTempDir dir;
+  std::string xml = "<?xml version=" + std::string(100, '\0') +
+                    "\"1.0\"?>\n<opencv_storage>\n<image_width>1226</image_width>\n";
+  for (const char* name : {"calib.xml", "calib.yml", "calib.txt", "cameras.txt"}) {
+    std::ofstream(dir.File(name), std::ios::binary) << xml;
+    const std::string message = ErrorOf(dir.File(name));
+    EXPECT_NE(message.find("not a text file (a NUL byte at offset 14)"), std::string::npos)
+        << name << " -> " << message;
+  }
+}
+
 }  // namespace
 }  // namespace comic::io
