@@ -112,6 +112,11 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
   parser.AddOption("global-ba-growth", "R",
                    "adjust the whole model whenever it has grown by this factor (and at the end)",
                    &o->global_ba_growth);
+  parser.AddOption("global-ba-max-images", "N",
+                   "long video: those adjustments hold only the N newest (key)frames variable, "
+                   "the older ones seeing their points constant; the final one is over the whole "
+                   "model (0: every frame)",
+                   &o->global_ba_max_images);
   parser.AddOption("init-angle", "DEG",
                    "initial pair: a point's triangulation angle that counts fully towards the "
                    "pair's parallax score",
@@ -120,6 +125,12 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                    "initial pair: frames at most this far apart (0: no limit, the gap grows as "
                    "far as the tracks reach)",
                    &o->init_max_gap);
+  parser.AddFlag("keyframes",
+                 "long or dense video: only keyframes (a frame where the view has changed enough "
+                 "since the last one) add points and enter bundle adjustments; the other frames "
+                 "are posed against the map, so every frame keeps a pose (report.json "
+                 "'keyframes' lists them and why)",
+                 &o->keyframes);
   parser.AddOption("max-working-size", "N",
                    "track and map frames whose larger side exceeds N pixels at N, and write the "
                    "models in the input's pixels (0: the input's size; --resize-height decides "
@@ -196,8 +207,7 @@ class ConsoleProgress {
     callbacks.adjustment_progress = [this](const std::string& detector,
                                            const sfm::BundleAdjustmentProgress& progress) {
       // A solve reports every iteration once it has run a second: one line a second at most.
-      if (progress.iteration <= last_adjustment_iteration_) last_adjustment_second_ = 0;
-      last_adjustment_iteration_ = progress.iteration;
+      if (progress.first) last_adjustment_second_ = 0;
       const int second = static_cast<int>(progress.elapsed_s);
       if (quiet_ || second <= last_adjustment_second_) return;
       last_adjustment_second_ = second;
@@ -212,7 +222,6 @@ class ConsoleProgress {
  private:
   bool quiet_;
   std::unique_ptr<apps::ProgressLine> line_;
-  int last_adjustment_iteration_ = 0;
   int last_adjustment_second_ = 0;
 };
 

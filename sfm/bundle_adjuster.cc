@@ -575,6 +575,8 @@ class ProgressReporter : public ceres::IterationCallback {
       progress.iteration = iteration.iteration;
       progress.cost = iteration.cost;
       progress.elapsed_s = elapsed;
+      progress.first = !reported_;
+      reported_ = true;
       options_.progress(progress);
     }
     return ceres::SOLVER_CONTINUE;
@@ -583,6 +585,7 @@ class ProgressReporter : public ceres::IterationCallback {
  private:
   const BundleAdjustmentOptions& options_;
   const BundleAdjustmentProgress base_;
+  bool reported_ = false;
   const std::chrono::steady_clock::time_point start_;
 };
 

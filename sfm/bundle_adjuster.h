@@ -28,10 +28,11 @@ enum class BundleAdjustmentLoss { kTrivial, kHuber, kSoftL1 };
 // "trivial", "huber", "soft_l1".
 const char* BundleAdjustmentLossName(BundleAdjustmentLoss loss);
 
-// Where a long adjustment stands, for progress lines (issue 26: a 196-frame clip's last global
-// adjustment ran 8 s without a word).
+// Where a long adjustment stands, for progress lines: the last global adjustment of a long clip
+// runs for many seconds (docs/long_video.md).
 struct BundleAdjustmentProgress {
-  int iteration = 0;  // Levenberg-Marquardt iterations done
+  bool first = false;  // the solve's first report (a front door may start a new line of output)
+  int iteration = 0;   // Levenberg-Marquardt iterations done
   int max_num_iterations = 0;
   int num_variable_images = 0;
   int num_points = 0;

@@ -380,6 +380,11 @@ size_t IncrementalMapper::RegisterInitialPair(const InitialPair& pair) {
   reconstruction_.RegisterImage(pair.image_id1);
   reconstruction_.RegisterImage(pair.image_id2);
   registration_order_ = {pair.image_id1, pair.image_id2};
+  // A model's first two frames are its first keyframes, whatever the selection said.
+  if (!is_keyframe_.empty()) {
+    is_keyframe_[FrameOfImageId(pair.image_id1)] = 1;
+    is_keyframe_[FrameOfImageId(pair.image_id2)] = 1;
+  }
   init_image_id1_ = pair.image_id1;
   init_image_id2_ = pair.image_id2;
 
@@ -437,13 +442,10 @@ std::vector<image_t> IncrementalMapper::NextImageCandidates() const {
   return ids;
 }
 
-bool IncrementalMapper::RegisterNextImage(image_t image_id) {
-  Image& image = reconstruction_.image(image_id);
-  COMIC_CHECK(!image.registered, kInvalidArgument,
-              "mapper: image " << image_id << " is already registered");
+IncrementalMapper::MapPose IncrementalMapper::EstimatePoseAgainstMap(image_t image_id) const {
+  const Image& image = reconstruction_.image(image_id);
   const int frame = FrameOfImageId(image_id);
-  std::vector<point2D_t> point2D_idxs;
-  std::vector<point3D_t> point3D_ids;
+  MapPose result;
   std::vector<Eigen::Vector2d> points2D;
   std::vector<Eigen::Vector3d> points3D;
   for (point2D_t idx = 0; idx < image.points2D.size(); ++idx) {
@@ -451,28 +453,83 @@ bool IncrementalMapper::RegisterNextImage(image_t image_id) {
     if (t < 0) continue;
     const point3D_t point3D_id = TrackPoint(t);
     if (point3D_id == kInvalidPoint3DId) continue;
-    point2D_idxs.push_back(idx);
-    point3D_ids.push_back(point3D_id);
+    result.point2D_idxs.push_back(idx);
+    result.point3D_ids.push_back(point3D_id);
     points2D.push_back(image.points2D[idx].xy);
     points3D.push_back(reconstruction_.point3D(point3D_id).xyz);
   }
-  int num_inliers_found = 0;
-  const auto pose = EstimateAbsolutePose(reconstruction_.camera(image.camera_id), points2D,
-                                         points3D, options_.absolute_pose, &num_inliers_found);
-  if (!pose) {
+  result.pose = EstimateAbsolutePose(reconstruction_.camera(image.camera_id), points2D, points3D,
+                                     options_.absolute_pose, &result.num_inliers_found);
+  return result;
+}
+
+bool IncrementalMapper::RegisterNextImage(image_t image_id) {
+  Image& image = reconstruction_.image(image_id);
+  COMIC_CHECK(!image.registered, kInvalidArgument,
+              "mapper: image " << image_id << " is already registered");
+  const int frame = FrameOfImageId(image_id);
+  const MapPose found = EstimatePoseAgainstMap(image_id);
+  if (!found.pose) {
     best_failed_pose_inliers_[frame] =
-        std::max(best_failed_pose_inliers_[frame], num_inliers_found);
+        std::max(best_failed_pose_inliers_[frame], found.num_inliers_found);
     return false;
   }
-  image.cam_from_world = pose->cam_from_world;
+  image.cam_from_world = found.pose->cam_from_world;
   reconstruction_.RegisterImage(image_id);
   registration_order_.push_back(image_id);
-  last_num_pose_inliers_ = pose->num_inliers;
-  for (size_t i = 0; i < point2D_idxs.size(); ++i) {
-    if (pose->inlier_mask[i])
-      reconstruction_.AddObservation(point3D_ids[i], {image_id, point2D_idxs[i]});
+  last_num_pose_inliers_ = found.pose->num_inliers;
+  // A frame that is not a keyframe keeps its pose out of the map (SetKeyframes).
+  if (!IsKeyframe(image_id)) return true;
+  for (size_t i = 0; i < found.point2D_idxs.size(); ++i) {
+    if (found.pose->inlier_mask[i])
+      reconstruction_.AddObservation(found.point3D_ids[i], {image_id, found.point2D_idxs[i]});
   }
   return true;
+}
+
+void IncrementalMapper::SetKeyframes(std::vector<char> is_keyframe) {
+  COMIC_CHECK(is_keyframe.empty() || is_keyframe.size() == tracks_->NumFrames(), kInvalidArgument,
+              "mapper: " << is_keyframe.size() << " keyframe flags for " << tracks_->NumFrames()
+                         << " frames");
+  COMIC_CHECK(reconstruction_.NumRegisteredImages() == 0, kInvalidArgument,
+              "mapper: keyframes must be set before any frame is registered");
+  is_keyframe_ = std::move(is_keyframe);
+}
+
+bool IncrementalMapper::IsKeyframe(image_t image_id) const {
+  return is_keyframe_.empty() || is_keyframe_[FrameOfImageId(image_id)];
+}
+
+void IncrementalMapper::PromoteToKeyframe(image_t image_id) {
+  COMIC_CHECK(!reconstruction_.image(image_id).registered, kInvalidArgument,
+              "mapper: image " << image_id << " is registered; only an unregistered frame may "
+                               << "become a keyframe");
+  if (!is_keyframe_.empty()) is_keyframe_[FrameOfImageId(image_id)] = 1;
+}
+
+std::vector<image_t> IncrementalMapper::LocalizeNonKeyframes() {
+  std::vector<image_t> lost;
+  if (is_keyframe_.empty()) return lost;
+  for (image_t image_id : reconstruction_.RegisteredImageIds()) {
+    if (IsKeyframe(image_id)) continue;
+    const MapPose found = EstimatePoseAgainstMap(image_id);
+    if (!found.pose) {
+      reconstruction_.DeRegisterImage(image_id);
+      lost.push_back(image_id);
+      continue;
+    }
+    Image& image = reconstruction_.image(image_id);
+    image.cam_from_world = found.pose->cam_from_world;
+    for (size_t i = 0; i < found.point2D_idxs.size(); ++i) {
+      // One observation per point and image: a track may hold two features of one frame only
+      // through a wrong match, and the first inlier wins.
+      if (!found.pose->inlier_mask[i] || image.points2D[found.point2D_idxs[i]].HasPoint3D()) {
+        continue;
+      }
+      reconstruction_.AddObservation(found.point3D_ids[i], {image_id, found.point2D_idxs[i]});
+    }
+  }
+  return lost;
 }
 
 bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id, bool retriangulate) {
@@ -484,7 +541,8 @@ bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id, bool retriangul
   for (const frontend::TrackObservation& obs : track.observations) {
     const image_t image_id = ImageIdOfFrame(obs.frame);
     const Image& image = reconstruction_.image(image_id);
-    if (!image.registered) continue;
+    // Frames that are not keyframes stay out of the map (SetKeyframes).
+    if (!image.registered || !IsKeyframe(image_id)) continue;
     views.push_back({&reconstruction_.camera(image.camera_id), image.cam_from_world,
                      image.points2D[obs.feature].xy});
     elements.push_back({image_id, static_cast<point2D_t>(obs.feature)});
@@ -539,6 +597,7 @@ size_t IncrementalMapper::TriangulateImage(image_t image_id) {
   COMIC_CHECK(image.registered, kInvalidArgument,
               "mapper: image " << image_id << " is not registered");
   size_t num_new = 0;
+  if (!IsKeyframe(image_id)) return num_new;  // outside the map (SetKeyframes)
   for (int t : track_of_feature_[FrameOfImageId(image_id)]) {
     if (t >= 0) num_new += TriangulateOrCompleteTrack(t, options_.retriangulate_on_registration);
   }
@@ -752,10 +811,30 @@ BundleAdjustmentSummary IncrementalMapper::AdjustLocalBundle(
 }
 
 BundleAdjustmentSummary IncrementalMapper::AdjustGlobalBundle(
-    const BundleAdjustmentOptions& ba_options) {
+    const BundleAdjustmentOptions& ba_options, int max_num_images) {
+  COMIC_CHECK(max_num_images >= 0, kInvalidArgument,
+              "mapper: max_num_images must be >= 0 (0: every image), got " << max_num_images);
   BundleAdjustmentConfig config;
-  for (image_t image_id : reconstruction_.RegisteredImageIds()) config.image_ids.insert(image_id);
+  for (auto it = registration_order_.rbegin(); it != registration_order_.rend(); ++it) {
+    if (max_num_images > 0 && static_cast<int>(config.image_ids.size()) >= max_num_images) break;
+    const Image& image = reconstruction_.image(*it);
+    if (image.registered && IsKeyframe(*it)) config.image_ids.insert(*it);
+  }
   FixGauge(&config);
+  if (max_num_images > 0 && config.constant_pose_ids.empty() &&
+      config.fixed_scale_image_ids.empty()) {
+    // Without the initial pair the frames outside the window fix the gauge; a window that shares
+    // no point with them (a merged model's separate part) would float: adjust everything.
+    std::set<point3D_t> point_ids;
+    for (image_t id : config.image_ids) {
+      for (const Point2D& point2D : reconstruction_.image(id).points2D) {
+        if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
+      }
+    }
+    if (ConstantNeighbourImages(reconstruction_, config.image_ids, point_ids).size() < 2) {
+      return AdjustGlobalBundle(ba_options, 0);
+    }
+  }
   const BundleAdjustmentSummary summary =
       BundleAdjuster(ba_options, config).Solve(&reconstruction_);
   FilterPoints();

@@ -195,13 +195,29 @@ class IncrementalMapper {
   std::vector<image_t> NextImageCandidates() const;
 
   // PnP RANSAC on the image's tracks that have 3-D points; on success sets its pose, registers
-  // it and adds its inlier observations. Returns false (not an error) if no pose was found.
+  // it and adds its inlier observations (none for a frame that is not a keyframe). Returns false
+  // (not an error) if no pose was found.
   bool RegisterNextImage(image_t image_id);
+
+  // Keyframes (sfm/keyframe_selection.h), one entry per frame: only keyframes add observations
+  // and points to the map, so only they enter bundle adjustments. A frame that is not one is
+  // registered by PnP like any other (it keeps a pose) but stays outside the map until
+  // LocalizeNonKeyframes. Empty (the default): every frame is a keyframe. The initial pair's
+  // frames are made keyframes when registered.
+  void SetKeyframes(std::vector<char> is_keyframe);
+  bool IsKeyframe(image_t image_id) const;
+  // Makes an unregistered frame a keyframe (e.g. when the keyframes next to it did not register).
+  void PromoteToKeyframe(image_t image_id);
+  // The registered frames that are not keyframes, posed again by PnP against the map as it is now
+  // (their poses from registration predate the adjustments since) with their inlier observations
+  // added; a frame whose PnP now fails is deregistered. For the end of a model's growth: the
+  // points do not move afterwards. Returns the frames deregistered.
+  std::vector<image_t> LocalizeNonKeyframes();
 
   // For every track seen in the (registered) image: triangulates it from all registered views if
   // it has no point yet, or extends its point to registered views it misses (and re-triangulates
   // it if views still disagree; see retriangulate_incomplete_tracks). Returns the number of new
-  // points.
+  // points. Nothing for a frame that is not a keyframe.
   size_t TriangulateImage(image_t image_id);
 
   // Triangulates and completes every track (e.g. after a global bundle adjustment). Returns the
@@ -236,8 +252,12 @@ class IncrementalMapper {
                                             int num_images);
 
   // Bundle adjustment of every registered image and point; the gauge is fixed by the initial
-  // pair (first pose constant, scale of the second). Filters all points afterwards.
-  BundleAdjustmentSummary AdjustGlobalBundle(const BundleAdjustmentOptions& ba_options);
+  // pair (first pose constant, scale of the second). Filters all points afterwards. With
+  // `max_num_images` > 0 only that many of the most recently registered keyframes are variable
+  // (with every point they see; the other registered frames seeing those points are held
+  // constant and anchor the gauge), so that its cost stops growing with the model.
+  BundleAdjustmentSummary AdjustGlobalBundle(const BundleAdjustmentOptions& ba_options,
+                                             int max_num_images = 0);
 
   // Removes observations with large reprojection error or negative depth and points with too
   // small a triangulation angle among `point3D_ids` (all points if empty). Returns the number of
@@ -269,6 +289,15 @@ class IncrementalMapper {
                                         double* measure) const;
   // The 3-D point of a track, or kInvalidPoint3DId.
   point3D_t TrackPoint(int track_id) const;
+  // PnP RANSAC on the image's features whose tracks have points; the pose, and per
+  // correspondence its feature, point and whether it is an inlier.
+  struct MapPose {
+    std::optional<AbsolutePose> pose;
+    int num_inliers_found = 0;
+    std::vector<point2D_t> point2D_idxs;
+    std::vector<point3D_t> point3D_ids;
+  };
+  MapPose EstimatePoseAgainstMap(image_t image_id) const;
   // Triangulates a track without point, or completes the point of a track with one.
   // `retriangulate`: also re-triangulate incomplete tracks (if retriangulate_incomplete_tracks).
   bool TriangulateOrCompleteTrack(int track_id, bool retriangulate);
@@ -292,6 +321,7 @@ class IncrementalMapper {
   std::vector<image_t> registration_order_;
   int last_num_pose_inliers_ = 0;
   std::vector<int> best_failed_pose_inliers_;
+  std::vector<char> is_keyframe_;  // per frame; empty: every frame
 };
 
 }  // namespace comic::sfm

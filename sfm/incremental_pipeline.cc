@@ -119,6 +119,10 @@ void IncrementalPipelineOptions::Check() const {
   COMIC_CHECK(success_min_registered_fraction >= 0 && success_min_registered_fraction <= 1,
               kInvalidArgument, "pipeline success_min_registered_fraction must be in [0, 1]");
   plausible_intrinsics.Check();
+  keyframes.Check();
+  COMIC_CHECK(
+      global_ba_max_images >= 0, kInvalidArgument,
+      "pipeline global_ba_max_images must be >= 0 (0: every frame), got " << global_ba_max_images);
   COMIC_CHECK(max_working_image_size >= 0, kInvalidArgument,
               "pipeline max_working_image_size must be >= 0 (0: any size)");
 }
@@ -142,6 +146,8 @@ struct ModelSet {
   int num_seam_matches = 0;
   double seam_matching_cpu_time_s = 0.0;
   BundleAdjustmentTally ba;
+  // keyframes_only: the decision per frame, as the models changed it.
+  std::vector<KeyframeDecision> keyframes;
 };
 
 // Links between `current` and `earlier` from matching the frames facing each other across the
@@ -257,6 +263,7 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
                     const IncrementalPipelineOptions& options,
                     const MapperProgressCallback& progress, const FrameMatcher& frame_matcher) {
   ModelSet set;
+  if (options.keyframes_only) set.keyframes = SelectKeyframes(tracks, options.keyframes);
   // The initial pairs are searched once and reused; only when every remaining candidate touches
   // an excluded frame is the search repeated without those frames.
   IncrementalMapper::Options search_options = options.mapper;
@@ -306,7 +313,8 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
     tried.insert(pair.image_id2);
     std::vector<const IncrementalModel*> earlier;
     for (const GrownModel& model : set.models) earlier.push_back(&model.model);
-    GrownModel grown = GrowModel(tracks, camera, options, pair, attempt, earlier, linker, progress);
+    GrownModel grown = GrowModel(tracks, camera, options, pair, attempt, earlier, linker, progress,
+                                 options.keyframes_only ? &set.keyframes : nullptr);
     ++set.num_attempts;
     set.ba.Add(grown.ba);
     if (grown.status != ReconstructionStatus::kSuccess) {
@@ -376,6 +384,7 @@ void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
   result->initial_frame2 = model.initial_frame2;
   result->initial_pair_num_points = largest.initial_pair_num_points;
   result->final_ba = largest.final_ba;
+  result->non_keyframes_lost = largest.non_keyframes_lost;
   result->focal_assessed = largest.focal_assessed;
   result->focal_observability = largest.focal_observability;
   result->intrinsics_refined = largest.intrinsics_refined;
@@ -465,6 +474,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
   result.global_ba_time_s = set.ba.global_ba_time_s;
   result.local_ba_cpu_time_s = set.ba.local_ba_cpu_time_s;
   result.global_ba_cpu_time_s = set.ba.global_ba_cpu_time_s;
+  result.keyframe_decisions = std::move(set.keyframes);
   if (set.models.empty()) {
     result.status = set.first_failure;
     result.initial_pair_num_points = set.first_failure_num_points;

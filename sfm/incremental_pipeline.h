@@ -25,6 +25,7 @@
 #include "sfm/focal_observability.h"
 #include "sfm/incremental_mapper.h"
 #include "sfm/intrinsics_plausibility.h"
+#include "sfm/keyframe_selection.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {
@@ -69,6 +70,12 @@ struct IncrementalPipelineOptions {
   // A global bundle adjustment runs whenever the number of registered images has grown by this
   // factor since the last one.
   double global_ba_growth_ratio = 1.5;
+  // Those adjustments hold at most this many of the most recently registered (key)frames
+  // variable, with every point they see; older frames seeing those points are held constant
+  // (0: every frame). The final adjustments of a model are always over all of it. Long video:
+  // an adjustment of the whole model costs in proportion to it, and the growth ratio alone makes
+  // the total grow faster than the frames (docs/long_video.md).
+  int global_ba_max_images = 0;
   // Attempts to register a frame before it is given up.
   int max_registration_trials = 3;
   // The initial pair must triangulate at least this many points.
@@ -118,6 +125,14 @@ struct IncrementalPipelineOptions {
   // video to 720p; Herz-Jesu at 3072 x 2048 self-calibrates to within 0.2 % at 1280 and 1600
   // (docs/sfm.md "Working resolution"). comic_sfm tracks at the same size.
   int max_working_image_size = 1280;
+  // Keyframes (sfm/keyframe_selection.h; ORB-SLAM's rule on the tracks): only keyframes add
+  // points to the map and enter bundle adjustments; the other frames are registered by PnP
+  // against the map as they come (every frame keeps a pose) and posed again against the final
+  // map at the end of their model's growth (IncrementalMapper::LocalizeNonKeyframes). A frame
+  // registering while neither keyframe beside it has is made one. For long, dense video: the
+  // adjustments then grow with the keyframes, not the frames (docs/long_video.md).
+  bool keyframes_only = false;
+  KeyframeOptions keyframes;
 
   IncrementalPipelineOptions();
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -228,6 +243,12 @@ struct IncrementalReconstruction {
   // The same as CPU time of the process (all threads): stable when other jobs share the machine.
   double local_ba_cpu_time_s = 0.0;
   double global_ba_cpu_time_s = 0.0;
+  // With keyframes_only: the selection's decision per frame, with the mapper's changes (initial
+  // pairs, promotions) in `keyframe_decisions[f].reason`; the frames of the largest model that
+  // are not keyframes; those a model registered but could not pose again against its final
+  // map (deregistered; pose gap filling may interpolate them). Empty otherwise.
+  std::vector<KeyframeDecision> keyframe_decisions;
+  std::vector<int> non_keyframes_lost;
   BundleAdjustmentSummary final_ba;  // the last global bundle adjustment of the largest model
   // When global_ba.refine_focal_length asked for the focal: whether the motion let it be
   // refined, as assessed before the last global adjustment (focal_assessed false otherwise).

@@ -79,6 +79,10 @@ const char* KeyframeReasonName(KeyframeReason reason) {
       return "frame_gap";
     case KeyframeReason::kNotKeyframe:
       return "not_keyframe";
+    case KeyframeReason::kInitialPair:
+      return "initial_pair";
+    case KeyframeReason::kPromoted:
+      return "promoted";
   }
   return "unknown";
 }

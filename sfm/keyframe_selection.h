@@ -34,9 +34,13 @@ enum class KeyframeReason {
   kMotion,        // the image moved enough since the last keyframe
   kFrameGap,      // max_frame_gap reached
   kNotKeyframe,   // close to the last keyframe
+  // Decided by the mapper, not by SelectKeyframes:
+  kInitialPair,  // a model's initial pair (its first two keyframes)
+  kPromoted,     // the keyframes before and after it had not registered when it did
 };
 
-// "first", "last", "shared_tracks", "motion", "frame_gap", "not_keyframe".
+// "first", "last", "shared_tracks", "motion", "frame_gap", "not_keyframe", "initial_pair",
+// "promoted".
 const char* KeyframeReasonName(KeyframeReason reason);
 
 struct KeyframeDecision {

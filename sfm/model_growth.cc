@@ -39,7 +39,7 @@ class ModelGrower {
   ModelGrower(const frontend::FeatureTracks& tracks, const Camera& camera,
               const IncrementalPipelineOptions& options, int attempt,
               const std::vector<const IncrementalModel*>& earlier, const SeamLinker& seam_linker,
-              const MapperProgressCallback& progress)
+              const MapperProgressCallback& progress, std::vector<KeyframeDecision>* keyframes)
       : prior_(camera),
         options_(options),
         attempt_(attempt),
@@ -49,7 +49,13 @@ class ModelGrower {
         mapper_(tracks, camera, options.mapper),
         merged_(earlier.size(), 0),
         num_shared_(earlier.size(), 0),
-        next_merge_at_(earlier.size(), options.merge_overlap_frames) {}
+        next_merge_at_(earlier.size(), options.merge_overlap_frames),
+        keyframes_(keyframes) {
+    if (!keyframes_) return;
+    std::vector<char> is_keyframe;
+    for (const KeyframeDecision& decision : *keyframes_) is_keyframe.push_back(decision.keyframe);
+    mapper_.SetKeyframes(std::move(is_keyframe));
+  }
 
   GrownModel Run(const IncrementalMapper::InitialPair& pair) {
     if (!Start(pair)) return Finish(ReconstructionStatus::kTooFewPoints);
@@ -66,6 +72,10 @@ class ModelGrower {
     // Final refinement: adjust, recover tracks the improved poses now explain, adjust again.
     AdjustGlobally(/*final=*/true);
     if (mapper_.TriangulateAllTracks() > 0) AdjustGlobally(/*final=*/true);
+    // The frames outside the map, posed against it as it is final.
+    for (image_t image_id : mapper_.LocalizeNonKeyframes()) {
+      result_.non_keyframes_lost.push_back(IncrementalMapper::FrameOfImageId(image_id));
+    }
     return Finish(ReconstructionStatus::kSuccess);
   }
 
@@ -78,6 +88,9 @@ class ModelGrower {
       return num_points >= static_cast<size_t>(options_.min_num_initial_points);
     };
     result_.initial_pair_num_points = mapper_.RegisterInitialPair(pair);
+    for (image_t image_id : {pair.image_id1, pair.image_id2}) {
+      MarkKeyframe(image_id, KeyframeReason::kInitialPair);
+    }
     if (!enough(result_.initial_pair_num_points)) return false;
     AdjustGlobally();
     result_.initial_pair_num_points = mapper_.reconstruction().NumPoints3D();
@@ -92,14 +105,23 @@ class ModelGrower {
   bool RegisterNextFrame() {
     for (image_t image_id : mapper_.NextImageCandidates()) {
       if (num_trials_[image_id] >= options_.max_registration_trials) continue;
+      // A frame between keyframes that did not register would leave the map without new points
+      // there: it maps instead.
+      const bool promote = !mapper_.IsKeyframe(image_id) && !KeyframeBesideRegistered(image_id);
+      if (promote) {
+        mapper_.PromoteToKeyframe(image_id);
+        MarkKeyframe(image_id, KeyframeReason::kPromoted);
+      }
       if (!mapper_.RegisterNextImage(image_id)) {
         ++num_trials_[image_id];
         continue;
       }
       const int num_inliers = mapper_.last_num_pose_inliers();
-      mapper_.TriangulateImage(image_id);
-      result_.ba.AddLocal(
-          mapper_.AdjustLocalBundle(image_id, options_.local_ba, options_.local_ba_num_images));
+      if (mapper_.IsKeyframe(image_id)) {
+        mapper_.TriangulateImage(image_id);
+        result_.ba.AddLocal(
+            mapper_.AdjustLocalBundle(image_id, options_.local_ba, options_.local_ba_num_images));
+      }
       const size_t num_registered = mapper_.reconstruction().NumRegisteredImages();
       if (static_cast<double>(num_registered) >=
           options_.global_ba_growth_ratio *
@@ -203,7 +225,8 @@ class ModelGrower {
         ba_options.refine_extra_params = false;
       }
     }
-    BundleAdjustmentSummary summary = mapper_.AdjustGlobalBundle(ba_options);
+    const int max_num_images = final ? 0 : options_.global_ba_max_images;
+    BundleAdjustmentSummary summary = mapper_.AdjustGlobalBundle(ba_options, max_num_images);
     result_.ba.AddGlobal(summary);
     if (summary.refined_intrinsics) {
       const Camera& refined = mapper_.reconstruction().cameras().begin()->second;
@@ -214,13 +237,40 @@ class ModelGrower {
         mapper_.ResetCamera(prior_);
         intrinsics_held_ = true;
         HoldIntrinsics(&ba_options);
-        summary = mapper_.AdjustGlobalBundle(ba_options);
+        summary = mapper_.AdjustGlobalBundle(ba_options, max_num_images);
         result_.ba.AddGlobal(summary);
       }
     }
     result_.final_ba = summary;
     result_.intrinsics_refined =
         !intrinsics_held_ && (result_.intrinsics_refined || summary.refined_intrinsics);
+  }
+
+  // Whether the nearest keyframe before `image_id` or the one after it is registered (true
+  // where there is no keyframe selection).
+  bool KeyframeBesideRegistered(image_t image_id) const {
+    if (!keyframes_) return true;
+    const Reconstruction& model = mapper_.reconstruction();
+    const int frame = IncrementalMapper::FrameOfImageId(image_id);
+    const int num_frames = static_cast<int>(keyframes_->size());
+    for (int step : {-1, 1}) {
+      for (int f = frame + step; f >= 0 && f < num_frames; f += step) {
+        const image_t id = IncrementalMapper::ImageIdOfFrame(f);
+        if (!mapper_.IsKeyframe(id)) continue;
+        if (model.image(id).registered) return true;
+        break;
+      }
+    }
+    return false;
+  }
+
+  // Records that this model made `image_id` a keyframe (if it was not one already).
+  void MarkKeyframe(image_t image_id, KeyframeReason reason) {
+    if (!keyframes_) return;
+    KeyframeDecision& decision = (*keyframes_)[IncrementalMapper::FrameOfImageId(image_id)];
+    if (decision.keyframe) return;
+    decision.keyframe = true;
+    decision.reason = reason;
   }
 
   static void HoldIntrinsics(BundleAdjustmentOptions* ba_options) {
@@ -281,6 +331,7 @@ class ModelGrower {
   std::vector<char> merged_;
   std::vector<int> num_shared_;
   std::vector<int> next_merge_at_;
+  std::vector<KeyframeDecision>* keyframes_;  // nullptr: every frame is a keyframe
 };
 
 }  // namespace
@@ -289,8 +340,10 @@ GrownModel GrowModel(const frontend::FeatureTracks& tracks, const Camera& camera
                      const IncrementalPipelineOptions& options,
                      const IncrementalMapper::InitialPair& pair, int attempt,
                      const std::vector<const IncrementalModel*>& earlier,
-                     const SeamLinker& seam_linker, const MapperProgressCallback& progress) {
-  return ModelGrower(tracks, camera, options, attempt, earlier, seam_linker, progress).Run(pair);
+                     const SeamLinker& seam_linker, const MapperProgressCallback& progress,
+                     std::vector<KeyframeDecision>* keyframes) {
+  return ModelGrower(tracks, camera, options, attempt, earlier, seam_linker, progress, keyframes)
+      .Run(pair);
 }
 
 }  // namespace comic::sfm

@@ -15,6 +15,7 @@
 #include "frontend/matching/track.h"
 #include "sfm/incremental_mapper.h"
 #include "sfm/incremental_pipeline.h"
+#include "sfm/keyframe_selection.h"
 
 namespace comic::sfm {
 
@@ -52,6 +53,8 @@ struct GrownModel {
   std::vector<int> best_failed_pose_inliers;
   BundleAdjustmentTally ba;
   BundleAdjustmentSummary final_ba;
+  // Frames registered but not posed again against the final map (LocalizeNonKeyframes).
+  std::vector<int> non_keyframes_lost;
   bool focal_assessed = false;
   FocalObservability focal_observability;
   bool intrinsics_refined = false;
@@ -61,11 +64,14 @@ struct GrownModel {
 // Grows a model of `tracks` from `pair` with `camera` as the prior intrinsics. `earlier` are the
 // run's earlier models still standing (merged when this model shares registered frames, tracked
 // points or, through `seam_linker` if given, seam matches with them). `attempt` numbers the
-// progress reports.
+// progress reports. `keyframes` (one decision per frame; nullptr: every frame is a keyframe)
+// says which frames add to the map (IncrementalMapper::SetKeyframes); the frames this model makes
+// keyframes (its initial pair, promotions) are written back with their reason.
 GrownModel GrowModel(const frontend::FeatureTracks& tracks, const Camera& camera,
                      const IncrementalPipelineOptions& options,
                      const IncrementalMapper::InitialPair& pair, int attempt,
                      const std::vector<const IncrementalModel*>& earlier,
-                     const SeamLinker& seam_linker, const MapperProgressCallback& progress);
+                     const SeamLinker& seam_linker, const MapperProgressCallback& progress,
+                     std::vector<KeyframeDecision>* keyframes = nullptr);
 
 }  // namespace comic::sfm

@@ -1,5 +1,7 @@
 #include "sfm/evaluation/sfm_report.h"
 
+#include <map>
+
 #include "sfm/working_resolution.h"
 
 namespace comic::sfm {
@@ -99,6 +101,14 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.num_local_ba = run.mapping.num_local_ba;
   report.num_global_ba = run.mapping.num_global_ba;
   report.image_set_matching = run.image_set_matching;
+  report.keyframes_only = !mapping.keyframe_decisions.empty();
+  for (size_t frame = 0; frame < mapping.keyframe_decisions.size(); ++frame) {
+    const KeyframeDecision& decision = mapping.keyframe_decisions[frame];
+    if (!decision.keyframe) continue;
+    report.keyframes.push_back(static_cast<int>(frame));
+    report.keyframe_reasons.push_back(KeyframeReasonName(decision.reason));
+  }
+  report.non_keyframes_lost = mapping.non_keyframes_lost;
   return report;
 }
 
@@ -167,6 +177,17 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                      {"initial_pair_searches", report.num_initial_pair_searches},
                      {"seam_matches", report.num_seam_matches},
                      {"working_scale", report.working_scale}};
+  if (report.keyframes_only) {
+    std::map<std::string, int> count_by_reason;
+    for (const std::string& reason : report.keyframe_reasons) ++count_by_reason[reason];
+    json["keyframes"] = {{"count", report.keyframes.size()},
+                         {"frames", report.keyframes},
+                         {"reasons", report.keyframe_reasons},
+                         {"count_by_reason", count_by_reason},
+                         {"non_keyframes_lost", report.non_keyframes_lost}};
+  } else {
+    json["keyframes"] = nullptr;
+  }
   json["intrinsics_rejection"] = report.intrinsics_rejection.empty()
                                      ? nlohmann::json(nullptr)
                                      : nlohmann::json(report.intrinsics_rejection);

@@ -76,6 +76,13 @@ struct SfmRunReport {
   double global_ba_cpu_time_s = 0.0;
   int num_local_ba = 0;
   int num_global_ba = 0;
+  // Keyframes (IncrementalPipelineOptions::keyframes_only; report.json "keyframes", null
+  // without): the keyframes with the reason each is one, and the frames the largest model
+  // registered but could not pose again against its final map.
+  bool keyframes_only = false;
+  std::vector<int> keyframes;
+  std::vector<std::string> keyframe_reasons;
+  std::vector<int> non_keyframes_lost;
   // Image sets matched by descriptors: pairs, matches and the CPU time of each stage
   // (report.json "image_set_matching").
   std::optional<frontend::ImageSetMatchingSummary> image_set_matching;

@@ -56,6 +56,8 @@ void ReconstructionRunOptions::Check() const {
               "--local-ba-images must be >= 2, got " << local_ba_images);
   COMIC_CHECK(global_ba_growth > 1.0, kInvalidArgument,
               "--global-ba-growth must be > 1, got " << global_ba_growth);
+  COMIC_CHECK(global_ba_max_images >= 0, kInvalidArgument,
+              "--global-ba-max-images must be >= 0 (0: every frame), got " << global_ba_max_images);
   COMIC_CHECK(init_angle > 0.0 && init_angle < 90.0, kInvalidArgument,
               "--init-angle must be in (0, 90) degrees, got " << init_angle);
   COMIC_CHECK(init_max_gap >= 0, kInvalidArgument,
@@ -112,11 +114,13 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
       !run.two_view_tracks && tracker.match_window <= 1 && !image_set;
   options.mapper.local_ba_num_images = run.local_ba_images;
   options.mapper.global_ba_growth_ratio = run.global_ba_growth;
+  options.mapper.global_ba_max_images = run.global_ba_max_images;
   options.mapper.mapper.init_tri_angle_deg = run.init_angle;
   options.mapper.mapper.init_max_frame_gap = run.init_max_gap;
   // An image set's frame order says nothing about which views are near: any two may start.
   if (image_set) options.mapper.mapper.init_max_frame_gap = 1 << 30;
   options.mapper.max_working_image_size = run.max_working_size;
+  options.mapper.keyframes_only = run.keyframes && !image_set;
   // `threads` is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no output may depend
   // on the thread count. They stay on one thread; detection and the export use `threads`.

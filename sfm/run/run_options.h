@@ -73,10 +73,17 @@ struct ReconstructionRunOptions {
   bool two_view_tracks = false;
   int local_ba_images = IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
+  // --global-ba-max-images N: the adjustments as a model grows hold at most N of its newest
+  // (key)frames variable (IncrementalPipelineOptions::global_ba_max_images; 0: all).
+  int global_ba_max_images = 0;
   double init_angle = 4.0;  // degrees
   // A video's initial-pair gap (0: no limit, the gap grows as far as the tracks reach); see
   // `matcher`.
   int init_max_gap = 0;
+  // --keyframes: only keyframes add points and enter bundle adjustments; the other frames are
+  // posed against the map (IncrementalPipelineOptions::keyframes_only). Video only: an image
+  // set's order says nothing about which frames are close.
+  bool keyframes = false;
   int threads = 0;  // detection and the export (0: one per core); never the bundle adjustments
 
   // ---- evaluation

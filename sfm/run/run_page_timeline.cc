@@ -10,7 +10,7 @@ namespace {
 const char* const kModelColors[] = {"#e0452b", "#2f7fd0", "#a05cc9", "#e8a317",
                                     "#8c5a3c", "#d957a8", "#19a9b8", "#7f8c1f"};
 
-enum FrameState { kRegistered = 0, kUnregistered = 1 };
+enum FrameState { kRegistered = 0, kUnregistered = 1, kKeyframe = 2 };
 
 // Consecutive frames in `frames` (ascending) as [first, last] ranges.
 std::vector<std::pair<int, int>> Ranges(const std::vector<int>& frames) {
@@ -85,6 +85,16 @@ io::Timeline RunTimeline(const DetectorRun& run, const std::vector<std::string>&
       if (f < 0 || f >= num_frames || timeline.frame_groups[f] >= 0) continue;
       timeline.frame_states[f] = kRegistered;
       timeline.frame_groups[f] = index;
+    }
+  }
+  // --keyframes: the registered keyframes marked (the other frames were posed against the map).
+  if (run.report.keyframes_only) {
+    timeline.states.push_back(
+        {"keyframe", "registered keyframe (adds points to the map)", "", "marked"});
+    for (int f : run.report.keyframes) {
+      if (f >= 0 && f < num_frames && timeline.frame_states[f] == kRegistered) {
+        timeline.frame_states[f] = kKeyframe;
+      }
     }
   }
   std::vector<int> unregistered;

@@ -132,7 +132,9 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
            options.two_view_tracks || tracker.match_window > 1 || inputs.image_set.has_value()},
           {"local_ba_images", options.local_ba_images},
           {"global_ba_growth", options.global_ba_growth},
+          {"global_ba_max_images", options.global_ba_max_images},
           {"init_angle_deg", options.init_angle},
+          {"keyframes", options.keyframes && !inputs.image_set},
           {"init_max_gap", inputs.image_set ? nlohmann::json("all frames (image set)")
                                             : nlohmann::json(options.init_max_gap)},
           {"max_working_size", options.max_working_size},

@@ -310,6 +310,7 @@ TEST(BundleAdjuster, ReportsProgressWithoutChangingTheSolution) {
     EXPECT_EQ(lines[i].num_variable_images, summary.num_variable_images);
     EXPECT_EQ(lines[i].num_points, summary.num_points);
     EXPECT_EQ(lines[i].max_num_iterations, options.max_num_iterations);
+    EXPECT_EQ(lines[i].first, i == 0);  // a new solve starts a new series of lines
     if (i > 0) {
       EXPECT_GE(lines[i].elapsed_s, lines[i - 1].elapsed_s);
     }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
@@ -86,6 +87,66 @@ TEST(IncrementalMapper, RegistersTriangulatesAndFilters) {
   const size_t before = mapper.reconstruction().NumObservations();
   EXPECT_EQ(mapper.FilterPoints(), 0u);
   EXPECT_EQ(mapper.reconstruction().NumObservations(), before);
+}
+
+// A frame that is not a keyframe gets a pose but adds nothing to the map until it is posed again
+// against the final map; the initial pair's frames become keyframes whatever the flags say.
+TEST(IncrementalMapper, NonKeyframesArePosedButStayOutOfTheMapUntilLocalized) {
+  const SyntheticScene scene = ForwardScene();
+  IncrementalMapper mapper(scene.tracks, scene.camera, IncrementalMapper::Options());
+  const auto pair = mapper.FindInitialPair();
+  ASSERT_TRUE(pair.has_value());
+  EXPECT_THROW(mapper.SetKeyframes(std::vector<char>(3, 1)), Error);  // one flag per frame
+  mapper.SetKeyframes(std::vector<char>(scene.tracks.NumFrames(), 0));
+  EXPECT_FALSE(mapper.IsKeyframe(pair->image_id1));
+  ASSERT_GT(mapper.RegisterInitialPair(*pair), 100u);
+  EXPECT_TRUE(mapper.IsKeyframe(pair->image_id1));
+  EXPECT_TRUE(mapper.IsKeyframe(pair->image_id2));
+  EXPECT_THROW(mapper.SetKeyframes({}), Error);  // only before registration
+  mapper.AdjustGlobalBundle(BundleAdjustmentOptions());
+  const size_t num_points = mapper.reconstruction().NumPoints3D();
+  const size_t num_observations = mapper.reconstruction().NumObservations();
+
+  const std::vector<image_t> candidates = mapper.NextImageCandidates();
+  ASSERT_GE(candidates.size(), 2u);
+  const image_t non_keyframe = candidates[0];
+  EXPECT_FALSE(mapper.IsKeyframe(non_keyframe));
+  ASSERT_TRUE(mapper.RegisterNextImage(non_keyframe));
+  EXPECT_TRUE(mapper.reconstruction().image(non_keyframe).registered);
+  EXPECT_EQ(mapper.reconstruction().NumObservations(), num_observations);
+  EXPECT_EQ(mapper.TriangulateImage(non_keyframe), 0u);  // its views do not triangulate
+  EXPECT_EQ(mapper.reconstruction().NumPoints3D(), num_points);
+  EXPECT_EQ(mapper.reconstruction().NumObservations(), num_observations);
+  EXPECT_THROW(mapper.PromoteToKeyframe(non_keyframe), Error);  // registered already
+
+  const image_t promoted = candidates[1];
+  mapper.PromoteToKeyframe(promoted);
+  ASSERT_TRUE(mapper.RegisterNextImage(promoted));
+  EXPECT_GT(mapper.reconstruction().NumObservations(), num_observations);
+  // Global adjustment: the non-keyframe is not in the problem.
+  const BundleAdjustmentSummary global = mapper.AdjustGlobalBundle(BundleAdjustmentOptions());
+  EXPECT_EQ(global.num_images, 3);
+  EXPECT_EQ(global.num_variable_images, 2);  // the first frame of the pair is held (gauge)
+  // Bounded to the newest keyframe: the initial pair sees its points and is held constant.
+  const BundleAdjustmentSummary newest = mapper.AdjustGlobalBundle(BundleAdjustmentOptions(), 1);
+  EXPECT_TRUE(newest.usable);
+  EXPECT_EQ(newest.num_variable_images, 1);
+  EXPECT_EQ(newest.num_images, 3);
+  EXPECT_THROW(mapper.AdjustGlobalBundle(BundleAdjustmentOptions(), -1), Error);
+
+  // Posed again against the map, with its inlier observations.
+  EXPECT_TRUE(mapper.LocalizeNonKeyframes().empty());
+  const Image& image = mapper.reconstruction().image(non_keyframe);
+  EXPECT_TRUE(image.registered);
+  int num_observed = 0;
+  for (const Point2D& point2D : image.points2D) num_observed += point2D.HasPoint3D();
+  EXPECT_GT(num_observed, 30);
+  const Rigid3d& truth = scene.cams_from_world[IncrementalMapper::FrameOfImageId(non_keyframe)];
+  const Rigid3d& first = scene.cams_from_world[IncrementalMapper::FrameOfImageId(pair->image_id1)];
+  // Rotation relative to the first frame of the pair (the model's origin) within 0.5 degrees.
+  const Eigen::Quaterniond estimated = image.cam_from_world.rotation;
+  const Eigen::Quaterniond expected = truth.rotation * first.rotation.inverse();
+  EXPECT_LT(estimated.angularDistance(expected) * 180.0 / M_PI, 0.5);
 }
 
 TEST(IncrementalMapper, FilterRemovesLargeErrorsAndSmallAngles) {

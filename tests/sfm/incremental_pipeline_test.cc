@@ -469,6 +469,68 @@ TEST(IncrementalPipeline, APanInTheMiddleOfAWalkLeavesNoFrameWithoutAPose) {
   EXPECT_LT(evaluation->mean_rotation_error_deg, 1.0);
 }
 
+// Dense video (a slow walk along the wall, 5 cm a frame, ~3 px of image motion): with keyframes
+// only, every frame still gets a pose, as accurate as without them, while the adjustments hold
+// only the keyframes.
+TEST(IncrementalPipeline, KeyframesOnlyPosesEveryFrameWithSmallerAdjustments) {
+  std::vector<Rigid3d> path;
+  for (int i = 0; i < 60; ++i) {
+    const Eigen::Vector3d center(-6.0 + 0.05 * i, 0.05 * std::sin(0.2 * i), 0.0);
+    path.push_back(LookAt(center, center + Eigen::Vector3d(0.3 * std::sin(0.05 * i), 0.0, 10.0)));
+  }
+  const SyntheticScene scene =
+      MakeSyntheticSceneFromPath(SyntheticSceneOptions(), path, WallPoints(1500, 7));
+  IncrementalPipelineOptions options;
+  options.keyframes_only = true;
+  const IncrementalReconstruction result =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  ASSERT_EQ(result.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(result.registered_frames, Range(0, 59));
+  EXPECT_TRUE(result.interpolated_frames.empty());
+  EXPECT_TRUE(result.non_keyframes_lost.empty());
+  ASSERT_EQ(result.keyframe_decisions.size(), 60u);
+  int num_keyframes = 0;
+  for (const KeyframeDecision& decision : result.keyframe_decisions) {
+    num_keyframes += decision.keyframe;
+  }
+  EXPECT_GE(num_keyframes, 6);
+  EXPECT_LE(num_keyframes, 30);
+  EXPECT_TRUE(result.keyframe_decisions[result.initial_frame1].keyframe);
+  EXPECT_TRUE(result.keyframe_decisions[result.initial_frame2].keyframe);
+  // The last adjustment held the keyframes only; every frame observes points afterwards.
+  EXPECT_EQ(result.final_ba.num_images, num_keyframes);
+  for (const auto& [image_id, image] : result.reconstruction.images()) {
+    int num_observed = 0;
+    for (const Point2D& point2D : image.points2D) num_observed += point2D.HasPoint3D();
+    EXPECT_GE(num_observed, 30) << image.name;
+  }
+  const auto evaluation = Evaluate(result, scene);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_LT(evaluation->ate_fraction_of_path, 0.01)
+      << "ATE " << evaluation->ate_rmse << " over a path of " << evaluation->path_length;
+  EXPECT_LT(evaluation->mean_rotation_error_deg, 0.3);
+
+  // Adjustments as the model grows bounded to its 8 newest keyframes: as accurate; the final one
+  // still holds every keyframe.
+  options.global_ba_max_images = 8;
+  const IncrementalReconstruction bounded =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  ASSERT_EQ(bounded.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(bounded.registered_frames, Range(0, 59));
+  EXPECT_EQ(bounded.final_ba.num_images, num_keyframes);
+  const auto bounded_evaluation = Evaluate(bounded, scene);
+  ASSERT_TRUE(bounded_evaluation.has_value());
+  EXPECT_LT(bounded_evaluation->ate_fraction_of_path, 0.01);
+  EXPECT_LT(bounded_evaluation->mean_rotation_error_deg, 0.3);
+
+  // Without keyframes: the same frames, every one of them in the last adjustment.
+  const IncrementalReconstruction every_frame =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  ASSERT_EQ(every_frame.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(every_frame.final_ba.num_images, 60);
+  EXPECT_TRUE(every_frame.keyframe_decisions.empty());
+}
+
 TEST(IncrementalPipeline, RejectsInvalidOptions) {
   IncrementalPipelineOptions options;
   options.local_ba_num_images = 1;

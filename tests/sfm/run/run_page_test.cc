@@ -13,6 +13,7 @@
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/run/reconstruction_run.h"
 #include "sfm/run/run_page_frames.h"
+#include "sfm/run/run_page_timeline.h"
 #include "sfm/run/run_report.h"
 #include "tests/test_support.h"
 
@@ -111,6 +112,37 @@ TEST(RunPage, ShowsAModelWithItsGroundTruth) {
   EXPECT_EQ(images.at(1)["images"].size(), 12u);
   EXPECT_TRUE(images.at(1)["thumbnails"].get<bool>());
   EXPECT_EQ(Sections(page, "json").at(0)["document"], run.report_json);
+}
+
+// --keyframes: report.json lists every keyframe with its reason, and the timeline marks the
+// registered keyframes (on KITTI's 12 frames, 1 m apart, every frame is one).
+TEST(RunPage, MarksTheKeyframesOnTheTimeline) {
+  ReconstructionRunOptions options = Example();
+  options.keyframes = true;
+  const ReconstructionRunResult result = RunReconstruction(options);
+  ASSERT_TRUE(result.success()) << result.failure;
+  DetectorRun run = result.runs.front();
+  const nlohmann::json& keyframes = run.report_json.at("keyframes");
+  EXPECT_EQ(keyframes["count"], 12);
+  ASSERT_EQ(keyframes["reasons"].size(), 12u);
+  EXPECT_EQ(keyframes["reasons"][0], "first");
+  EXPECT_TRUE(keyframes["non_keyframes_lost"].empty());
+  EXPECT_EQ(run.report_json["options"]["keyframes"], true);
+  // Three of them as keyframes: those three cells are marked, the others plain registered.
+  run.report.keyframes = {0, 5, 11};
+  const io::Timeline timeline = RunTimeline(run, result.inputs.sequence->FrameNames());
+  ASSERT_EQ(timeline.states.size(), 3u);
+  EXPECT_EQ(timeline.states[2].key, "keyframe");
+  EXPECT_EQ(timeline.states[2].style, "marked");
+  std::vector<int> expected(12, 0);
+  for (int f : {0, 5, 11}) expected[f] = 2;
+  EXPECT_EQ(timeline.frame_states, expected);
+  // Without --keyframes: no keyframes in the report, no such state.
+  const ReconstructionRunResult plain = RunReconstruction(Example());
+  ASSERT_TRUE(plain.success()) << plain.failure;
+  EXPECT_TRUE(plain.runs.front().report_json.at("keyframes").is_null());
+  EXPECT_EQ(RunTimeline(plain.runs.front(), result.inputs.sequence->FrameNames()).states.size(),
+            2u);
 }
 
 TEST(RunPage, ExplainsAFailedRun) {
