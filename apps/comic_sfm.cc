@@ -141,6 +141,11 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                    "(every model is written either way; 'success' needs 0.95)",
                    &o->min_registered);
   apps::AddThreadsFlag(parser, &o->threads);
+  parser.AddOption("cache", "DIR",
+                   "detections and tracks are kept in DIR and reused by a re-run with the same "
+                   "frames, detector and tracker options (other mapper options reuse them; not "
+                   "inside FRAMES or --output)",
+                   &o->cache);
   apps::AddObjectRegionFlags(parser, &c->region);
   parser.AddOption("plot-plane", "P",
                    "trajectory plot plane: auto (x-z for KITTI, else the plane of largest "
@@ -191,6 +196,11 @@ class ConsoleProgress {
       }
     };
     callbacks.stage_started = [this](sfm::RunStage stage, const std::string& detector) {
+      if (stage == sfm::RunStage::kTracksFromCache) {
+        line_.reset();
+        if (!quiet_) std::cout << "[" << detector << "] tracks read from --cache" << std::endl;
+        return;
+      }
       // Detection and tracking are most of a run's time.
       line_ = std::make_unique<apps::ProgressLine>(stage == sfm::RunStage::kTracking
                                                        ? "[" + detector + "] detection and tracking"
@@ -199,6 +209,9 @@ class ConsoleProgress {
     };
     callbacks.frame_done = [this](size_t done, size_t total) {
       if (line_) line_->Update(done, total);
+    };
+    callbacks.warning = [](const std::string& message) {
+      apps::PrintWarning("comic_sfm", message);
     };
     callbacks.frame_registered = [this](const std::string& detector,
                                         const sfm::MapperProgress& progress) {

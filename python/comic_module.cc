@@ -458,8 +458,8 @@ frontend::TrackingProgress TrackingCallback(const py::object& callback) {
 }
 
 // The run's progress for Python: `callback(event)` after each registered frame (a dict), and the
-// command line's lines printed (sys.stdout) unless `quiet`; a truncated video's warning as a
-// RuntimeWarning. Each takes the GIL, as TrackingCallback does.
+// command line's lines printed (sys.stdout) unless `quiet`; a truncated video's warning and an
+// unusable --cache file's as a RuntimeWarning. Each takes the GIL, as TrackingCallback does.
 sfm::RunCallbacks RunCallbacksFor(const py::object& callback, bool quiet,
                                   const std::string& program) {
   sfm::RunCallbacks callbacks;
@@ -472,6 +472,11 @@ sfm::RunCallbacks RunCallbacksFor(const py::object& callback, bool quiet,
     }
     if (quiet) return;
     for (const std::string& line : sfm::RunInputsLines(inputs, program)) py::print(line);
+  };
+  // A cache file that could not be used (recomputed and replaced), as the truncated video's.
+  callbacks.warning = [](const std::string& message) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw py::error_already_set();
   };
   callbacks.frame_registered = [function, quiet](const std::string& detector,
                                                  const sfm::MapperProgress& p) {
@@ -817,6 +822,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"max_working_size", Field(&o->max_working_size)},
                        {"min_registered", Field(&o->min_registered)},
                        {"threads", Field(&o->threads)},
+                       {"cache", Field(&o->cache)},
                        {"masks", Field(&o->masks)},
                        {"regions", Field(&o->regions)},
                        {"boundary_band", Field(&o->boundary_band)},

@@ -29,13 +29,8 @@ double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-}  // namespace
-
-SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
-                                           const frontend::Detector& detector, const Camera& camera,
-                                           const SequenceReconstructionOptions& options,
-                                           const frontend::TrackingProgress& tracking_progress,
-                                           const MapperProgressCallback& mapper_progress) {
+void CheckMappingInputs(const io::ImageSequence& sequence, const Camera& camera,
+                        const SequenceReconstructionOptions& options) {
   options.Check();
   camera.Check();
   COMIC_CHECK(
@@ -43,22 +38,50 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
       kInvalidArgument,
       "camera is for " << camera.width << "x" << camera.height << " images, the frames are "
                        << sequence.FrameSize().width << "x" << sequence.FrameSize().height);
+}
+
+}  // namespace
+
+SequenceTracking TrackFrames(const io::ImageSequence& sequence, const frontend::Detector& detector,
+                             const SequenceReconstructionOptions& options,
+                             const frontend::TrackingProgress& tracking_progress) {
+  options.Check();
   const auto start = std::chrono::steady_clock::now();
-  SequenceReconstruction run;
-  run.detector_name = detector.Name();
+  SequenceTracking tracking;
   if (options.image_set) {
     frontend::ImageSetMatching matched =
         frontend::MatchImageSet(sequence, detector, *options.image_set, tracking_progress);
-    run.tracks = std::move(matched.tracks);
-    run.track_building = matched.track_building;
-    run.image_set_matching = matched.summary;
+    tracking.tracks = std::move(matched.tracks);
+    tracking.track_building = matched.track_building;
+    tracking.image_set_matching = matched.summary;
   } else {
-    frontend::TrackingResult tracking =
+    frontend::TrackingResult result =
         frontend::TrackSequenceWithDetector(sequence, detector, options.tracker, tracking_progress);
-    run.tracks = std::move(tracking.tracks);
-    run.track_building = tracking.track_building;
+    tracking.tracks = std::move(result.tracks);
+    tracking.track_building = result.track_building;
   }
-  run.tracking_time_s = Seconds(start);
+  tracking.time_s = Seconds(start);
+  return tracking;
+}
+
+SequenceReconstruction ReconstructFromTracks(const io::ImageSequence& sequence,
+                                             const frontend::Detector& detector,
+                                             const Camera& camera,
+                                             const SequenceReconstructionOptions& options,
+                                             SequenceTracking tracking,
+                                             const MapperProgressCallback& mapper_progress) {
+  CheckMappingInputs(sequence, camera, options);
+  // Tracks from a cache are of these frames by their key; this guards a caller that mixes them up.
+  COMIC_CHECK(tracking.tracks.NumFrames() == sequence.NumFrames(), kInvalidArgument,
+              "tracks of " << tracking.tracks.NumFrames() << " frames for a sequence of "
+                           << sequence.NumFrames());
+  const auto start = std::chrono::steady_clock::now();
+  SequenceReconstruction run;
+  run.detector_name = detector.Name();
+  run.tracks = std::move(tracking.tracks);
+  run.track_building = tracking.track_building;
+  run.image_set_matching = tracking.image_set_matching;
+  run.tracking_time_s = tracking.time_s;
 
   const auto mapping_start = std::chrono::steady_clock::now();
   run.input_size = sequence.SourceFrameSize();
@@ -75,8 +98,19 @@ SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
     ColorizeReconstruction(sequence, &run.mapping.reconstruction);
   }
   run.coloring_time_s = Seconds(coloring_start);
-  run.wall_time_s = Seconds(start);
+  run.wall_time_s = run.tracking_time_s + Seconds(start);
   return run;
+}
+
+SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
+                                           const frontend::Detector& detector, const Camera& camera,
+                                           const SequenceReconstructionOptions& options,
+                                           const frontend::TrackingProgress& tracking_progress,
+                                           const MapperProgressCallback& mapper_progress) {
+  CheckMappingInputs(sequence, camera, options);  // before the tracking: a bad camera fails now
+  return ReconstructFromTracks(sequence, detector, camera, options,
+                               TrackFrames(sequence, detector, options, tracking_progress),
+                               mapper_progress);
 }
 
 FrameMatcher MakeSeamMatcher(const io::ImageSequence& sequence, const frontend::Detector& detector,

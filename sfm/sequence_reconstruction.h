@@ -63,10 +63,36 @@ struct SequenceReconstruction {
   double wall_time_s = 0.0;      // everything
 };
 
-// Tracks `sequence` with `detector`, reconstructs it with `camera` (intrinsics at the size of the
-// sequence's frames), and colours the points. Throws comic::Error for invalid input (camera size
-// different from the frames, bad options, unreadable frames); a reconstruction that cannot start
-// comes back as mapping.status.
+// What tracking (or image-set matching) found: all the mapper needs from the frames, and what a
+// track cache keeps (sfm/run/track_cache.h).
+struct SequenceTracking {
+  frontend::FeatureTracks tracks;
+  frontend::TrackBuildSummary track_building;
+  std::optional<frontend::ImageSetMatchingSummary> image_set_matching;  // with options.image_set
+  double time_s = 0.0;  // detection and tracking (or description and matching; or a cache read)
+};
+
+// The first half of ReconstructSequence: detection and tracking (or, with options.image_set,
+// description and matching). Throws comic::Error for bad options and unreadable frames.
+SequenceTracking TrackFrames(const io::ImageSequence& sequence, const frontend::Detector& detector,
+                             const SequenceReconstructionOptions& options,
+                             const frontend::TrackingProgress& tracking_progress = {});
+
+// The second half: incremental mapping of `tracking` (TrackFrames of the same sequence, detector
+// and options, or the same read back from a cache) and the colouring. `detector` is used again
+// only to link models that do not meet (MakeSeamMatcher: detection on a seam's two frames).
+// Throws comic::Error(kInvalidArgument) when the camera or the tracks do not fit the frames.
+SequenceReconstruction ReconstructFromTracks(const io::ImageSequence& sequence,
+                                             const frontend::Detector& detector,
+                                             const Camera& camera,
+                                             const SequenceReconstructionOptions& options,
+                                             SequenceTracking tracking,
+                                             const MapperProgressCallback& mapper_progress = {});
+
+// TrackFrames then ReconstructFromTracks: tracks `sequence` with `detector`, reconstructs it with
+// `camera` (intrinsics at the size of the sequence's frames), and colours the points. Throws
+// comic::Error for invalid input (camera size different from the frames, bad options, unreadable
+// frames); a reconstruction that cannot start comes back as mapping.status.
 SequenceReconstruction ReconstructSequence(const io::ImageSequence& sequence,
                                            const frontend::Detector& detector, const Camera& camera,
                                            const SequenceReconstructionOptions& options,

@@ -1,6 +1,8 @@
 #include "sfm/run/detector_run.h"
 
+#include <functional>
 #include <memory>
+#include <utility>
 
 #include "frontend/detector_factory.h"
 #include "sfm/evaluation/reconstruction_stats.h"
@@ -10,28 +12,40 @@ namespace comic::sfm {
 
 namespace {
 
-std::unique_ptr<frontend::Detector> MakeRunDetector(const std::string& name,
-                                                    const ReconstructionRunOptions& options) {
+frontend::DetectorOptions RunDetectorOptions(const std::string& name,
+                                             const ReconstructionRunOptions& options) {
   frontend::DetectorOptions detector_options = options.detector_options;
   detector_options.name = name;
   detector_options.comic.num_threads = options.threads;
   detector_options.comic_paper.num_threads = options.threads;
-  return frontend::MakeDetector(detector_options);
+  return detector_options;
 }
 
-// Detection, tracking and incremental mapping, with progress.
-SequenceReconstruction Reconstruct(const std::string& name, const frontend::Detector& detector,
+// Detection and tracking (or the tracks of --cache), then incremental mapping, with progress.
+SequenceReconstruction Reconstruct(const frontend::DetectorOptions& detector_options,
+                                   const frontend::Detector& detector,
                                    const SequenceReconstructionOptions& sfm_options,
-                                   const RunInputs& inputs, const RunCallbacks& callbacks) {
-  if (callbacks.stage_started) callbacks.stage_started(RunStage::kTracking, name);
+                                   const ReconstructionRunOptions& options, const RunInputs& inputs,
+                                   const RunCallbacks& callbacks, TrackCacheUse* cache) {
+  const std::string& name = detector_options.name;
+  const std::function<void()> tracking_started = [&] {
+    if (callbacks.stage_started) callbacks.stage_started(RunStage::kTracking, name);
+  };
+  SequenceTracking tracking =
+      TrackFramesThroughCache(options.cache, detector_options, detector, *inputs.sequence,
+                              sfm_options, tracking_started, callbacks.frame_done, cache);
+  if (!cache->warning.empty() && callbacks.warning) callbacks.warning(cache->warning);
+  if (cache->from_cache && callbacks.stage_started) {
+    callbacks.stage_started(RunStage::kTracksFromCache, name);
+  }
   MapperProgressCallback registered;
   if (callbacks.frame_registered) {
     registered = [&](const MapperProgress& progress) {
       callbacks.frame_registered(name, progress);
     };
   }
-  return ReconstructSequence(*inputs.sequence, detector, inputs.camera.camera, sfm_options,
-                             callbacks.frame_done, registered);
+  return ReconstructFromTracks(*inputs.sequence, detector, inputs.camera.camera, sfm_options,
+                               std::move(tracking), registered);
 }
 
 // The report's numbers: statistics (with regions), the trajectory against the ground truth.
@@ -62,7 +76,8 @@ void RecoverWhatWasFound(const RunInputs& inputs, DetectorRun* result) {
 DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOptions& options,
                         const RunInputs& inputs, bool writes_outputs,
                         const RunCallbacks& callbacks) {
-  const std::unique_ptr<frontend::Detector> made = MakeRunDetector(detector, options);
+  const frontend::DetectorOptions detector_options = RunDetectorOptions(detector, options);
+  const std::unique_ptr<frontend::Detector> made = frontend::MakeDetector(detector_options);
   SequenceReconstructionOptions sfm_options = MakeSequenceReconstructionOptions(
       options, inputs.tracker, inputs.camera.refine_intrinsics, inputs.image_set);
   if (callbacks.adjustment_progress) {
@@ -72,7 +87,8 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
   }
   DetectorRun result;
   result.detector = detector;
-  result.run = Reconstruct(detector, *made, sfm_options, inputs, callbacks);
+  result.run = Reconstruct(detector_options, *made, sfm_options, options, inputs, callbacks,
+                           &result.track_cache);
   Evaluate(inputs, &result);
   result.diagnosis =
       DiagnoseReconstruction(result.run.mapping, sfm_options.mapper, inputs.sequence->FrameNames());

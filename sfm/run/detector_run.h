@@ -15,6 +15,7 @@
 #include "sfm/rotation_only_path.h"
 #include "sfm/run/run_inputs.h"
 #include "sfm/run/run_options.h"
+#include "sfm/run/track_cache.h"
 #include "sfm/sequence_reconstruction.h"
 #include "sfm/trajectory_evaluation.h"
 
@@ -22,8 +23,9 @@ namespace comic::sfm {
 
 struct DetectorRun;
 
-// The stages of a run that go frame by frame.
-enum class RunStage { kTracking, kWritingFrames };
+// The stages of a run that go frame by frame, and kTracksFromCache: the tracks were read from
+// --cache instead (no frame_done follows; nothing was detected).
+enum class RunStage { kTracking, kWritingFrames, kTracksFromCache };
 
 // Progress of a run, for a front door to show (every member may be empty). Called on the thread
 // that called the run.
@@ -40,6 +42,9 @@ struct RunCallbacks {
   // A global bundle adjustment has run more than a second: once per iteration from then on.
   std::function<void(const std::string& detector, const BundleAdjustmentProgress&)>
       adjustment_progress;
+  // Something the run worked around, in one line (a --cache file that could not be read, tracked
+  // again and replaced).
+  std::function<void(const std::string& message)> warning;
   // A detector's run is complete (its outputs not yet written).
   std::function<void(const DetectorRun&)> detector_finished;
 };
@@ -47,6 +52,7 @@ struct RunCallbacks {
 struct DetectorRun {
   std::string detector;
   SequenceReconstruction run;
+  TrackCacheUse track_cache;  // --cache: the file, and whether the tracks came from it
   SfmRunReport report;
   std::optional<TrajectoryEvaluation> evaluation;  // with ground truth
   ReconstructionDiagnosis diagnosis;               // failed = false for a model

@@ -1,6 +1,7 @@
 #include "sfm/run/reconstruction_run.h"
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <memory>
 
@@ -71,6 +72,29 @@ class RunOutputFolders {
   std::string frames_staging_;                    // where the frames are written
   std::string frames_target_;                     // where they will be after the commit
 };
+
+// The absolute path, ".." and symlinks of its existing part resolved, without a trailing '/'.
+std::filesystem::path NormalPath(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::path normal =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+  if (ec) normal = std::filesystem::absolute(path).lexically_normal();
+  return normal.filename().empty() ? normal.parent_path() : normal;
+}
+
+// `path` is `folder` or lies inside it: by device and inode where `folder` exists
+// (io::IsSameOrInside), by name where it does not yet (the --output of a first run).
+bool IsSameOrInsideFolder(const std::string& path, const std::string& folder) {
+  if (io::IsSameOrInside(path, folder)) return true;
+  const std::filesystem::path inner = NormalPath(path);
+  const std::filesystem::path outer = NormalPath(folder);
+  auto part = inner.begin();
+  for (const std::filesystem::path& component : outer) {
+    if (part == inner.end() || *part != component) return false;
+    ++part;
+  }
+  return true;
+}
 
 // --write-frames is for a video; a folder's images are COLMAP's already.
 void CheckFramesOption(const ReconstructionRunOptions& options, const RunInputs& inputs) {
@@ -164,13 +188,23 @@ void CheckRunOptions(const ReconstructionRunOptions& options) {
   io::CheckOutputsAvoidInputs(
       {{"--output", options.output},
        {"--colmap-db", options.colmap.colmap_db},
-       {"--write-frames", options.write_frames == kFramesInOutput ? "" : options.write_frames}},
+       {"--write-frames", options.write_frames == kFramesInOutput ? "" : options.write_frames},
+       {"--cache", options.cache}},
       {{"FRAMES", options.frames},
        {"--gt", options.gt},
        {"--intrinsics", options.camera.intrinsics},
        {"--regions", options.regions},
        {"--masks", options.masks}});
   CheckColmapOutputs(options);
+  // --output is replaced as a whole when a run commits: a cache in it would be lost (or, being
+  // --output itself, would lose the outputs).
+  COMIC_CHECK(options.cache.empty() || options.output.empty() ||
+                  !IsSameOrInsideFolder(options.cache, options.output),
+              kInvalidArgument,
+              "--cache " << options.cache << " is, or lies inside, --output " << options.output
+                         << ", which each run replaces: keep the cache beside it (e.g. --cache "
+                         << io::JoinPaths(io::ParentPath(options.output), "cache") << ")");
+  if (!options.cache.empty()) io::CheckCreatableFolder(options.cache);
   // Validate, then write, all or nothing: --output is checked but not created; the outputs go to
   // a staging folder beside it and move into place when the run is complete.
   if (!options.output.empty()) io::CheckCreatableFolder(options.output);

@@ -85,6 +85,11 @@ struct ReconstructionRunOptions {
   // set's order says nothing about which frames are close.
   bool keyframes = false;
   int threads = 0;  // detection and the export (0: one per core); never the bundle adjustments
+  // --cache DIR: each detector's detections, descriptors and tracks are kept in
+  // DIR/tracks-<detector>-<key>.bin and reused by a re-run with the same frames, detector and
+  // tracker options (sfm/run/track_cache.h); other mapper options do not change the key. Empty:
+  // no cache. Not inside an input folder nor inside --output (replaced by each run).
+  std::string cache;
 
   // ---- evaluation
   std::string masks;            // --masks DIR

@@ -1,6 +1,7 @@
 #include "sfm/run/run_report.h"
 
 #include "frontend/matching/pairing.h"
+#include "io/core/content_hash.h"
 #include "sfm/focal_observability.h"
 #include "sfm/run/run_outputs.h"
 #include "sfm/working_resolution.h"
@@ -142,6 +143,7 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
            {inputs.sequence->SourceFrameSize().width, inputs.sequence->SourceFrameSize().height}},
           {"min_registered", options.min_registered},
           {"threads", options.threads},
+          {"cache", options.cache},
           {"regions", options.regions},
           {"masks", options.masks},
           {"boundary_band_px", options.boundary_band}};
@@ -159,6 +161,15 @@ nlohmann::json DetectorReportJson(const DetectorRun& run, const ReconstructionRu
                             {"conflicting_components_dropped", building.num_conflicting_components},
                             {"features_dropped", building.num_dropped_features},
                             {"matches_refused", building.num_refused_matches}};
+  // --cache: where the tracks were kept, and whether this run read them instead of detecting.
+  const TrackCacheUse& cache = run.track_cache;
+  json["tracks_from_cache"] = cache.from_cache;
+  if (!cache.file.empty()) {
+    json["track_cache"] = {{"file", cache.file},
+                           {"key", io::HexDigits(cache.key)},
+                           {"from_cache", cache.from_cache},
+                           {"warning", cache.warning}};
+  }
   if (run.rotation_only) {
     json["rotation_only_path"] =
         RotationOnlyPathToJson(*run.rotation_only, inputs.sequence->NumFrames());

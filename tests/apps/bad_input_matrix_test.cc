@@ -160,6 +160,12 @@ const std::vector<Case> kCases = {
   // Issue 29: inputs are sacred; -o FRAMES wrote trajectory.png among the frames.
   {"comic_sfm", "{d}/frames --output {d}/frames", 2, {"--output is the input FRAMES"}},
   {"comic_sfm", "{d}/frames --output {d}/frames/out", 2, {"--output lies inside the input FRAMES"}},
+  // Issue 26: the track cache is written too, never among the inputs nor in --output (replaced).
+  {"comic_sfm", "{d}/frames --output {d}/out --cache {d}/frames", 2, {"--cache is the input FRAMES"}},
+  {"comic_sfm", "{d}/frames --output {d}/out --cache {d}/frames/cache", 2,
+   {"--cache lies inside the input FRAMES"}},
+  {"comic_sfm", "{e} --output {d}/out --cache {d}/out/cache", 2,
+   {"--cache", "lies inside, --output", "which each run replaces"}},
   {"comic_sfm", "{e} --output {d}/out --colmap-db {d}/poses_short.txt --overwrite --gt-partial "
    "--gt {d}/poses_short.txt", 2, {"--colmap-db is the input --gt"}},
   {"comic_sfm", "{e} --output {d}/out --intrinsics {d}/notes.txt --colmap-db {d}/notes.txt --overwrite",

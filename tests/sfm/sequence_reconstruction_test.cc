@@ -85,5 +85,31 @@ TEST(SequenceReconstruction, CameraMustMatchTheFrames) {
                Error);
 }
 
+// The two halves a track cache sits between: tracks of other frames are refused before mapping.
+TEST(SequenceReconstruction, TracksMustBeOfTheFrames) {
+  io::ImageSequenceOptions three;
+  three.last_frame = 2;
+  const io::ImageSequence sequence =
+      io::ImageSequence::Open(test::ExampleDir() + "/image_l", three);
+  const auto detector = frontend::MakeDetector("harris");
+  const SequenceReconstructionOptions options;
+  SequenceTracking tracking = TrackFrames(sequence, *detector, options);
+  EXPECT_EQ(tracking.tracks.NumFrames(), 3u);
+  EXPECT_FALSE(tracking.tracks.tracks.empty());
+  tracking.tracks.features.pop_back();
+  tracking.tracks.frame_names.pop_back();
+  const Camera camera =
+      Camera::FromImageSize(sequence.FrameSize().width, sequence.FrameSize().height);
+  try {
+    ReconstructFromTracks(sequence, *detector, camera, options, std::move(tracking));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
+    EXPECT_NE(std::string(e.what()).find("tracks of 2 frames for a sequence of 3"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace comic::sfm

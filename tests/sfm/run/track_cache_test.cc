@@ -1,0 +1,253 @@
+// The track cache (--cache): its key follows the frames, the detector and the tracker and not the
+// mapper; a re-run from the cache writes the same model files byte for byte without detecting; a
+// changed tracker or detector option makes a second file; a corrupt file is tracked again with a
+// warning; a cache among the inputs or in --output is refused before any work.
+#include "sfm/run/track_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "frontend/matching/track_file.h"
+#include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "sfm/run/reconstruction_run.h"
+#include "tests/test_support.h"
+
+namespace comic::sfm {
+namespace {
+
+namespace fs = std::filesystem;
+using comic::test::ExampleDir;
+using comic::test::ScopedTempDir;
+
+// The first `count` example frames copied into `dir`/frames.
+std::string CopyFrames(const ScopedTempDir& dir, int count) {
+  const std::string frames = dir.File("frames");
+  fs::create_directories(frames);
+  const std::vector<std::string> names = io::ListFiles(ExampleDir() + "/image_l");
+  for (int i = 0; i < count; ++i) {
+    fs::copy_file(ExampleDir() + "/image_l/" + names[i], frames + "/" + names[i]);
+  }
+  return frames;
+}
+
+uint64_t KeyOf(const std::string& frames, const frontend::DetectorOptions& detector,
+               const SequenceReconstructionOptions& options, int first = 0) {
+  io::ImageSequenceOptions sequence_options;
+  sequence_options.first_frame = first;
+  return TrackCacheKey(detector, options, io::ImageSequence::Open(frames, sequence_options));
+}
+
+TEST(TrackCacheKey, FollowsTheFramesTheDetectorAndTheTrackerNotTheMapper) {
+  ScopedTempDir dir;
+  const std::string frames = CopyFrames(dir, 3);
+  frontend::DetectorOptions detector;
+  detector.name = "harris";
+  const SequenceReconstructionOptions options;
+  const uint64_t key = KeyOf(frames, detector, options);
+  EXPECT_EQ(KeyOf(frames, detector, options), key);  // stable
+
+  SequenceReconstructionOptions mapper = options;
+  mapper.mapper.local_ba_num_images = 9;
+  mapper.mapper.mapper.init_tri_angle_deg = 7.0;
+  mapper.match_seams = false;
+  EXPECT_EQ(KeyOf(frames, detector, mapper), key);
+  frontend::DetectorOptions threads = detector;
+  threads.comic.num_threads = 3;  // no output depends on a thread count
+  EXPECT_EQ(KeyOf(frames, threads, options), key);
+
+  frontend::DetectorOptions harris = detector;
+  harris.harris.k = 0.05;
+  EXPECT_NE(KeyOf(frames, harris, options), key);
+  frontend::DetectorOptions fast = detector;
+  fast.name = "fast";
+  EXPECT_NE(KeyOf(frames, fast, options), key);
+  SequenceReconstructionOptions tracker = options;
+  tracker.tracker.matcher.max_cost = std::nextafter(tracker.tracker.matcher.max_cost, 1e9);
+  EXPECT_NE(KeyOf(frames, detector, tracker), key);  // one bit of one double
+  SequenceReconstructionOptions image_set = options;
+  image_set.image_set.emplace();
+  EXPECT_NE(KeyOf(frames, detector, image_set), key);
+  EXPECT_NE(KeyOf(frames, detector, options, 1), key);  // other frames
+
+  // The same names with other bytes: another key.
+  const std::string first = frames + "/" + io::ListFiles(frames).front();
+  std::string bytes = io::ReadFileToString(first);
+  bytes += "trailing bytes the PNG decoder ignores";
+  io::WriteFileAtomically(first, bytes);
+  EXPECT_NE(KeyOf(frames, detector, options), key);
+}
+
+TEST(TrackCacheKey, TextNamesEverySetting) {
+  ScopedTempDir dir;
+  const std::string frames = CopyFrames(dir, 2);
+  frontend::DetectorOptions detector;
+  detector.name = "comic+hessian";
+  const std::string text =
+      TrackCacheKeyText(detector, SequenceReconstructionOptions(), io::ImageSequence::Open(frames));
+  for (const char* line :
+       {"detector=comic+hessian\n", "comic.presmoothing_sigma=1.25\n", "hessian.sigma=2\n",
+        "tracker.matcher.max_cost=400\n", "tracker.continuation.alignment.levels=3\n",
+        "frames.size=1226x370\n", "frame=000001.png "}) {
+    EXPECT_NE(text.find(line), std::string::npos) << line << " not in\n" << text;
+  }
+  EXPECT_EQ(text.find("harris."), std::string::npos);  // only the detectors run
+  EXPECT_EQ(TrackCacheFile("c", "harris", 0xabcull), "c/tracks-harris-0000000000000abc.bin");
+}
+
+ReconstructionRunOptions FiveFrames(const ScopedTempDir& dir) {
+  ReconstructionRunOptions options;
+  options.frames = ExampleDir() + "/image_l";
+  options.gt = ExampleDir() + "/poses.txt";
+  options.sequence.last_frame = 4;
+  options.cache = dir.File("cache");
+  options.model_format = "both";
+  return options;
+}
+
+// What a run reported: whether the tracking stage ran, frames tracked, warnings.
+struct Events {
+  int tracking = 0;
+  int from_cache = 0;
+  int frames_done = 0;
+  std::vector<std::string> warnings;
+
+  RunCallbacks Callbacks() {
+    RunCallbacks callbacks;
+    callbacks.stage_started = [this](RunStage stage, const std::string&) {
+      if (stage == RunStage::kTracking) ++tracking;
+      if (stage == RunStage::kTracksFromCache) ++from_cache;
+    };
+    callbacks.frame_done = [this](size_t, size_t) { ++frames_done; };
+    callbacks.warning = [this](const std::string& message) { warnings.push_back(message); };
+    return callbacks;
+  }
+};
+
+std::vector<std::string> CacheFiles(const ReconstructionRunOptions& options) {
+  return io::ListFiles(options.cache);
+}
+
+// The model files of a run, every byte.
+std::vector<std::string> ModelBytes(const std::string& output) {
+  std::vector<std::string> bytes;
+  for (const char* name :
+       {"cameras.txt", "images.txt", "points3D.txt", "points.ply", "sparse/0/cameras.bin",
+        "sparse/0/images.bin", "sparse/0/points3D.bin"}) {
+    bytes.push_back(io::ReadFileToString(io::JoinPaths(output, name)));
+    EXPECT_FALSE(bytes.back().empty()) << name;
+  }
+  return bytes;
+}
+
+TEST(TrackCache, AReRunReadsTheTracksAndWritesTheSameModel) {
+  ScopedTempDir dir;
+  ReconstructionRunOptions options = FiveFrames(dir);
+  options.output = dir.File("first");
+  Events first;
+  const ReconstructionRunResult made = RunReconstruction(options, first.Callbacks());
+  ASSERT_TRUE(made.success()) << made.failure;
+  EXPECT_EQ(first.tracking, 1);
+  EXPECT_EQ(first.frames_done, 5);
+  EXPECT_FALSE(made.runs.front().track_cache.from_cache);
+  EXPECT_EQ(made.runs.front().report_json["tracks_from_cache"], false);
+  ASSERT_EQ(CacheFiles(options).size(), 1u);
+  EXPECT_EQ(io::FileName(made.runs.front().track_cache.file), CacheFiles(options).front());
+
+  options.output = dir.File("second");
+  Events second;
+  const ReconstructionRunResult reused = RunReconstruction(options, second.Callbacks());
+  ASSERT_TRUE(reused.success()) << reused.failure;
+  EXPECT_EQ(second.tracking, 0);  // nothing detected or tracked
+  EXPECT_EQ(second.from_cache, 1);
+  EXPECT_EQ(second.frames_done, 0);
+  EXPECT_TRUE(second.warnings.empty());
+  const nlohmann::json& report = reused.runs.front().report_json;
+  EXPECT_EQ(report["tracks_from_cache"], true);
+  EXPECT_EQ(report["track_cache"]["file"], made.runs.front().track_cache.file);
+  EXPECT_EQ(report["track_building"], made.runs.front().report_json["track_building"]);
+  EXPECT_EQ(ModelBytes(dir.File("second")), ModelBytes(dir.File("first")));
+  EXPECT_EQ(CacheFiles(options).size(), 1u);
+}
+
+TEST(TrackCache, OtherTrackerOrDetectorOptionsMakeAnotherFileMapperOptionsDoNot) {
+  ScopedTempDir dir;
+  ReconstructionRunOptions options = FiveFrames(dir);
+  Events events;
+  RunReconstruction(options, events.Callbacks());
+  ASSERT_EQ(CacheFiles(options).size(), 1u);
+
+  ReconstructionRunOptions mapper = options;
+  mapper.init_angle = 3.0;
+  mapper.local_ba_images = 4;
+  mapper.min_registered = 0.2;
+  EXPECT_TRUE(RunReconstruction(mapper).runs.front().track_cache.from_cache);
+  EXPECT_EQ(CacheFiles(options).size(), 1u);
+
+  ReconstructionRunOptions tracker = options;
+  tracker.tracker.max_features = 1500;
+  EXPECT_FALSE(RunReconstruction(tracker).runs.front().track_cache.from_cache);
+  EXPECT_EQ(CacheFiles(options).size(), 2u);
+
+  ReconstructionRunOptions detector = options;
+  detector.detector_options.harris.integration_sigma = 2.5;
+  EXPECT_FALSE(RunReconstruction(detector).runs.front().track_cache.from_cache);
+  EXPECT_EQ(CacheFiles(options).size(), 3u);
+  EXPECT_TRUE(RunReconstruction(detector).runs.front().track_cache.from_cache);
+}
+
+TEST(TrackCache, ACorruptFileIsTrackedAgainWithAWarning) {
+  ScopedTempDir dir;
+  ReconstructionRunOptions options = FiveFrames(dir);
+  const ReconstructionRunResult made = RunReconstruction(options);
+  const std::string file = made.runs.front().track_cache.file;
+  const std::string bytes = io::ReadFileToString(file);
+  io::WriteFileAtomically(file, bytes.substr(0, bytes.size() / 2));
+
+  Events events;
+  const ReconstructionRunResult again = RunReconstruction(options, events.Callbacks());
+  ASSERT_TRUE(again.success());
+  EXPECT_EQ(events.tracking, 1);
+  ASSERT_EQ(events.warnings.size(), 1u);
+  EXPECT_NE(events.warnings.front().find(file + ": track file is truncated or corrupt"),
+            std::string::npos)
+      << events.warnings.front();
+  EXPECT_NE(events.warnings.front().find("detecting and tracking again"), std::string::npos);
+  EXPECT_EQ(again.runs.front().report_json["track_cache"]["warning"], events.warnings.front());
+  EXPECT_EQ(io::ReadFileToString(file), bytes);  // replaced by the same tracks
+  EXPECT_TRUE(RunReconstruction(options).runs.front().track_cache.from_cache);
+}
+
+TEST(TrackCache, RefusedAmongTheInputsAndInTheOutput) {
+  ScopedTempDir dir;
+  const auto refusal = [](const ReconstructionRunOptions& options) -> std::string {
+    try {
+      CheckRunOptions(options);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
+      return e.what();
+    }
+    return "";
+  };
+  ReconstructionRunOptions options = FiveFrames(dir);
+  options.cache = options.frames + "/cache";
+  EXPECT_NE(refusal(options).find("--cache lies inside the input FRAMES"), std::string::npos)
+      << refusal(options);
+  options.output = dir.File("out");  // not there yet
+  for (const std::string& cache : {dir.File("out"), dir.File("out/cache"), dir.File("out/")}) {
+    options.cache = cache;
+    EXPECT_NE(refusal(options).find("lies inside, --output"), std::string::npos) << cache;
+  }
+  fs::create_directories(dir.File("out"));
+  options.cache = dir.File("out/../out/cache");
+  EXPECT_NE(refusal(options).find("which each run replaces"), std::string::npos);
+  options.cache = dir.File("cache");  // beside it
+  EXPECT_EQ(refusal(options), "");
+  EXPECT_FALSE(io::PathExists(options.cache));  // checked, not created
+}
+
+}  // namespace
+}  // namespace comic::sfm
