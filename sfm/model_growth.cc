@@ -122,17 +122,24 @@ class ModelGrower {
         result_.ba.AddLocal(
             mapper_.AdjustLocalBundle(image_id, options_.local_ba, options_.local_ba_num_images));
       }
-      const size_t num_registered = mapper_.reconstruction().NumRegisteredImages();
-      if (static_cast<double>(num_registered) >=
-          options_.global_ba_growth_ratio *
-              static_cast<double>(num_registered_at_last_global_ba_)) {
-        AdjustAndTriangulate();
-      }
+      if (GlobalAdjustmentDue()) AdjustAndTriangulate();
       Report(image_id, /*initial=*/false, num_inliers);
       MergeOverlappingModels(image_id);
       return true;
     }
     return false;
+  }
+
+  // When the model has grown by global_ba_growth_ratio since the last global adjustment; with
+  // bounded adjustments (global_ba_max_images) also every half window, so that every frame is
+  // in at least one of them and their total grows linearly with the frames.
+  bool GlobalAdjustmentDue() const {
+    const double num_registered =
+        static_cast<double>(mapper_.reconstruction().NumRegisteredImages());
+    const double last = static_cast<double>(num_registered_at_last_global_ba_);
+    if (num_registered >= options_.global_ba_growth_ratio * last) return true;
+    const int window = options_.global_ba_max_images;
+    return window > 0 && num_registered >= last + std::max(1, window / 2);
   }
 
   bool RetryAfterGlobalAdjustment() {
