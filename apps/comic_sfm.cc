@@ -131,6 +131,12 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                  "are posed against the map, so every frame keeps a pose (report.json "
                  "'keyframes' lists them and why)",
                  &o->keyframes);
+  parser.AddFlag("loop-closure",
+                 "video that returns to where it has been: revisited places are found by "
+                 "appearance among the keyframes, verified by their 3-D points and closed (a "
+                 "Sim(3) pose graph, then the final adjustment); report.json 'loop_closure' lists "
+                 "the loops",
+                 &o->loop_closure);
   parser.AddOption("max-working-size", "N",
                    "track and map frames whose larger side exceeds N pixels at N, and write the "
                    "models in the input's pixels (0: the input's size; --resize-height decides "

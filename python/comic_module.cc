@@ -819,6 +819,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"init_angle", Field(&o->init_angle)},
                        {"init_max_gap", Field(&o->init_max_gap)},
                        {"keyframes", Field(&o->keyframes)},
+                       {"loop_closure", Field(&o->loop_closure)},
                        {"max_working_size", Field(&o->max_working_size)},
                        {"min_registered", Field(&o->min_registered)},
                        {"threads", Field(&o->threads)},

@@ -695,8 +695,9 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other,
   return new_image_ids.size();
 }
 
-void IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links) {
+size_t IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links) {
   // The tracks do not know that the two ends of a link are one point: tell the model.
+  size_t num_fused = 0;
   for (const FeatureLink& link : links) {
     if (!reconstruction_.ExistsImage(link.image_id) ||
         !reconstruction_.ExistsImage(link.other_image_id)) {
@@ -710,7 +711,41 @@ void IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links) 
     }
     const point3D_t a = image.points2D[link.point2D_idx].point3D_id;
     const point3D_t b = other_image.points2D[link.other_point2D_idx].point3D_id;
-    if (a != kInvalidPoint3DId && b != kInvalidPoint3DId && a != b) FusePoints(a, b);
+    if (a != kInvalidPoint3DId && b != kInvalidPoint3DId && a != b) {
+      FusePoints(a, b);
+      ++num_fused;
+    }
+  }
+  return num_fused;
+}
+
+void IncrementalMapper::CorrectPoses(const std::map<image_t, Sim3d>& corrected_cams_from_world) {
+  for (const auto& [image_id, pose] : corrected_cams_from_world) {
+    COMIC_CHECK(reconstruction_.ExistsImage(image_id) && reconstruction_.image(image_id).registered,
+                kInvalidArgument, "correct poses: image " << image_id << " is not registered");
+    COMIC_CHECK(pose.scale > 0, kInvalidArgument,
+                "correct poses: image " << image_id << " has scale " << pose.scale);
+  }
+  // A point keeps its coordinates in its first observer's camera (scaled by that camera's
+  // similarity): x_cam = R X + t before, and x_cam = s' R' X' + t' after.
+  for (const auto& [point3D_id, point] : reconstruction_.points3D()) {
+    image_t reference = 0;
+    for (const TrackElement& element : point.track) {
+      if (corrected_cams_from_world.count(element.image_id) &&
+          (reference == 0 || element.image_id < reference)) {
+        reference = element.image_id;
+      }
+    }
+    if (reference == 0) continue;
+    const Sim3d& corrected = corrected_cams_from_world.at(reference);
+    const Eigen::Vector3d in_camera = reconstruction_.image(reference).cam_from_world * point.xyz;
+    reconstruction_.point3D(point3D_id).xyz =
+        corrected.rotation.conjugate() * (in_camera - corrected.translation) / corrected.scale;
+  }
+  // A similarity pose as the rigid pose with the same centre and orientation.
+  for (const auto& [image_id, pose] : corrected_cams_from_world) {
+    reconstruction_.image(image_id).cam_from_world =
+        Rigid3d(pose.rotation, pose.translation / pose.scale);
   }
 }
 

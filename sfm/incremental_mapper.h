@@ -19,6 +19,7 @@
 // Images are the frames of the tracks: image_id = frame index + 1.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <set>
 #include <vector>
@@ -245,6 +246,19 @@ class IncrementalMapper {
   // this model's.
   size_t MergeModel(const Reconstruction& other, const std::vector<FeatureLink>& links = {});
 
+  // The tracks do not know that the two ends of a link are one point: fuses the points of each
+  // link whose two frames are registered (after a merge, or a loop closure where both frames are
+  // this model's). The point of `image_id`'s feature stays; the other's observations its
+  // position explains join it. Returns the number of points fused away.
+  size_t FuseLinkedPoints(const std::vector<FeatureLink>& links);
+
+  // Loop closure (sfm/loop_closure.h): sets the pose of every registered image of
+  // `corrected_cams_from_world` (similarities: a pose graph moves the scale too) and moves every
+  // point with the correction of the first registered image observing it, so that it keeps its
+  // place in that image's camera frame (up to the image's scale). Images not given keep their
+  // poses. Throws comic::Error for an image that is not registered or a non-positive scale.
+  void CorrectPoses(const std::map<image_t, Sim3d>& corrected_cams_from_world);
+
   // Bundle adjustment of the image and the num_images − 1 registered images sharing most points
   // with it; other images seeing those points are held constant. Filters the adjusted points.
   BundleAdjustmentSummary AdjustLocalBundle(image_t image_id,
@@ -304,9 +318,6 @@ class IncrementalMapper {
   // Makes the points `a` and `b` (of one physical point) one: b's observations that a's position
   // explains (within complete_max_reprojection_error_px) move to a, and b is deleted.
   void FusePoints(point3D_t a, point3D_t b);
-  // The tracks do not know that the two ends of a link are one point: fuses the points of each
-  // link whose two frames are registered (after a merge).
-  void FuseLinkedPoints(const std::vector<FeatureLink>& links);
   // Sets the gauge of a problem: the first initial image constant, the second's scale fixed.
   void FixGauge(BundleAdjustmentConfig* config) const;
 

@@ -120,6 +120,7 @@ void IncrementalPipelineOptions::Check() const {
               kInvalidArgument, "pipeline success_min_registered_fraction must be in [0, 1]");
   plausible_intrinsics.Check();
   keyframes.Check();
+  loop_closure.Check();
   COMIC_CHECK(
       global_ba_max_images >= 0, kInvalidArgument,
       "pipeline global_ba_max_images must be >= 0 (0: every frame), got " << global_ba_max_images);
@@ -385,6 +386,7 @@ void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
   result->initial_pair_num_points = largest.initial_pair_num_points;
   result->final_ba = largest.final_ba;
   result->non_keyframes_lost = largest.non_keyframes_lost;
+  if (options.close_loops) result->loop_closure = largest.loop_closure;
   result->focal_assessed = largest.focal_assessed;
   result->focal_observability = largest.focal_observability;
   result->intrinsics_refined = largest.intrinsics_refined;
@@ -431,6 +433,9 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
   options.Check();
   tracks.Check();
   camera.Check();
+  COMIC_CHECK(!options.close_loops || tracks.HasDescriptors() || tracks.NumFrames() == 0,
+              kInvalidArgument,
+              "loop closure needs tracks with descriptors (frontend::DescribeTrackedFeatures)");
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ProcessCpuSeconds();
   IncrementalReconstruction result;

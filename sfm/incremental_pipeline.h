@@ -16,6 +16,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include "sfm/incremental_mapper.h"
 #include "sfm/intrinsics_plausibility.h"
 #include "sfm/keyframe_selection.h"
+#include "sfm/loop_closure.h"
 #include "sfm/reconstruction.h"
 
 namespace comic::sfm {
@@ -135,6 +137,11 @@ struct IncrementalPipelineOptions {
   // adjustments then grow with the keyframes, not the frames (docs/long_video.md).
   bool keyframes_only = false;
   KeyframeOptions keyframes;
+  // Loop closure (sfm/loop_closure.h) at the end of each model's growth, before its final
+  // adjustment: revisited places found by appearance among the keyframes, verified, closed by a
+  // Sim(3) pose graph and fused points. Needs tracks with descriptors.
+  bool close_loops = false;
+  LoopClosureOptions loop_closure;
 
   IncrementalPipelineOptions();
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -251,6 +258,8 @@ struct IncrementalReconstruction {
   // map (deregistered; pose gap filling may interpolate them). Empty otherwise.
   std::vector<KeyframeDecision> keyframe_decisions;
   std::vector<int> non_keyframes_lost;
+  // With close_loops: what loop closure found and did in the largest model.
+  std::optional<LoopClosureSummary> loop_closure;
   BundleAdjustmentSummary final_ba;  // the last global bundle adjustment of the largest model
   // When global_ba.refine_focal_length asked for the focal: whether the motion let it be
   // refined, as assessed before the last global adjustment (focal_assessed false otherwise).

@@ -40,7 +40,8 @@ class ModelGrower {
               const IncrementalPipelineOptions& options, int attempt,
               const std::vector<const IncrementalModel*>& earlier, const SeamLinker& seam_linker,
               const MapperProgressCallback& progress, std::vector<KeyframeDecision>* keyframes)
-      : prior_(camera),
+      : tracks_(tracks),
+        prior_(camera),
         options_(options),
         attempt_(attempt),
         earlier_(earlier),
@@ -68,6 +69,10 @@ class ModelGrower {
       if (RetryAfterGlobalAdjustment()) continue;
       // Stopped short: merge the earlier models this one can be linked to, then grow on.
       if (!MergeEarlierModels()) break;
+    }
+    // Revisited places: close the loops before the final adjustment holds them.
+    if (options_.close_loops) {
+      result_.loop_closure = CloseLoops(tracks_, options_.loop_closure, &mapper_);
     }
     // Final refinement: adjust, recover tracks the improved poses now explain, adjust again.
     AdjustGlobally(/*final=*/true);
@@ -321,6 +326,7 @@ class ModelGrower {
     return std::move(result_);
   }
 
+  const frontend::FeatureTracks& tracks_;
   const Camera prior_;
   const IncrementalPipelineOptions& options_;
   const int attempt_;

@@ -16,6 +16,7 @@
 #include "sfm/incremental_mapper.h"
 #include "sfm/incremental_pipeline.h"
 #include "sfm/keyframe_selection.h"
+#include "sfm/loop_closure.h"
 
 namespace comic::sfm {
 
@@ -55,6 +56,8 @@ struct GrownModel {
   BundleAdjustmentSummary final_ba;
   // Frames registered but not posed again against the final map (LocalizeNonKeyframes).
   std::vector<int> non_keyframes_lost;
+  // With IncrementalPipelineOptions::close_loops.
+  LoopClosureSummary loop_closure;
   bool focal_assessed = false;
   FocalObservability focal_observability;
   bool intrinsics_refined = false;

@@ -82,6 +82,13 @@ SequenceReconstruction ReconstructFromTracks(const io::ImageSequence& sequence,
   run.track_building = tracking.track_building;
   run.image_set_matching = tracking.image_set_matching;
   run.tracking_time_s = tracking.time_s;
+  // Loop closure recognises places by the descriptors of the tracked features (the database
+  // written afterwards reuses them).
+  if (options.mapper.close_loops && !run.tracks.HasDescriptors() && run.tracks.NumFrames() > 0) {
+    const auto describe_start = std::chrono::steady_clock::now();
+    frontend::DescribeTrackedFeatures(sequence, &run.tracks, /*num_threads=*/0);
+    run.tracking_time_s += Seconds(describe_start);
+  }
 
   const auto mapping_start = std::chrono::steady_clock::now();
   run.input_size = sequence.SourceFrameSize();

@@ -57,7 +57,9 @@ struct SequenceReconstruction {
   // the working resolution: sfm/working_resolution.h). Models are written in the input's pixels.
   cv::Size input_size;
   cv::Size frame_size;
-  double tracking_time_s = 0.0;  // detection and tracking (or description and matching)
+  // Detection and tracking (or description and matching), and the description of the tracked
+  // features for loop closure.
+  double tracking_time_s = 0.0;
   double mapping_time_s = 0.0;   // incremental reconstruction
   double coloring_time_s = 0.0;  // reading frames again for point colours
   double wall_time_s = 0.0;      // everything

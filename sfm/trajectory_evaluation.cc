@@ -95,6 +95,11 @@ std::optional<TrajectoryEvaluation> EvaluateTrajectory(
   evaluation.ate_mean = sum / n;
   evaluation.ate_fraction_of_path =
       evaluation.path_length > 0 ? evaluation.ate_rmse / evaluation.path_length : 0.0;
+  const size_t last = evaluation.frames.size() - 1;
+  evaluation.end_to_start_error =
+      ((*sim3 * estimated_centers[last] - *sim3 * estimated_centers[0]) -
+       (true_centers[last] - true_centers[0]))
+          .norm();
   evaluation.mean_rotation_error_deg = sum_rotation / n;
   evaluation.mean_rotation_error_sim3_deg = sum_rotation_sim3 / n;
   return evaluation;

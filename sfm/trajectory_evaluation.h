@@ -40,6 +40,10 @@ struct TrajectoryEvaluation {
   // Length of the true path through the evaluated frames (sum of consecutive centre distances).
   double path_length = 0.0;
   double ate_fraction_of_path = 0.0;  // ate_rmse / path_length (0 if the path has no length)
+  // The error of the last evaluated frame's position relative to the first's, after the
+  // alignment: |(ĉ_last − ĉ_first) − (c_last − c_first)| (GT units). On a path that returns to
+  // its start this is the loop's drift as the model leaves it (what loop closure corrects).
+  double end_to_start_error = 0.0;
   // Mean of rotation_errors_deg. The rotation alignment is the chordal mean of the per-frame
   // rotations between the two worlds, not the Sim(3)'s rotation: on a straight path (KITTI) the
   // centres leave the roll about the path undetermined, which would show up as rotation error.

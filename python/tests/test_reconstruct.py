@@ -81,6 +81,18 @@ def test_callback_sees_every_registration(harris_run):
     assert events[0]["initial_pair"] and all(e["num_frames"] == 12 for e in events)
 
 
+def test_loop_closure_keyword(harris_run):
+    # KITTI's 12 frames never return: the keyframes are searched, nothing is closed, and the
+    # model is the one without loop closure.
+    reconstruction, _ = harris_run
+    closed = comic.reconstruct(FRAMES, detector="harris", gt=POSES, loop_closure=True)
+    assert closed.report["options"]["loop_closure"] is True
+    assert reconstruction.report["loop_closure"] is None
+    assert closed.report["loop_closure"]["keyframes_searched"] >= 3
+    assert closed.report["loop_closure"]["loops"] == []
+    assert np.array_equal(closed.points3D["xyz"], reconstruction.points3D["xyz"])
+
+
 def test_write_formats(harris_run, tmp_path):
     reconstruction, _ = harris_run
     reconstruction.write(str(tmp_path / "txt"), model_format="txt", ply_format="ascii")

@@ -8,6 +8,27 @@ namespace comic::sfm {
 
 namespace {
 
+nlohmann::json LoopClosureToJson(const LoopClosureSummary& summary) {
+  nlohmann::json loops = nlohmann::json::array();
+  for (const LoopClosureEdge& loop : summary.loops) {
+    loops.push_back({{"query_frame", loop.query_frame},
+                     {"match_frame", loop.match_frame},
+                     {"similarity", loop.similarity},
+                     {"matches", loop.num_matches},
+                     {"inliers", loop.num_inliers},
+                     {"scale", loop.scale},
+                     {"correction", loop.correction}});
+  }
+  return {{"keyframes_searched", summary.num_nodes},
+          {"candidates", summary.num_candidates},
+          {"verified", summary.num_verified},
+          {"loops", loops},
+          {"points_fused", summary.num_points_fused},
+          {"max_correction", summary.max_correction},
+          {"pose_graph_iterations", summary.pose_graph.iterations},
+          {"cpu_time_s", summary.cpu_time_s}};
+}
+
 SfmModelReport ModelReport(int index, const Reconstruction& reconstruction,
                            const std::vector<int>& registered_frames,
                            const std::vector<int>& rotation_only_frames,
@@ -109,6 +130,7 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
     report.keyframe_reasons.push_back(KeyframeReasonName(decision.reason));
   }
   report.non_keyframes_lost = mapping.non_keyframes_lost;
+  report.loop_closure = mapping.loop_closure;
   return report;
 }
 
@@ -188,6 +210,8 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
   } else {
     json["keyframes"] = nullptr;
   }
+  json["loop_closure"] =
+      report.loop_closure ? LoopClosureToJson(*report.loop_closure) : nlohmann::json(nullptr);
   json["intrinsics_rejection"] = report.intrinsics_rejection.empty()
                                      ? nlohmann::json(nullptr)
                                      : nlohmann::json(report.intrinsics_rejection);
@@ -207,6 +231,7 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
         {"ate_max", t.ate_max},
         {"path_length", t.path_length},
         {"ate_fraction_of_path", t.ate_fraction_of_path},
+        {"end_to_start_error", t.end_to_start_error},
         {"mean_rotation_error_deg", t.mean_rotation_error_deg},
         {"mean_rotation_error_sim3_deg", t.mean_rotation_error_sim3_deg},
         {"position_errors", t.position_errors},

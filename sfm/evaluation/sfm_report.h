@@ -83,6 +83,9 @@ struct SfmRunReport {
   std::vector<int> keyframes;
   std::vector<std::string> keyframe_reasons;
   std::vector<int> non_keyframes_lost;
+  // Loop closure (IncrementalPipelineOptions::close_loops; report.json "loop_closure", null
+  // without): what the largest model's loop closure found and did.
+  std::optional<LoopClosureSummary> loop_closure;
   // Image sets matched by descriptors: pairs, matches and the CPU time of each stage
   // (report.json "image_set_matching").
   std::optional<frontend::ImageSetMatchingSummary> image_set_matching;

@@ -121,6 +121,7 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
   if (image_set) options.mapper.mapper.init_max_frame_gap = 1 << 30;
   options.mapper.max_working_image_size = run.max_working_size;
   options.mapper.keyframes_only = run.keyframes && !image_set;
+  options.mapper.close_loops = run.loop_closure && !image_set;
   // `threads` is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no output may depend
   // on the thread count. They stay on one thread; detection and the export use `threads`.

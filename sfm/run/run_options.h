@@ -84,6 +84,9 @@ struct ReconstructionRunOptions {
   // posed against the map (IncrementalPipelineOptions::keyframes_only). Video only: an image
   // set's order says nothing about which frames are close.
   bool keyframes = false;
+  // --loop-closure: revisited places found by appearance, verified and closed at the end of each
+  // model's growth (IncrementalPipelineOptions::close_loops). Video only, as --keyframes.
+  bool loop_closure = false;
   int threads = 0;  // detection and the export (0: one per core); never the bundle adjustments
   // --cache DIR: each detector's detections, descriptors and tracks are kept in
   // DIR/tracks-<detector>-<key>.bin and reused by a re-run with the same frames, detector and

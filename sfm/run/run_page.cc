@@ -1,5 +1,6 @@
 #include "sfm/run/run_page.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -16,6 +17,32 @@
 #include "sfm/run/run_report.h"
 
 namespace comic::sfm {
+
+namespace {
+std::string FormatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3g", value);
+  return text;
+}
+}  // namespace
+
+std::string LoopClosureWords(const LoopClosureSummary& summary) {
+  if (summary.loops.empty()) {
+    return "no loop found among " + std::to_string(summary.num_nodes) + " keyframes searched (" +
+           std::to_string(summary.num_candidates) + " candidates by appearance)";
+  }
+  std::string words = std::to_string(summary.loops.size()) +
+                      (summary.loops.size() == 1 ? " loop" : " loops") + " closed: frames ";
+  constexpr size_t kListed = 4;
+  for (size_t k = 0; k < std::min(summary.loops.size(), kListed); ++k) {
+    words += (k ? ", " : "") + std::to_string(summary.loops[k].query_frame) + " → " +
+             std::to_string(summary.loops[k].match_frame);
+  }
+  if (summary.loops.size() > kListed) words += ", …";
+  return words + " · " + std::to_string(summary.num_points_fused) +
+         " points fused · cameras moved up to " + FormatNumber(summary.max_correction) +
+         " (model units)";
+}
 
 namespace {
 
@@ -94,10 +121,15 @@ io::PageSection SummarySection(const DetectorRun& run, const ReconstructionRunOp
                                            " deg on average over " +
                                            std::to_string(run.evaluation->frames.size()) +
                                            " frames"});
+    facts.push_back({"end to start", Format("%.4g ", run.evaluation->end_to_start_error) + unit +
+                                         " error of the last frame's position relative to the "
+                                         "first's (after the alignment)"});
   } else if (!options.gt.empty()) {
     facts.push_back({"ground truth", "too few registered frames with a true pose to evaluate",
                      io::PageTone::kWarning});
   }
+  if (report.loop_closure)
+    facts.push_back({"loop closure", LoopClosureWords(*report.loop_closure)});
   return io::FactsSection("Summary", facts);
 }
 

@@ -24,6 +24,11 @@ namespace comic::sfm {
 // runs' pages can leave them out, as it leaves out report.json's time_s.
 inline constexpr const char* kDurationsKey = "durations";
 
+// The summary's words for what loop closure did: "2 loops closed: frames 1990 → 3, 1993 → 6 ·
+// 180 points fused · cameras moved up to 4.1 (model units)", or "no loop found among 400
+// keyframes searched (3 candidates by appearance)".
+std::string LoopClosureWords(const LoopClosureSummary& summary);
+
 // The page of one detector's run. Reads a few frames of inputs.sequence (options.report_page).
 // Throws comic::Error for frames it cannot read.
 io::HtmlPage RunPage(const DetectorRun& run, const ReconstructionRunOptions& options,

@@ -136,6 +136,7 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"global_ba_max_images", options.global_ba_max_images},
           {"init_angle_deg", options.init_angle},
           {"keyframes", options.keyframes && !inputs.image_set},
+          {"loop_closure", options.loop_closure && !inputs.image_set},
           {"init_max_gap", inputs.image_set ? nlohmann::json("all frames (image set)")
                                             : nlohmann::json(options.init_max_gap)},
           {"max_working_size", options.max_working_size},

@@ -96,6 +96,39 @@ TEST(TrajectoryEvaluation, KnownErrors) {
   EXPECT_NEAR(evaluation->mean_rotation_error_deg, 0.64, 1e-3);
   EXPECT_NEAR(evaluation->ate_fraction_of_path, evaluation->ate_rmse / evaluation->path_length,
               1e-15);
+  // End to start: the aligned first and last centres against the true ones (frames 0 and 4 are
+  // exact, so only the alignment moves them).
+  const Sim3d& sim3 = evaluation->gt_from_estimated;
+  const Eigen::Vector3d estimated_span =
+      sim3 * ProjectionCenter(*estimated[4]) - sim3 * ProjectionCenter(*estimated[0]);
+  const Eigen::Vector3d true_span = ProjectionCenter(*truth[4]) - ProjectionCenter(*truth[0]);
+  EXPECT_NEAR(evaluation->end_to_start_error, (estimated_span - true_span).norm(), 1e-12);
+}
+
+TEST(TrajectoryEvaluation, EndToStartErrorIsTheDriftOfTheLastFrame) {
+  // A square loop of 40 frames; the estimate's last 10 frames drift 1 m sideways (growing
+  // linearly), as an open loop does. The error of the last position relative to the first is
+  // about that 1 m (the alignment shares a little of it out), and 0 without the drift.
+  std::vector<std::optional<Rigid3d>> truth, estimated;
+  for (int i = 0; i < 40; ++i) {
+    const double t = i / 10.0;
+    Eigen::Vector3d center(std::min(t, 1.0) - std::max(0.0, std::min(t - 2, 1.0)), 0,
+                           std::max(0.0, std::min(t - 1, 1.0)) - std::max(0.0, t - 3));
+    Rigid3d pose;
+    pose.translation = -center;
+    truth.push_back(pose);
+    if (i >= 30) center.x() += (i - 29) / 10.0;
+    Rigid3d drifted;
+    drifted.translation = -center;
+    estimated.push_back(drifted);
+  }
+  const auto exact = EvaluateTrajectory(truth, truth);
+  ASSERT_TRUE(exact.has_value());
+  EXPECT_LT(exact->end_to_start_error, 1e-9);
+  const auto evaluation = EvaluateTrajectory(estimated, truth);
+  ASSERT_TRUE(evaluation.has_value());
+  EXPECT_GT(evaluation->end_to_start_error, 0.7);
+  EXPECT_LT(evaluation->end_to_start_error, 1.3);
 }
 
 TEST(TrajectoryEvaluation, StraightPathRotationErrorIsWellDefined) {

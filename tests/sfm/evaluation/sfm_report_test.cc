@@ -22,6 +22,7 @@ SfmRunReport MakeReport(const std::string& detector, bool with_truth) {
     evaluation.ate_rmse = 0.05;
     evaluation.path_length = 10.0;
     evaluation.ate_fraction_of_path = 0.005;
+    evaluation.end_to_start_error = 0.25;
     evaluation.mean_rotation_error_deg = 0.25;
     report.trajectory = evaluation;
   }
@@ -36,6 +37,7 @@ TEST(SfmReport, JsonHoldsTheNumbers) {
   EXPECT_DOUBLE_EQ(json["points3D"]["mean_reprojection_error_px"].get<double>(), 0.45);
   EXPECT_DOUBLE_EQ(json["ground_truth"]["ate_rmse"].get<double>(), 0.05);
   EXPECT_DOUBLE_EQ(json["ground_truth"]["ate_fraction_of_path"].get<double>(), 0.005);
+  EXPECT_DOUBLE_EQ(json["ground_truth"]["end_to_start_error"].get<double>(), 0.25);
   EXPECT_DOUBLE_EQ(json["time_s"]["per_frame"].get<double>(), 2.5 / 12);
   EXPECT_TRUE(RunReportToJson(MakeReport("fast", false))["ground_truth"].is_null());
 }

@@ -60,6 +60,32 @@ TEST(RunReconstruction, InMemoryWritesNothingAndReportsWhatItDid) {
   EXPECT_TRUE(run.evaluation.has_value());
 }
 
+// --loop-closure on a clip that never returns: the keyframes are searched, no loop is found, and
+// the model is the one without it; report.json says so (and null without the flag). The
+// tracked features are described before the mapping, for the search.
+TEST(RunReconstruction, LoopClosureReportsWhatItSearched) {
+  ReconstructionRunOptions options = FiveFrames();
+  options.sequence.last_frame = 11;
+  const ReconstructionRunResult plain = RunReconstruction(options);
+  options.loop_closure = true;
+  const ReconstructionRunResult closed = RunReconstruction(options);
+  ASSERT_TRUE(plain.success()) << plain.failure;
+  ASSERT_TRUE(closed.success()) << closed.failure;
+  EXPECT_TRUE(plain.runs.front().report_json.at("loop_closure").is_null());
+  const nlohmann::json& report = closed.runs.front().report_json;
+  EXPECT_EQ(report["options"]["loop_closure"], true);
+  const nlohmann::json& loops = report.at("loop_closure");
+  ASSERT_TRUE(loops.is_object());
+  EXPECT_GE(loops["keyframes_searched"].get<int>(), 3);
+  EXPECT_TRUE(loops["loops"].empty());
+  EXPECT_EQ(loops["points_fused"], 0);
+  EXPECT_TRUE(closed.runs.front().run.tracks.HasDescriptors());
+  const Reconstruction& a = plain.runs.front().run.mapping.reconstruction;
+  const Reconstruction& b = closed.runs.front().run.mapping.reconstruction;
+  ASSERT_EQ(a.NumPoints3D(), b.NumPoints3D());
+  for (const auto& [id, point] : a.points3D()) EXPECT_EQ(point.xyz, b.point3D(id).xyz);
+}
+
 TEST(RunReconstruction, WritesEveryOutputAndCommitsAtTheEnd) {
   ScopedTempDir dir;
   ReconstructionRunOptions options = FiveFrames();

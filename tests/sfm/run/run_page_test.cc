@@ -145,6 +145,33 @@ TEST(RunPage, MarksTheKeyframesOnTheTimeline) {
             2u);
 }
 
+// --loop-closure: the summary says what was searched and found (KITTI's 12 frames never
+// return), and the end-to-start error is shown with the ground truth.
+TEST(RunPage, SaysWhatLoopClosureFound) {
+  ReconstructionRunOptions options = Example();
+  options.loop_closure = true;
+  const ReconstructionRunResult result = RunReconstruction(options);
+  ASSERT_TRUE(result.success()) << result.failure;
+  const io::HtmlPage page = RunPage(result.runs.front(), options, result.inputs);
+  const std::string loops = Fact(page.sections[0], "loop closure");
+  EXPECT_EQ(loops.rfind("no loop found among ", 0), 0u) << loops;
+  EXPECT_NE(Fact(page.sections[0], "end to start").find(" m error"), std::string::npos);
+  LoopClosureSummary closed;
+  closed.loops.resize(5);
+  closed.loops[0].query_frame = 1990;
+  closed.loops[0].match_frame = 3;
+  closed.num_points_fused = 180;
+  closed.max_correction = 4.1;
+  EXPECT_EQ(LoopClosureWords(closed).rfind("5 loops closed: frames 1990 → 3, ", 0), 0u);
+  EXPECT_NE(LoopClosureWords(closed).find("…"), std::string::npos);
+  EXPECT_NE(LoopClosureWords(closed).find("180 points fused"), std::string::npos);
+  // Without the flag: no such fact.
+  const ReconstructionRunResult plain = RunReconstruction(Example());
+  ASSERT_TRUE(plain.success()) << plain.failure;
+  EXPECT_EQ(Fact(RunPage(plain.runs.front(), Example(), plain.inputs).sections[0], "loop closure"),
+            "");
+}
+
 TEST(RunPage, ExplainsAFailedRun) {
   // One frame: no pair to start from.
   const ReconstructionRunOptions options = Example(0);

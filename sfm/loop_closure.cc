@@ -1,0 +1,300 @@
+#include "sfm/loop_closure.h"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <optional>
+#include <random>
+#include <set>
+
+#include "io/core/error.h"
+#include "sfm/bundle_adjuster.h"
+#include "sfm/trajectory_evaluation.h"
+
+namespace comic::sfm {
+
+void LoopClosureOptions::Check() const {
+  COMIC_CHECK(node_stride >= 1 && max_descriptors_per_node >= 1, kInvalidArgument,
+              "loop closure: node_stride and max_descriptors_per_node must be >= 1, got "
+                  << node_stride << ", " << max_descriptors_per_node);
+  COMIC_CHECK(min_inliers >= 3 && ransac_iterations >= 1 && max_shared_points >= 0,
+              kInvalidArgument,
+              "loop closure: min_inliers >= 3, ransac_iterations >= 1, max_shared_points >= 0 "
+              "needed, got "
+                  << min_inliers << ", " << ransac_iterations << ", " << max_shared_points);
+  COMIC_CHECK(max_reprojection_error_px > 0 && loop_edge_weight > 0, kInvalidArgument,
+              "loop closure: max_reprojection_error_px and loop_edge_weight must be > 0, got "
+                  << max_reprojection_error_px << ", " << loop_edge_weight);
+  detection.Check();
+  matching.Check();
+  pose_graph.Check();
+}
+
+namespace {
+
+// A keyframe's features with a 3-D point: their indices and descriptors (at most `limit`, in
+// feature order, which is the detector's strongest-first order).
+struct MappedFeatures {
+  std::vector<point2D_t> point2D_idxs;
+  cv::Mat descriptors;
+};
+
+MappedFeatures CollectMappedFeatures(const frontend::FeatureTracks& tracks,
+                                     const Reconstruction& model, image_t image_id, int limit) {
+  MappedFeatures mapped;
+  const Image& image = model.image(image_id);
+  const cv::Mat& all = tracks.descriptors[IncrementalMapper::FrameOfImageId(image_id)];
+  for (point2D_t idx = 0; idx < image.points2D.size(); ++idx) {
+    if (!image.points2D[idx].HasPoint3D()) continue;
+    if (static_cast<int>(mapped.point2D_idxs.size()) >= limit) break;
+    mapped.point2D_idxs.push_back(idx);
+    mapped.descriptors.push_back(all.row(static_cast<int>(idx)));
+  }
+  return mapped;
+}
+
+size_t NumSharedPoints(const Reconstruction& model, image_t a, image_t b) {
+  std::set<point3D_t> points;
+  for (const Point2D& p : model.image(a).points2D) {
+    if (p.HasPoint3D()) points.insert(p.point3D_id);
+  }
+  size_t shared = 0;
+  for (const Point2D& p : model.image(b).points2D) shared += points.count(p.point3D_id);
+  return shared;
+}
+
+// One match between the mapped features of the query (q) and the earlier frame (m).
+struct LoopMatch {
+  point2D_t q_idx = 0;
+  point2D_t m_idx = 0;
+  Eigen::Vector3d q_xyz;
+  Eigen::Vector3d m_xyz;
+};
+
+struct Verification {
+  LoopClosureEdge edge;
+  Sim3d m_from_q;  // X_m ≈ m_from_q · X_q
+  std::vector<LoopMatch> inliers;
+};
+
+bool ProjectsNear(const Reconstruction& model, image_t image_id, const Eigen::Vector3d& xyz,
+                  point2D_t idx, double max_error_px) {
+  const Image& image = model.image(image_id);
+  const auto projection = ProjectPoint(model.camera(image.camera_id), image.cam_from_world, xyz);
+  return projection && (*projection - image.points2D[idx].xy).norm() <= max_error_px;
+}
+
+std::vector<char> Agreeing(const Reconstruction& model, image_t q, image_t m, const Sim3d& m_from_q,
+                           const std::vector<LoopMatch>& matches, double max_error_px) {
+  const Sim3d q_from_m = InverseSim3(m_from_q);
+  std::vector<char> agree(matches.size(), 0);
+  for (size_t k = 0; k < matches.size(); ++k) {
+    agree[k] =
+        ProjectsNear(model, m, m_from_q * matches[k].q_xyz, matches[k].m_idx, max_error_px) &&
+        ProjectsNear(model, q, q_from_m * matches[k].m_xyz, matches[k].q_idx, max_error_px);
+  }
+  return agree;
+}
+
+std::optional<Sim3d> FitOn(const std::vector<LoopMatch>& matches, const std::vector<char>& use) {
+  std::vector<Eigen::Vector3d> src, dst;
+  for (size_t k = 0; k < matches.size(); ++k) {
+    if (!use[k]) continue;
+    src.push_back(matches[k].q_xyz);
+    dst.push_back(matches[k].m_xyz);
+  }
+  return EstimateSim3dUmeyama(src, dst);
+}
+
+int Count(const std::vector<char>& flags) {
+  return static_cast<int>(std::count(flags.begin(), flags.end(), 1));
+}
+
+// RANSAC over triples with a seed of the pair (the same answer on every run), then a refit on
+// the agreeing matches.
+std::optional<Verification> Verify(const frontend::FeatureTracks& tracks,
+                                   const LoopClosureOptions& options, const Reconstruction& model,
+                                   image_t q, image_t m) {
+  const int limit = std::numeric_limits<int>::max();
+  const MappedFeatures query = CollectMappedFeatures(tracks, model, q, limit);
+  const MappedFeatures earlier = CollectMappedFeatures(tracks, model, m, limit);
+  if (query.descriptors.empty() || earlier.descriptors.empty()) return std::nullopt;
+  std::vector<LoopMatch> matches;
+  for (const frontend::PatchMatch& match :
+       frontend::MatchDescriptors(query.descriptors, earlier.descriptors, options.matching)) {
+    LoopMatch loop_match;
+    loop_match.q_idx = query.point2D_idxs[match.index1];
+    loop_match.m_idx = earlier.point2D_idxs[match.index2];
+    loop_match.q_xyz = model.point3D(model.image(q).points2D[loop_match.q_idx].point3D_id).xyz;
+    loop_match.m_xyz = model.point3D(model.image(m).points2D[loop_match.m_idx].point3D_id).xyz;
+    matches.push_back(loop_match);
+  }
+  const int n = static_cast<int>(matches.size());
+  if (n < options.min_inliers) return std::nullopt;
+  std::mt19937 rng(static_cast<uint32_t>(q) * 7919u + static_cast<uint32_t>(m));
+  std::vector<char> best;
+  for (int it = 0; it < options.ransac_iterations; ++it) {
+    const int a = static_cast<int>(rng() % n);
+    const int b = static_cast<int>(rng() % n);
+    const int c = static_cast<int>(rng() % n);
+    if (a == b || b == c || a == c) continue;
+    std::vector<char> sample(matches.size(), 0);
+    sample[a] = sample[b] = sample[c] = 1;
+    const std::optional<Sim3d> model_from_sample = FitOn(matches, sample);
+    if (!model_from_sample || model_from_sample->scale <= 0) continue;
+    std::vector<char> agree =
+        Agreeing(model, q, m, *model_from_sample, matches, options.max_reprojection_error_px);
+    if (Count(agree) > Count(best)) best = std::move(agree);
+  }
+  if (Count(best) < options.min_inliers) return std::nullopt;
+  const std::optional<Sim3d> refit = FitOn(matches, best);
+  if (!refit || refit->scale <= 0) return std::nullopt;
+  const std::vector<char> agree =
+      Agreeing(model, q, m, *refit, matches, options.max_reprojection_error_px);
+  if (Count(agree) < options.min_inliers) return std::nullopt;
+  Verification verification;
+  verification.m_from_q = *refit;
+  for (size_t k = 0; k < matches.size(); ++k) {
+    if (agree[k]) verification.inliers.push_back(matches[k]);
+  }
+  verification.edge.query_frame = IncrementalMapper::FrameOfImageId(q);
+  verification.edge.match_frame = IncrementalMapper::FrameOfImageId(m);
+  verification.edge.num_matches = n;
+  verification.edge.num_inliers = static_cast<int>(verification.inliers.size());
+  verification.edge.scale = refit->scale;
+  return verification;
+}
+
+// The appearance search's nodes: every node_stride-th registered keyframe with mapped features.
+std::vector<image_t> Nodes(const LoopClosureOptions& options, const IncrementalMapper& mapper) {
+  std::vector<image_t> keyframes;
+  const Reconstruction& model = mapper.reconstruction();
+  for (image_t image_id : model.RegisteredImageIds()) {
+    if (mapper.IsKeyframe(image_id) && model.image(image_id).NumPoints3D() > 0) {
+      keyframes.push_back(image_id);
+    }
+  }
+  std::vector<image_t> nodes;
+  for (size_t k = 0; k < keyframes.size(); k += options.node_stride) nodes.push_back(keyframes[k]);
+  return nodes;
+}
+
+// The pose graph over every registered frame: consecutive frames (their present relative poses)
+// and the loops (the query posed where the similarity puts it against the earlier frame). The
+// first frame of the initial pair stays, as in the bundle adjustments.
+std::map<image_t, Sim3d> CorrectedPoses(const LoopClosureOptions& options,
+                                        const IncrementalMapper& mapper,
+                                        const std::vector<Verification>& loops,
+                                        PoseGraphSummary* summary) {
+  const Reconstruction& model = mapper.reconstruction();
+  const std::vector<image_t> frames = model.RegisteredImageIds();
+  std::map<image_t, int> node_of;
+  std::vector<Sim3d> poses;
+  for (image_t image_id : frames) {
+    node_of[image_id] = static_cast<int>(poses.size());
+    poses.push_back(Sim3FromRigid(model.image(image_id).cam_from_world));
+  }
+  std::vector<PoseGraphEdge> edges;
+  for (size_t k = 1; k < poses.size(); ++k) {
+    PoseGraphEdge edge;
+    edge.i = static_cast<int>(k) - 1;
+    edge.j = static_cast<int>(k);
+    edge.j_from_i = ComposeSim3(poses[k], InverseSim3(poses[k - 1]));
+    edges.push_back(edge);
+  }
+  for (const Verification& loop : loops) {
+    const image_t q = IncrementalMapper::ImageIdOfFrame(loop.edge.query_frame);
+    const image_t m = IncrementalMapper::ImageIdOfFrame(loop.edge.match_frame);
+    // P'_q = P_q ∘ S⁻¹ sees X_m where P_q saw X_q.
+    const Sim3d corrected_q = ComposeSim3(poses[node_of.at(q)], InverseSim3(loop.m_from_q));
+    PoseGraphEdge edge;
+    edge.i = node_of.at(m);
+    edge.j = node_of.at(q);
+    edge.j_from_i = ComposeSim3(corrected_q, InverseSim3(poses[node_of.at(m)]));
+    edge.weight = options.loop_edge_weight;
+    edges.push_back(edge);
+  }
+  const image_t gauge =
+      mapper.registration_order().empty() ? frames.front() : mapper.registration_order().front();
+  *summary = OptimizePoseGraph(options.pose_graph, edges, {node_of.at(gauge)}, &poses);
+  std::map<image_t, Sim3d> corrected;
+  for (image_t image_id : frames) corrected[image_id] = poses[node_of.at(image_id)];
+  return corrected;
+}
+
+Eigen::Vector3d SimCenter(const Sim3d& cam_from_world) {
+  return -(cam_from_world.rotation.conjugate() * cam_from_world.translation) / cam_from_world.scale;
+}
+
+}  // namespace
+
+LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
+                              const LoopClosureOptions& options, IncrementalMapper* mapper) {
+  options.Check();
+  COMIC_CHECK(mapper != nullptr, kInvalidArgument, "loop closure: mapper is null");
+  COMIC_CHECK(tracks.HasDescriptors(), kInvalidArgument,
+              "loop closure: the tracks have no descriptors");
+  const double cpu_start = ProcessCpuSeconds();
+  LoopClosureSummary summary;
+  const Reconstruction& model = mapper->reconstruction();
+
+  // Stage 1: candidates by appearance.
+  const std::vector<image_t> nodes = Nodes(options, *mapper);
+  summary.num_nodes = static_cast<int>(nodes.size());
+  std::vector<cv::Mat> node_descriptors;
+  std::vector<int> node_frames;
+  for (image_t image_id : nodes) {
+    node_descriptors.push_back(
+        CollectMappedFeatures(tracks, model, image_id, options.max_descriptors_per_node)
+            .descriptors);
+    node_frames.push_back(IncrementalMapper::FrameOfImageId(image_id));
+  }
+  const std::vector<LoopCandidate> candidates =
+      nodes.size() >= 2 ? DetectLoopCandidates(node_descriptors, node_frames, options.detection)
+                        : std::vector<LoopCandidate>();
+  summary.num_candidates = static_cast<int>(candidates.size());
+
+  // Stage 2: geometric verification of each candidate the tracks do not already link.
+  std::vector<Verification> loops;
+  for (const LoopCandidate& candidate : candidates) {
+    const image_t q = nodes[candidate.query];
+    const image_t m = nodes[candidate.match];
+    if (NumSharedPoints(model, q, m) >= static_cast<size_t>(options.max_shared_points)) continue;
+    std::optional<Verification> verified = Verify(tracks, options, model, q, m);
+    if (!verified) continue;
+    verified->edge.similarity = candidate.similarity;
+    loops.push_back(std::move(*verified));
+  }
+  summary.num_verified = static_cast<int>(loops.size());
+  if (loops.empty()) {
+    summary.cpu_time_s = ProcessCpuSeconds() - cpu_start;
+    return summary;
+  }
+
+  // Stage 3: the pose graph spreads the loops' drift over the path; the points follow.
+  const std::map<image_t, Sim3d> corrected =
+      CorrectedPoses(options, *mapper, loops, &summary.pose_graph);
+  std::map<image_t, Eigen::Vector3d> centers_before;
+  for (const auto& [image_id, pose] : corrected) {
+    centers_before[image_id] = ProjectionCenter(model.image(image_id).cam_from_world);
+    summary.max_correction =
+        std::max(summary.max_correction, (SimCenter(pose) - centers_before[image_id]).norm());
+  }
+  mapper->CorrectPoses(corrected);
+
+  // Stage 4: the points at both ends of each loop become one.
+  std::vector<IncrementalMapper::FeatureLink> links;
+  for (Verification& loop : loops) {
+    const image_t q = IncrementalMapper::ImageIdOfFrame(loop.edge.query_frame);
+    const image_t m = IncrementalMapper::ImageIdOfFrame(loop.edge.match_frame);
+    loop.edge.correction =
+        (ProjectionCenter(model.image(q).cam_from_world) - centers_before.at(q)).norm();
+    for (const LoopMatch& match : loop.inliers) links.push_back({m, match.m_idx, q, match.q_idx});
+    summary.loops.push_back(loop.edge);
+  }
+  summary.num_points_fused = mapper->FuseLinkedPoints(links);
+  summary.cpu_time_s = ProcessCpuSeconds() - cpu_start;
+  return summary;
+}
+
+}  // namespace comic::sfm

@@ -1,0 +1,83 @@
+// Loop closure in a model: places the camera revisits are found by appearance
+// (sfm/loop_detection.h, over the descriptors of the registered keyframes' mapped features),
+// verified geometrically, and closed: a Sim(3) pose graph over every registered frame
+// (sfm/pose_graph.h; consecutive frames and the verified loops) spreads the drift the loop
+// reveals over the path, every point moves with its first observer, and the points seen at both
+// ends of a loop become one, so that the global adjustment that follows holds the loop closed.
+// This is ORB-SLAM's loop closing (Mur-Artal & Tardós 2017, §VI), run once at the end of a
+// model's growth, before its final adjustment: an offline mapper has every frame already.
+//
+// Verification of a candidate (query keyframe q, earlier keyframe m): the descriptors of the
+// features of q and m that have 3-D points are matched (COLMAP's matching: nearest by angle,
+// ratio test, cross check); the similarity S taking q's points onto m's (X_m ≈ S X_q: the drift
+// between the two ends) is found by RANSAC over triples (Umeyama), a match agreeing when S X_q
+// projects into m and S⁻¹ X_m into q within max_reprojection_error_px (ORB-SLAM's two-way test,
+// free of the map's scale). Pairs whose frames already share points are not loops: the tracks
+// link them.
+//
+//   LoopClosureSummary s = CloseLoops(tracks, LoopClosureOptions(), &mapper);
+//   // s.loops: the loops closed; mapper.reconstruction() corrected, ready for a global adjustment
+#pragma once
+
+#include <vector>
+
+#include "frontend/matching/descriptor_matcher.h"
+#include "frontend/matching/track.h"
+#include "sfm/incremental_mapper.h"
+#include "sfm/loop_detection.h"
+#include "sfm/pose_graph.h"
+
+namespace comic::sfm {
+
+struct LoopClosureOptions {
+  // Every node_stride-th registered keyframe (in frame order) is a node of the appearance
+  // search, described by at most max_descriptors_per_node of its features with a 3-D point.
+  int node_stride = 3;
+  int max_descriptors_per_node = 600;
+  LoopDetectionOptions detection;
+  frontend::DescriptorMatchOptions matching;
+  // A loop needs this many matches agreeing with one similarity.
+  int min_inliers = 30;
+  double max_reprojection_error_px = 4.0;
+  int ransac_iterations = 400;
+  // A candidate whose two frames already share this many points is not a loop.
+  int max_shared_points = 10;
+  PoseGraphOptions pose_graph;
+  // Weight of a loop edge against a consecutive one.
+  double loop_edge_weight = 1.0;
+
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+struct LoopClosureEdge {
+  int query_frame = -1;     // the later frame
+  int match_frame = -1;     // the earlier frame it revisits
+  double similarity = 0.0;  // of their bags of words
+  int num_matches = 0;      // descriptor matches between their mapped features
+  int num_inliers = 0;      // of those, agreeing with the similarity
+  double scale = 1.0;       // of the similarity: the scale drift between the two ends
+  // How far the pose graph moved the query's camera centre (model units).
+  double correction = 0.0;
+};
+
+struct LoopClosureSummary {
+  int num_nodes = 0;       // keyframes described
+  int num_candidates = 0;  // appearance candidates
+  int num_verified = 0;    // of those, verified (all of them closed, in `loops`)
+  std::vector<LoopClosureEdge> loops;
+  size_t num_points_fused = 0;  // points seen at both ends made one
+  // The largest move of a camera centre by the pose graph (model units; 0 without a loop).
+  double max_correction = 0.0;
+  PoseGraphSummary pose_graph;
+  double cpu_time_s = 0.0;
+};
+
+// Finds, verifies and closes the loops of the model `mapper` holds (see above); nothing changes
+// when none is verified. `tracks` are the mapper's, with descriptors (frontend::FeatureTracks::
+// descriptors). Throws comic::Error(kInvalidArgument) for tracks without descriptors or bad
+// options.
+LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
+                              const LoopClosureOptions& options, IncrementalMapper* mapper);
+
+}  // namespace comic::sfm
