@@ -481,8 +481,11 @@ bool IncrementalMapper::RegisterNextImage(image_t image_id) {
   // A frame that is not a keyframe keeps its pose out of the map (SetKeyframes).
   if (!IsKeyframe(image_id)) return true;
   for (size_t i = 0; i < found.point2D_idxs.size(); ++i) {
-    if (found.pose->inlier_mask[i])
+    // Two features of one frame can reach one point only through fused points (a merge or a
+    // loop): the first inlier wins.
+    if (found.pose->inlier_mask[i] && !Observes(found.point3D_ids[i], image_id)) {
       reconstruction_.AddObservation(found.point3D_ids[i], {image_id, found.point2D_idxs[i]});
+    }
   }
   return true;
 }
@@ -522,8 +525,10 @@ std::vector<image_t> IncrementalMapper::LocalizeNonKeyframes() {
     image.cam_from_world = found.pose->cam_from_world;
     for (size_t i = 0; i < found.point2D_idxs.size(); ++i) {
       // One observation per point and image: a track may hold two features of one frame only
-      // through a wrong match, and the first inlier wins.
-      if (!found.pose->inlier_mask[i] || image.points2D[found.point2D_idxs[i]].HasPoint3D()) {
+      // through a wrong match, and two tracks reach one point only through fused points (a
+      // merge or a loop); the first inlier wins.
+      if (!found.pose->inlier_mask[i] || image.points2D[found.point2D_idxs[i]].HasPoint3D() ||
+          Observes(found.point3D_ids[i], image_id)) {
         continue;
       }
       reconstruction_.AddObservation(found.point3D_ids[i], {image_id, found.point2D_idxs[i]});
@@ -552,7 +557,11 @@ bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id, bool retriangul
     const Eigen::Vector3d xyz = reconstruction_.point3D(point3D_id).xyz;
     for (size_t i = 0; i < elements.size(); ++i) {
       const Image& image = reconstruction_.image(elements[i].image_id);
-      if (image.points2D[elements[i].point2D_idx].HasPoint3D()) continue;
+      // The point may see the frame through another track already (fused points).
+      if (image.points2D[elements[i].point2D_idx].HasPoint3D() ||
+          Observes(point3D_id, elements[i].image_id)) {
+        continue;
+      }
       const auto projection =
           ProjectPoint(reconstruction_.camera(image.camera_id), image.cam_from_world, xyz);
       if (projection &&
@@ -693,6 +702,13 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other,
   TriangulateAllTracks();
   FuseLinkedPoints(links);
   return new_image_ids.size();
+}
+
+bool IncrementalMapper::Observes(point3D_t point3D_id, image_t image_id) const {
+  for (const TrackElement& element : reconstruction_.point3D(point3D_id).track) {
+    if (element.image_id == image_id) return true;
+  }
+  return false;
 }
 
 size_t IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links) {

@@ -315,6 +315,8 @@ class IncrementalMapper {
   // Triangulates a track without point, or completes the point of a track with one.
   // `retriangulate`: also re-triangulate incomplete tracks (if retriangulate_incomplete_tracks).
   bool TriangulateOrCompleteTrack(int track_id, bool retriangulate);
+  // Whether the point has an observation in the image.
+  bool Observes(point3D_t point3D_id, image_t image_id) const;
   // Makes the points `a` and `b` (of one physical point) one: b's observations that a's position
   // explains (within complete_max_reprojection_error_px) move to a, and b is deleted.
   void FusePoints(point3D_t a, point3D_t b);

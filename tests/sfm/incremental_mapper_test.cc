@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "io/core/error.h"
 #include "sfm/synthetic_scene.h"
@@ -147,6 +148,73 @@ TEST(IncrementalMapper, NonKeyframesArePosedButStayOutOfTheMapUntilLocalized) {
   const Eigen::Quaterniond estimated = image.cam_from_world.rotation;
   const Eigen::Quaterniond expected = truth.rotation * first.rotation.inverse();
   EXPECT_LT(estimated.angularDistance(expected) * 180.0 / M_PI, 0.5);
+}
+
+// Two tracks of one point that overlap in two frames (a detector's duplicate corner), made one
+// point by a link (a merge or a loop closure): completing the tracks afterwards must not give the
+// point a second observation in a frame it already sees.
+TEST(IncrementalMapper, FusedPointsKeepOneObservationPerFrame) {
+  SyntheticScene scene = ForwardScene();
+  frontend::FeatureTracks& tracks = scene.tracks;
+  size_t chosen = tracks.tracks.size();
+  for (size_t t = 0; t < tracks.tracks.size() && chosen == tracks.tracks.size(); ++t) {
+    const auto& obs = tracks.tracks[t].observations;
+    bool clean = obs.size() >= 9;
+    for (const auto& o : obs) clean = clean && !scene.is_outlier[o.frame][o.feature];
+    if (clean) chosen = t;
+  }
+  ASSERT_LT(chosen, tracks.tracks.size());
+  const std::vector<frontend::TrackObservation> all = tracks.tracks[chosen].observations;
+  // First: observations 0-4; second: duplicates of 3 and 4, then 5 onwards.
+  frontend::Track second;
+  for (size_t k = 3; k < 5; ++k) {
+    tracks.features[all[k].frame].push_back(tracks.features[all[k].frame][all[k].feature]);
+    second.observations.push_back(
+        {all[k].frame, static_cast<int>(tracks.features[all[k].frame].size()) - 1});
+  }
+  for (size_t k = 5; k < all.size(); ++k) second.observations.push_back(all[k]);
+  tracks.tracks[chosen].observations.resize(5);
+  tracks.tracks.push_back(second);
+  tracks.Check();
+
+  IncrementalMapper mapper(tracks, scene.camera, IncrementalMapper::Options());
+  const auto pair = mapper.FindInitialPair();
+  ASSERT_TRUE(pair.has_value());
+  ASSERT_GT(mapper.RegisterInitialPair(*pair), 0u);
+  for (std::vector<image_t> next = mapper.NextImageCandidates(); !next.empty();
+       next = mapper.NextImageCandidates()) {
+    if (!mapper.RegisterNextImage(next.front())) break;
+    mapper.TriangulateImage(next.front());
+  }
+  const Reconstruction& model = mapper.reconstruction();
+  const auto point_of = [&](const frontend::TrackObservation& o) {
+    return model.image(IncrementalMapper::ImageIdOfFrame(o.frame)).points2D[o.feature].point3D_id;
+  };
+  const point3D_t a = point_of(all[0]);
+  const point3D_t b = point_of(second.observations.back());
+  ASSERT_NE(a, kInvalidPoint3DId);
+  ASSERT_NE(b, kInvalidPoint3DId);
+  ASSERT_NE(a, b);
+  IncrementalMapper::FeatureLink link;
+  link.image_id = IncrementalMapper::ImageIdOfFrame(all[0].frame);
+  link.point2D_idx = all[0].feature;
+  link.other_image_id = IncrementalMapper::ImageIdOfFrame(second.observations.back().frame);
+  link.other_point2D_idx = second.observations.back().feature;
+  EXPECT_EQ(mapper.FuseLinkedPoints({link}), 1u);
+  EXPECT_FALSE(model.ExistsPoint3D(b));
+  EXPECT_NO_THROW(mapper.TriangulateAllTracks());
+  for (const auto& [point3D_id, point] : model.points3D()) {
+    std::set<image_t> images;
+    for (const TrackElement& element : point.track) {
+      EXPECT_TRUE(images.insert(element.image_id).second) << "point " << point3D_id;
+    }
+  }
+  // The fused point took over the second track's frames its position explains.
+  int taken = 0;
+  for (size_t k = 2; k < second.observations.size(); ++k) {
+    taken += point_of(second.observations[k]) == a;
+  }
+  EXPECT_GE(taken, 1);
 }
 
 TEST(IncrementalMapper, FilterRemovesLargeErrorsAndSmallAngles) {

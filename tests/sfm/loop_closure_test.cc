@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "io/core/error.h"
 #include "sfm/evaluation/ground_truth.h"
@@ -23,8 +24,10 @@ namespace {
 constexpr double kRoadRadius = 20.0;
 
 // Frames on a ring of radius 20 m in the x-z plane covering `degrees`, looking along the road;
-// points on an inner and an outer wall.
-SyntheticScene MakeRing(int num_frames, double degrees, uint32_t seed) {
+// points on an inner and an outer wall. `back_and_forth`: the same frames played forwards then
+// backwards (a clip and its reverse, as ffmpeg's `reverse` filter makes one).
+SyntheticScene MakeRing(int num_frames, double degrees, uint32_t seed,
+                        bool back_and_forth = false) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Eigen::Vector3d> points;
@@ -41,6 +44,9 @@ SyntheticScene MakeRing(int num_frames, double degrees, uint32_t seed) {
     // Looking ahead and a little outwards, at the outer wall in front.
     const Eigen::Vector3d outwards(std::cos(angle), 0, std::sin(angle));
     cams.push_back(LookAt(center, center + 10.0 * along + 2.0 * outwards));
+  }
+  if (back_and_forth) {
+    for (int i = num_frames - 1; i >= 0; --i) cams.push_back(cams[i]);
   }
   SyntheticSceneOptions options;
   options.noise_px = 1.0;
@@ -126,6 +132,40 @@ TEST(LoopClosure, ARingRoadIsClosedWhereItIsRevisited) {
   EXPECT_LT(after.end_to_start_error, 0.5 * before.end_to_start_error)
       << "before " << before.end_to_start_error << " after " << after.end_to_start_error;
   EXPECT_LT(after.ate_rmse, before.ate_rmse);
+}
+
+// The way back retraces the way out with tracks of its own: the return is found on the way out
+// all along, the model holds every frame, and the last frame (the first one again) ends where
+// the first is. Fused points meet in frames through two tracks; each point keeps one
+// observation per frame.
+TEST(LoopClosure, AClipPlayedForwardsThenBackwardsEndsWhereItStarted) {
+  SyntheticScene scene = MakeRing(60, 150.0, 11, /*back_and_forth=*/true);
+  AddDescriptors(&scene, 12);
+  IncrementalPipelineOptions options;
+  const IncrementalReconstruction open =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  options.close_loops = true;
+  const IncrementalReconstruction closed =
+      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  ASSERT_EQ(closed.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(closed.reconstruction.NumRegisteredImages(), 120u);
+  ASSERT_TRUE(closed.loop_closure.has_value());
+  EXPECT_GE(closed.loop_closure->loops.size(), 5u);
+  for (const LoopClosureEdge& loop : closed.loop_closure->loops) {
+    // Frame f on the way out is frame 119 - f on the way back.
+    EXPECT_LE(std::abs(loop.query_frame + loop.match_frame - 119), 9)
+        << loop.query_frame << " / " << loop.match_frame;
+  }
+  for (const auto& [point3D_id, point] : closed.reconstruction.points3D()) {
+    std::set<image_t> images;
+    for (const TrackElement& element : point.track) {
+      EXPECT_TRUE(images.insert(element.image_id).second) << "point " << point3D_id;
+    }
+  }
+  const TrajectoryEvaluation before = Evaluate(open, scene);
+  const TrajectoryEvaluation after = Evaluate(closed, scene);
+  EXPECT_LT(after.end_to_start_error, 0.5 * before.end_to_start_error)
+      << "before " << before.end_to_start_error << " after " << after.end_to_start_error;
 }
 
 TEST(LoopClosure, NoRevisitNoLoopAndTheSameModel) {
