@@ -581,10 +581,17 @@ bool IncrementalMapper::TriangulateOrCompleteTrack(int track_id, bool retriangul
     TriangulationOptions retriangulation = options_.triangulation;
     retriangulation.max_reprojection_error_px = options_.retriangulate_max_reprojection_error_px;
     const auto point = TriangulateMultiView(views, retriangulation);
-    if (!point || point->inlier_views.size() <= num_observations) return false;
-    reconstruction_.DeletePoint3D(point3D_id);
+    if (!point) return false;
     std::vector<TrackElement> inlier_elements;
-    for (int i : point->inlier_views) inlier_elements.push_back(elements[i]);
+    for (int i : point->inlier_views) {
+      // A feature of the track may belong to another point (the track was split by fusing
+      // points: sfm/loop_closure.h); it stays there.
+      const point3D_t owner =
+          reconstruction_.image(elements[i].image_id).points2D[elements[i].point2D_idx].point3D_id;
+      if (owner == kInvalidPoint3DId || owner == point3D_id) inlier_elements.push_back(elements[i]);
+    }
+    if (inlier_elements.size() <= num_observations) return false;
+    reconstruction_.DeletePoint3D(point3D_id);
     reconstruction_.AddPoint3D(point->xyz, inlier_elements);
     return false;
   }
@@ -711,7 +718,8 @@ bool IncrementalMapper::Observes(point3D_t point3D_id, image_t image_id) const {
   return false;
 }
 
-size_t IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links) {
+size_t IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links,
+                                           bool keep_unexplained) {
   // The tracks do not know that the two ends of a link are one point: tell the model.
   size_t num_fused = 0;
   for (const FeatureLink& link : links) {
@@ -728,8 +736,7 @@ size_t IncrementalMapper::FuseLinkedPoints(const std::vector<FeatureLink>& links
     const point3D_t a = image.points2D[link.point2D_idx].point3D_id;
     const point3D_t b = other_image.points2D[link.other_point2D_idx].point3D_id;
     if (a != kInvalidPoint3DId && b != kInvalidPoint3DId && a != b) {
-      FusePoints(a, b);
-      ++num_fused;
+      num_fused += FusePoints(a, b, keep_unexplained);
     }
   }
   return num_fused;
@@ -765,7 +772,7 @@ void IncrementalMapper::CorrectPoses(const std::map<image_t, Sim3d>& corrected_c
   }
 }
 
-void IncrementalMapper::FusePoints(point3D_t a, point3D_t b) {
+bool IncrementalMapper::FusePoints(point3D_t a, point3D_t b, bool keep_unexplained) {
   const Eigen::Vector3d xyz = reconstruction_.point3D(a).xyz;
   std::set<image_t> seen;
   for (const TrackElement& element : reconstruction_.point3D(a).track) {
@@ -782,9 +789,17 @@ void IncrementalMapper::FusePoints(point3D_t a, point3D_t b) {
       moved.push_back(element);
     }
   }
-  if (moved.empty()) return;
-  reconstruction_.DeletePoint3D(b);
+  if (moved.empty()) return false;
+  if (keep_unexplained && reconstruction_.point3D(b).track.size() >= moved.size() + 2) {
+    // b keeps the rest (at least two observations): they still tie its frames together.
+    for (const TrackElement& element : moved) {
+      reconstruction_.DeleteObservation(element.image_id, element.point2D_idx);
+    }
+  } else {
+    reconstruction_.DeletePoint3D(b);
+  }
   for (const TrackElement& element : moved) reconstruction_.AddObservation(a, element);
+  return true;
 }
 
 void IncrementalMapper::ResetCamera(const Camera& camera) {

@@ -249,8 +249,11 @@ class IncrementalMapper {
   // The tracks do not know that the two ends of a link are one point: fuses the points of each
   // link whose two frames are registered (after a merge, or a loop closure where both frames are
   // this model's). The point of `image_id`'s feature stays; the other's observations its
-  // position explains join it. Returns the number of points fused away.
-  size_t FuseLinkedPoints(const std::vector<FeatureLink>& links);
+  // position explains join it, and the rest are dropped with the other point; with
+  // `keep_unexplained` the other point keeps the rest when at least two remain, so that a link
+  // between two ends not yet well aligned costs no observation (loop closure). Returns the
+  // number of pairs fused.
+  size_t FuseLinkedPoints(const std::vector<FeatureLink>& links, bool keep_unexplained = false);
 
   // Loop closure (sfm/loop_closure.h): sets the pose of every registered image of
   // `corrected_cams_from_world` (similarities: a pose graph moves the scale too) and moves every
@@ -318,8 +321,10 @@ class IncrementalMapper {
   // Whether the point has an observation in the image.
   bool Observes(point3D_t point3D_id, image_t image_id) const;
   // Makes the points `a` and `b` (of one physical point) one: b's observations that a's position
-  // explains (within complete_max_reprojection_error_px) move to a, and b is deleted.
-  void FusePoints(point3D_t a, point3D_t b);
+  // explains (within complete_max_reprojection_error_px) move to a, and b is deleted; nothing
+  // changes if none is explained. With keep_unexplained, b stays with the observations a does not
+  // explain if at least two are left. Returns whether observations moved.
+  bool FusePoints(point3D_t a, point3D_t b, bool keep_unexplained);
   // Sets the gauge of a problem: the first initial image constant, the second's scale fixed.
   void FixGauge(BundleAdjustmentConfig* config) const;
 

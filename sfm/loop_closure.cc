@@ -283,7 +283,7 @@ LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
   mapper->CorrectPoses(corrected);
 
   // Stage 4: the points at both ends of each loop become one.
-  std::vector<IncrementalMapper::FeatureLink> links;
+  std::vector<IncrementalMapper::FeatureLink>& links = summary.links;
   for (Verification& loop : loops) {
     const image_t q = IncrementalMapper::ImageIdOfFrame(loop.edge.query_frame);
     const image_t m = IncrementalMapper::ImageIdOfFrame(loop.edge.match_frame);
@@ -292,7 +292,7 @@ LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
     for (const LoopMatch& match : loop.inliers) links.push_back({m, match.m_idx, q, match.q_idx});
     summary.loops.push_back(loop.edge);
   }
-  summary.num_points_fused = mapper->FuseLinkedPoints(links);
+  summary.num_points_fused = mapper->FuseLinkedPoints(links, /*keep_unexplained=*/true);
   summary.cpu_time_s = ProcessCpuSeconds() - cpu_start;
   return summary;
 }

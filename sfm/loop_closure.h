@@ -3,7 +3,8 @@
 // verified geometrically, and closed: a Sim(3) pose graph over every registered frame
 // (sfm/pose_graph.h; consecutive frames and the verified loops) spreads the drift the loop
 // reveals over the path, every point moves with its first observer, and the points seen at both
-// ends of a loop become one, so that the global adjustment that follows holds the loop closed.
+// ends of a loop become one where the corrected poses agree on them, so that the global
+// adjustment that follows holds the loop closed (the caller fuses the rest after it: `links`).
 // This is ORB-SLAM's loop closing (Mur-Artal & Tardós 2017, §VI), run once at the end of a
 // model's growth, before its final adjustment: an offline mapper has every frame already.
 //
@@ -66,7 +67,12 @@ struct LoopClosureSummary {
   int num_candidates = 0;  // appearance candidates
   int num_verified = 0;    // of those, verified (all of them closed, in `loops`)
   std::vector<LoopClosureEdge> loops;
-  size_t num_points_fused = 0;  // points seen at both ends made one
+  // Points seen at both ends made one (the observations of the later point that the earlier
+  // one's position explains move to it), now and again after the final adjustment.
+  size_t num_points_fused = 0;
+  // The verified matches as links (earlier frame first), fused again after the final adjustment
+  // (IncrementalMapper::FuseLinkedPoints).
+  std::vector<IncrementalMapper::FeatureLink> links;
   // The largest move of a camera centre by the pose graph (model units; 0 without a loop).
   double max_correction = 0.0;
   PoseGraphSummary pose_graph;

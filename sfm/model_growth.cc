@@ -74,9 +74,13 @@ class ModelGrower {
     if (options_.close_loops) {
       result_.loop_closure = CloseLoops(tracks_, options_.loop_closure, &mapper_);
     }
-    // Final refinement: adjust, recover tracks the improved poses now explain, adjust again.
+    // Final refinement: adjust, recover tracks (and loop points) the improved poses now explain,
+    // adjust again.
     AdjustGlobally(/*final=*/true);
-    if (mapper_.TriangulateAllTracks() > 0) AdjustGlobally(/*final=*/true);
+    const size_t num_fused = mapper_.FuseLinkedPoints(result_.loop_closure.links,
+                                                      /*keep_unexplained=*/true);
+    result_.loop_closure.num_points_fused += num_fused;
+    if (mapper_.TriangulateAllTracks() > 0 || num_fused > 0) AdjustGlobally(/*final=*/true);
     // The frames outside the map, posed against it as it is final.
     for (image_t image_id : mapper_.LocalizeNonKeyframes()) {
       result_.non_keyframes_lost.push_back(IncrementalMapper::FrameOfImageId(image_id));
