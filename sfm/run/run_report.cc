@@ -10,6 +10,20 @@ namespace comic::sfm {
 
 namespace {
 
+// The guided search and continuation settings (--align-patches and the flags with it).
+nlohmann::json ContinuationToJson(const frontend::TrackContinuationOptions& c) {
+  return {{"alignment_levels", c.alignment.levels},
+          {"alignment_iterations", c.alignment.max_iterations},
+          {"alignment_min_eigenvalue", c.alignment.min_eigenvalue},
+          {"alignment_max_fb_px", c.alignment.max_forward_backward_px},
+          {"max_alignment_residual", c.max_residual},
+          {"min_alignment_correlation", c.min_correlation},
+          {"aligned_radius_px", c.aligned_radius},
+          {"max_continued_frames", c.max_continued_frames},
+          {"min_separation_px", c.min_separation},
+          {"bridge_frames", c.bridge_frames}};
+}
+
 nlohmann::json CameraToJson(const Camera& camera) {
   return {{"model", CameraModelName(camera.model)},
           {"model_id", static_cast<int>(camera.model)},
@@ -122,6 +136,9 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"verify_min_gap", tracker.verify_min_gap},
           {"match_turned", tracker.match_turned_180},
           {"max_cost", tracker.matcher.max_cost},
+          {"min_window_eigenvalue", tracker.min_window_eigenvalue},
+          {"align_patches", tracker.align_patches},
+          {"continuation", ContinuationToJson(tracker.continuation)},
           {"refine_focal", options.refine_focal},
           {"refine_principal_point", options.refine_principal_point},
           {"refine_distortion", options.refine_distortion},
