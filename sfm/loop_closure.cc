@@ -133,6 +133,7 @@ std::optional<Verification> Verify(const frontend::FeatureTracks& tracks,
   if (n < options.min_inliers) return std::nullopt;
   std::mt19937 rng(static_cast<uint32_t>(q) * 7919u + static_cast<uint32_t>(m));
   std::vector<char> best;
+  int best_count = 0;
   for (int it = 0; it < options.ransac_iterations; ++it) {
     const int a = static_cast<int>(rng() % n);
     const int b = static_cast<int>(rng() % n);
@@ -144,9 +145,13 @@ std::optional<Verification> Verify(const frontend::FeatureTracks& tracks,
     if (!model_from_sample || model_from_sample->scale <= 0) continue;
     std::vector<char> agree =
         Agreeing(model, q, m, *model_from_sample, matches, options.max_reprojection_error_px);
-    if (Count(agree) > Count(best)) best = std::move(agree);
+    const int count = Count(agree);
+    if (count > best_count) {
+      best_count = count;
+      best = std::move(agree);
+    }
   }
-  if (Count(best) < options.min_inliers) return std::nullopt;
+  if (best_count < options.min_inliers) return std::nullopt;
   const std::optional<Sim3d> refit = FitOn(matches, best);
   if (!refit || refit->scale <= 0) return std::nullopt;
   const std::vector<char> agree =

@@ -19,32 +19,6 @@
 namespace comic::sfm {
 
 namespace {
-std::string FormatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3g", value);
-  return text;
-}
-}  // namespace
-
-std::string LoopClosureWords(const LoopClosureSummary& summary) {
-  if (summary.loops.empty()) {
-    return "no loop found among " + std::to_string(summary.num_nodes) + " keyframes searched (" +
-           std::to_string(summary.num_candidates) + " candidates by appearance)";
-  }
-  std::string words = std::to_string(summary.loops.size()) +
-                      (summary.loops.size() == 1 ? " loop" : " loops") + " closed: frames ";
-  constexpr size_t kListed = 4;
-  for (size_t k = 0; k < std::min(summary.loops.size(), kListed); ++k) {
-    words += (k ? ", " : "") + std::to_string(summary.loops[k].query_frame) + " → " +
-             std::to_string(summary.loops[k].match_frame);
-  }
-  if (summary.loops.size() > kListed) words += ", …";
-  return words + " · " + std::to_string(summary.num_points_fused) +
-         " points fused · cameras moved up to " + FormatNumber(summary.max_correction) +
-         " (model units)";
-}
-
-namespace {
 
 std::string Format(const char* format, double value) {
   char text[64];
@@ -214,6 +188,24 @@ io::BarChart DetectorChart(const std::vector<DetectorRun>& runs, const std::stri
 }
 
 }  // namespace
+
+std::string LoopClosureWords(const LoopClosureSummary& summary) {
+  if (summary.loops.empty()) {
+    return "no loop found among " + std::to_string(summary.num_nodes) + " keyframes searched (" +
+           std::to_string(summary.num_candidates) + " candidates by appearance)";
+  }
+  std::string words = std::to_string(summary.loops.size()) +
+                      (summary.loops.size() == 1 ? " loop" : " loops") + " closed: frames ";
+  constexpr size_t kListed = 4;
+  for (size_t k = 0; k < std::min(summary.loops.size(), kListed); ++k) {
+    words += (k ? ", " : "") + std::to_string(summary.loops[k].query_frame) + " → " +
+             std::to_string(summary.loops[k].match_frame);
+  }
+  if (summary.loops.size() > kListed) words += ", …";
+  return words + " · " + std::to_string(summary.num_points_fused) +
+         " points fused · cameras moved up to " + Format("%.3g", summary.max_correction) +
+         " (model units)";
+}
 
 io::HtmlPage RunPage(const DetectorRun& run, const ReconstructionRunOptions& options,
                      const RunInputs& inputs) {

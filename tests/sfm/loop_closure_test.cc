@@ -11,6 +11,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "io/core/error.h"
 #include "sfm/evaluation/ground_truth.h"
@@ -100,15 +101,19 @@ TrajectoryEvaluation Evaluate(const IncrementalReconstruction& result,
   return evaluation.value_or(TrajectoryEvaluation());
 }
 
+// The scene reconstructed with the default options, then with loop closure.
+std::pair<IncrementalReconstruction, IncrementalReconstruction>
+ReconstructWithAndWithoutLoopClosure(const SyntheticScene& scene) {
+  IncrementalPipelineOptions options;
+  IncrementalReconstruction open = ReconstructIncrementally(scene.tracks, scene.camera, options);
+  options.close_loops = true;
+  return {std::move(open), ReconstructIncrementally(scene.tracks, scene.camera, options)};
+}
+
 TEST(LoopClosure, ARingRoadIsClosedWhereItIsRevisited) {
   SyntheticScene scene = MakeRing(150, 420.0, 3);
   AddDescriptors(&scene, 4);
-  IncrementalPipelineOptions options;
-  const IncrementalReconstruction open =
-      ReconstructIncrementally(scene.tracks, scene.camera, options);
-  options.close_loops = true;
-  const IncrementalReconstruction closed =
-      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  const auto [open, closed] = ReconstructWithAndWithoutLoopClosure(scene);
   ASSERT_EQ(open.status, ReconstructionStatus::kSuccess);
   ASSERT_EQ(closed.status, ReconstructionStatus::kSuccess);
   EXPECT_FALSE(open.loop_closure.has_value());
@@ -121,7 +126,7 @@ TEST(LoopClosure, ARingRoadIsClosedWhereItIsRevisited) {
                              ProjectionCenter(scene.cams_from_world[loop.match_frame]))
                                 .norm();
     EXPECT_LT(distance, 5.0) << loop.query_frame << " / " << loop.match_frame;
-    EXPECT_GE(loop.num_inliers, options.loop_closure.min_inliers);
+    EXPECT_GE(loop.num_inliers, LoopClosureOptions().min_inliers);
   }
   EXPECT_GT(summary.num_points_fused, 0u);
   const TrajectoryEvaluation before = Evaluate(open, scene);
@@ -141,12 +146,7 @@ TEST(LoopClosure, ARingRoadIsClosedWhereItIsRevisited) {
 TEST(LoopClosure, AClipPlayedForwardsThenBackwardsEndsWhereItStarted) {
   SyntheticScene scene = MakeRing(60, 150.0, 11, /*back_and_forth=*/true);
   AddDescriptors(&scene, 12);
-  IncrementalPipelineOptions options;
-  const IncrementalReconstruction open =
-      ReconstructIncrementally(scene.tracks, scene.camera, options);
-  options.close_loops = true;
-  const IncrementalReconstruction closed =
-      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  const auto [open, closed] = ReconstructWithAndWithoutLoopClosure(scene);
   ASSERT_EQ(closed.status, ReconstructionStatus::kSuccess);
   EXPECT_EQ(closed.reconstruction.NumRegisteredImages(), 120u);
   ASSERT_TRUE(closed.loop_closure.has_value());
@@ -172,12 +172,7 @@ TEST(LoopClosure, NoRevisitNoLoopAndTheSameModel) {
   // The first 200 degrees of the ring: nothing is seen twice.
   SyntheticScene scene = MakeRing(70, 200.0, 5);
   AddDescriptors(&scene, 6);
-  IncrementalPipelineOptions options;
-  const IncrementalReconstruction open =
-      ReconstructIncrementally(scene.tracks, scene.camera, options);
-  options.close_loops = true;
-  const IncrementalReconstruction closed =
-      ReconstructIncrementally(scene.tracks, scene.camera, options);
+  const auto [open, closed] = ReconstructWithAndWithoutLoopClosure(scene);
   ASSERT_TRUE(closed.loop_closure.has_value());
   EXPECT_TRUE(closed.loop_closure->loops.empty());
   EXPECT_GT(closed.loop_closure->num_nodes, 10);
