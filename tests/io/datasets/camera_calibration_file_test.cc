@@ -187,5 +187,24 @@ TEST(CameraCalibrationFile, RefusesFilesWithNulBytesBeforeAnyParser) {
   }
 }
 
+// fuzz_calibration_values: OpenCV 4.6's YAML parser loops forever on a line indented less than
+// the top-level keys; such a file is refused before it reaches the parser, and a well-indented
+// one with comments and markers still reads.
+TEST(CameraCalibrationFile, RefusesYamlIndentedLessThanItsKeysBeforeTheParser) {
+  ScopedTempDir dir;
+  Write(dir.File("hang.yml"),
+        "%YAML:1.0\n---\n   rnws: 3\n   cols: 3\n 99 -: d\n   data: [ 707.0912, 0. ]\n");
+  const std::string message = ErrorOf(dir.File("hang.yml"));
+  EXPECT_NE(message.find("line 5 is indented less than the top-level keys (column 4)"),
+            std::string::npos)
+      << message;
+  Write(dir.File("fine.yml"),
+        "%YAML:1.0\n---\n# a comment\nimage_width: 640\nimage_height: 480\n"
+        "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+        "   data: [ 500., 0., 319.5, 0., 500., 239.5, 0., 0., 1. ]\n");
+  const CameraCalibration calibration = ReadCameraCalibrationFile(dir.File("fine.yml"));
+  EXPECT_EQ(calibration.width, 640);
+}
+
 }  // namespace
 }  // namespace comic::io
