@@ -22,6 +22,9 @@ void LoopClosureOptions::Check() const {
               "loop closure: min_inliers >= 3, ransac_iterations >= 1, max_shared_points >= 0 "
               "needed, got "
                   << min_inliers << ", " << ransac_iterations << ", " << max_shared_points);
+  COMIC_CHECK(max_move_per_path > 0 && max_scale_change >= 1, kInvalidArgument,
+              "loop closure: max_move_per_path must be > 0 and max_scale_change >= 1, got "
+                  << max_move_per_path << ", " << max_scale_change);
   COMIC_CHECK(max_reprojection_error_px > 0 && loop_edge_weight > 0, kInvalidArgument,
               "loop closure: max_reprojection_error_px and loop_edge_weight must be > 0, got "
                   << max_reprojection_error_px << ", " << loop_edge_weight);
@@ -231,6 +234,38 @@ Eigen::Vector3d SimCenter(const Sim3d& cam_from_world) {
   return -(cam_from_world.rotation.conjugate() * cam_from_world.translation) / cam_from_world.scale;
 }
 
+// The length of the path through the registered frames' camera centres, in frame order, up to
+// each frame.
+std::map<int, double> PathLengthByFrame(const Reconstruction& model) {
+  std::map<int, Eigen::Vector3d> centers;
+  for (image_t image_id : model.RegisteredImageIds()) {
+    centers[IncrementalMapper::FrameOfImageId(image_id)] =
+        ProjectionCenter(model.image(image_id).cam_from_world);
+  }
+  std::map<int, double> path;
+  const Eigen::Vector3d* previous = nullptr;
+  double length = 0.0;
+  for (const auto& [frame, center] : centers) {
+    if (previous != nullptr) length += (center - *previous).norm();
+    path[frame] = length;
+    previous = &center;
+  }
+  return path;
+}
+
+// Fills the loop's path and move, and says whether the odometry allows it (see the header).
+bool ConsistentWithOdometry(const LoopClosureOptions& options, const Reconstruction& model,
+                            const std::map<int, double>& path, Verification* loop) {
+  LoopClosureEdge& edge = loop->edge;
+  const Eigen::Vector3d center = ProjectionCenter(
+      model.image(IncrementalMapper::ImageIdOfFrame(edge.query_frame)).cam_from_world);
+  // P'_q = P_q ∘ S⁻¹ has its centre at S(C_q).
+  edge.loop_move = (loop->m_from_q * center - center).norm();
+  edge.path_length = std::abs(path.at(edge.query_frame) - path.at(edge.match_frame));
+  return edge.loop_move <= options.max_move_per_path * edge.path_length &&
+         edge.scale <= options.max_scale_change && edge.scale * options.max_scale_change >= 1.0;
+}
+
 }  // namespace
 
 LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
@@ -259,18 +294,24 @@ LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
                         : std::vector<LoopCandidate>();
   summary.num_candidates = static_cast<int>(candidates.size());
 
-  // Stage 2: geometric verification of each candidate the tracks do not already link.
+  // Stage 2: geometric verification of each candidate the tracks do not already link, then
+  // consistency with the odometry.
   std::vector<Verification> loops;
+  const std::map<int, double> path = PathLengthByFrame(model);
   for (const LoopCandidate& candidate : candidates) {
     const image_t q = nodes[candidate.query];
     const image_t m = nodes[candidate.match];
     if (NumSharedPoints(model, q, m) >= static_cast<size_t>(options.max_shared_points)) continue;
     std::optional<Verification> verified = Verify(tracks, options, model, q, m);
     if (!verified) continue;
+    ++summary.num_verified;
     verified->edge.similarity = candidate.similarity;
-    loops.push_back(std::move(*verified));
+    if (ConsistentWithOdometry(options, model, path, &*verified)) {
+      loops.push_back(std::move(*verified));
+    } else {
+      summary.rejected.push_back(verified->edge);
+    }
   }
-  summary.num_verified = static_cast<int>(loops.size());
   if (loops.empty()) {
     summary.cpu_time_s = ProcessCpuSeconds() - cpu_start;
     return summary;

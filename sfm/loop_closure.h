@@ -16,6 +16,14 @@
 // free of the map's scale). Pairs whose frames already share points are not loops: the tracks
 // link them.
 //
+// A verified loop must also be consistent with the odometry before it is closed, because
+// geometry between two frames cannot tell a revisit from a second place that looks the same
+// (perceptual aliasing: a repeated facade is a consistent similarity too). Drift grows with the
+// path, so the move the loop asks of the query's camera (S applied to its centre) must be a
+// small fraction of the path between the two frames, and the scale drift it reveals must be
+// moderate; a look-alike elsewhere asks for a move as long as the way between the two places.
+// Loops failing this are reported as rejected and leave the model as it is.
+//
 //   LoopClosureSummary s = CloseLoops(tracks, LoopClosureOptions(), &mapper);
 //   // s.loops: the loops closed; mapper.reconstruction() corrected, ready for a global adjustment
 #pragma once
@@ -46,6 +54,12 @@ struct LoopClosureOptions {
   PoseGraphOptions pose_graph;
   // Weight of a loop edge against a consecutive one.
   double loop_edge_weight = 1.0;
+  // Consistency with the odometry: the loop may move the query's camera centre by at most this
+  // fraction of the path between the two frames (drift of a few per cent of the path is what
+  // incremental mapping accumulates; docs/long_video.md), and its similarity's scale must lie
+  // within [1 / max_scale_change, max_scale_change].
+  double max_move_per_path = 0.3;
+  double max_scale_change = 1.8;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -58,15 +72,22 @@ struct LoopClosureEdge {
   int num_matches = 0;      // descriptor matches between their mapped features
   int num_inliers = 0;      // of those, agreeing with the similarity
   double scale = 1.0;       // of the similarity: the scale drift between the two ends
-  // How far the pose graph moved the query's camera centre (model units).
+  // The path between the two frames' camera centres through every registered frame between
+  // them, and how far the similarity alone would move the query's centre (model units).
+  double path_length = 0.0;
+  double loop_move = 0.0;
+  // How far the pose graph moved the query's camera centre (model units; 0 for a rejected loop).
   double correction = 0.0;
 };
 
 struct LoopClosureSummary {
   int num_nodes = 0;       // keyframes described
   int num_candidates = 0;  // appearance candidates
-  int num_verified = 0;    // of those, verified (all of them closed, in `loops`)
+  int num_verified = 0;    // of those, verified geometrically
+  // The verified loops consistent with the odometry, closed...
   std::vector<LoopClosureEdge> loops;
+  // ... and those that are not (a move too long for their path, or a scale too far from 1).
+  std::vector<LoopClosureEdge> rejected;
   // Points seen at both ends made one (the observations of the later point that the earlier
   // one's position explains move to it), now and again after the final adjustment.
   size_t num_points_fused = 0;

@@ -9,20 +9,26 @@ namespace comic::sfm {
 namespace {
 
 nlohmann::json LoopClosureToJson(const LoopClosureSummary& summary) {
-  nlohmann::json loops = nlohmann::json::array();
-  for (const LoopClosureEdge& loop : summary.loops) {
-    loops.push_back({{"query_frame", loop.query_frame},
-                     {"match_frame", loop.match_frame},
-                     {"similarity", loop.similarity},
-                     {"matches", loop.num_matches},
-                     {"inliers", loop.num_inliers},
-                     {"scale", loop.scale},
-                     {"correction", loop.correction}});
-  }
+  const auto edges = [](const std::vector<LoopClosureEdge>& list) {
+    nlohmann::json json = nlohmann::json::array();
+    for (const LoopClosureEdge& loop : list) {
+      json.push_back({{"query_frame", loop.query_frame},
+                      {"match_frame", loop.match_frame},
+                      {"similarity", loop.similarity},
+                      {"matches", loop.num_matches},
+                      {"inliers", loop.num_inliers},
+                      {"scale", loop.scale},
+                      {"path_length", loop.path_length},
+                      {"loop_move", loop.loop_move},
+                      {"correction", loop.correction}});
+    }
+    return json;
+  };
   return {{"keyframes_searched", summary.num_nodes},
           {"candidates", summary.num_candidates},
           {"verified", summary.num_verified},
-          {"loops", loops},
+          {"loops", edges(summary.loops)},
+          {"rejected", edges(summary.rejected)},
           {"points_fused", summary.num_points_fused},
           {"max_correction", summary.max_correction},
           {"pose_graph_iterations", summary.pose_graph.iterations},

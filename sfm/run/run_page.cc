@@ -190,9 +190,14 @@ io::BarChart DetectorChart(const std::vector<DetectorRun>& runs, const std::stri
 }  // namespace
 
 std::string LoopClosureWords(const LoopClosureSummary& summary) {
+  const std::string rejected =
+      summary.rejected.empty()
+          ? ""
+          : " · " + std::to_string(summary.rejected.size()) +
+                " verified but rejected: inconsistent with the odometry (look-alike places)";
   if (summary.loops.empty()) {
     return "no loop found among " + std::to_string(summary.num_nodes) + " keyframes searched (" +
-           std::to_string(summary.num_candidates) + " candidates by appearance)";
+           std::to_string(summary.num_candidates) + " candidates by appearance)" + rejected;
   }
   std::string words = std::to_string(summary.loops.size()) +
                       (summary.loops.size() == 1 ? " loop" : " loops") + " closed: frames ";
@@ -204,7 +209,7 @@ std::string LoopClosureWords(const LoopClosureSummary& summary) {
   if (summary.loops.size() > kListed) words += ", …";
   return words + " · " + std::to_string(summary.num_points_fused) +
          " points fused · cameras moved up to " + Format("%.3g", summary.max_correction) +
-         " (model units)";
+         " (model units)" + rejected;
 }
 
 io::HtmlPage RunPage(const DetectorRun& run, const ReconstructionRunOptions& options,

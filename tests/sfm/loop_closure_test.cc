@@ -3,7 +3,8 @@
 // tracks of their own. Descriptors come from the points (each point's own sparse pattern, noise on
 // every observation), as real ones come from the surface. Without loop closure the ring stays
 // open; with it the revisit is found between frames that are truly near each other, and the
-// drift between the two ends falls.
+// drift between the two ends falls. On a street whose facade repeats, the look-alike places
+// verify geometrically but ask for a move as long as the street: they are rejected.
 #include "sfm/loop_closure.h"
 
 #include <gtest/gtest.h>
@@ -57,9 +58,39 @@ SyntheticScene MakeRing(int num_frames, double degrees, uint32_t seed,
   return MakeSyntheticSceneFromPath(options, std::move(cams), std::move(points));
 }
 
+// A straight street of `length` metres filmed sideways (the camera looks at the facade 8–10 m
+// away), one frame every half metre; the facade is one stretch of `period` metres built again
+// and again, so frames `period` apart see the same thing.
+SyntheticScene MakeRepeatingStreet(double length, double period, int points_per_period,
+                                   uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Vector3d> stretch;
+  for (int p = 0; p < points_per_period; ++p) {
+    stretch.emplace_back(8.0 + 2.0 * unit(rng), -3.0 + 5.0 * unit(rng), period * unit(rng));
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (double start = -period; start < length + period; start += period) {
+    for (const Eigen::Vector3d& point : stretch)
+      points.push_back(point + Eigen::Vector3d(0, 0, start));
+  }
+  std::vector<Rigid3d> cams;
+  for (double z = 0.0; z <= length; z += 0.5) {
+    const Eigen::Vector3d center(0, 0, z);
+    cams.push_back(LookAt(center, center + Eigen::Vector3d(1, 0, 0)));
+  }
+  SyntheticSceneOptions options;
+  options.noise_px = 1.0;
+  options.outlier_ratio = 0.05;
+  options.track_break_probability = 0.05;
+  options.seed = seed;
+  return MakeSyntheticSceneFromPath(options, std::move(cams), std::move(points));
+}
+
 // Per point a pattern of 16 of 128 bins at 128 (length 512, as RootSIFT's), each observation
-// moved by up to ±10 per bin; wrong observations get a pattern of their own.
-void AddDescriptors(SyntheticScene* scene, uint32_t seed) {
+// moved by up to ±10 per bin; wrong observations get a pattern of their own. With
+// `num_patterns` > 0, point p wears pattern p mod num_patterns (a texture that repeats).
+void AddDescriptors(SyntheticScene* scene, uint32_t seed, size_t num_patterns = 0) {
   std::mt19937 rng(seed);
   const auto pattern = [&]() {
     cv::Mat row = cv::Mat::zeros(1, 128, CV_8U);
@@ -67,7 +98,8 @@ void AddDescriptors(SyntheticScene* scene, uint32_t seed) {
     return row;
   };
   std::vector<cv::Mat> patterns;
-  for (size_t p = 0; p < scene->points3D.size(); ++p) patterns.push_back(pattern());
+  const size_t distinct = num_patterns > 0 ? num_patterns : scene->points3D.size();
+  for (size_t p = 0; p < distinct; ++p) patterns.push_back(pattern());
   frontend::FeatureTracks& tracks = scene->tracks;
   tracks.descriptors.assign(tracks.NumFrames(), cv::Mat());
   std::vector<std::vector<int>> point_of(tracks.NumFrames());
@@ -80,8 +112,9 @@ void AddDescriptors(SyntheticScene* scene, uint32_t seed) {
   for (size_t f = 0; f < tracks.NumFrames(); ++f) {
     cv::Mat rows(static_cast<int>(tracks.features[f].size()), 128, CV_8U);
     for (int i = 0; i < rows.rows; ++i) {
-      const cv::Mat base =
-          scene->is_outlier[f][i] || point_of[f][i] < 0 ? pattern() : patterns[point_of[f][i]];
+      const cv::Mat base = scene->is_outlier[f][i] || point_of[f][i] < 0
+                               ? pattern()
+                               : patterns[point_of[f][i] % distinct];
       for (int c = 0; c < 128; ++c) {
         const int value = base.at<uint8_t>(0, c) + static_cast<int>(rng() % 21) - 10;
         rows.at<uint8_t>(i, c) = static_cast<uint8_t>(std::clamp(value, 0, 255));
@@ -183,6 +216,41 @@ TEST(LoopClosure, NoRevisitNoLoopAndTheSameModel) {
   }
 }
 
+// Perceptual aliasing: frames 30 m apart on a repeating street see the same facade in the same
+// shape, so a similarity verifies between them; it would move the later camera 30 m over 30 m
+// of path (all drift), so it is rejected and the model stays as it was. Without the check the
+// same loops are closed and the street folds onto itself.
+TEST(LoopClosure, ALookAlikePlaceIsRejectedByTheOdometry) {
+  constexpr double kPeriod = 30.0;
+  SyntheticScene scene = MakeRepeatingStreet(70.0, kPeriod, 400, 13);
+  AddDescriptors(&scene, 14, /*num_patterns=*/400);
+  const auto [open, closed] = ReconstructWithAndWithoutLoopClosure(scene);
+  ASSERT_EQ(closed.status, ReconstructionStatus::kSuccess);
+  ASSERT_TRUE(closed.loop_closure.has_value());
+  const LoopClosureSummary& summary = *closed.loop_closure;
+  EXPECT_TRUE(summary.loops.empty());
+  ASSERT_GE(summary.rejected.size(), 1u);
+  for (const LoopClosureEdge& loop : summary.rejected) {
+    EXPECT_GT(loop.loop_move, LoopClosureOptions().max_move_per_path * loop.path_length)
+        << loop.query_frame << " / " << loop.match_frame;
+  }
+  ASSERT_EQ(open.reconstruction.NumPoints3D(), closed.reconstruction.NumPoints3D());
+  for (const auto& [image_id, image] : open.reconstruction.images()) {
+    EXPECT_EQ(image.cam_from_world.translation,
+              closed.reconstruction.image(image_id).cam_from_world.translation);
+  }
+
+  IncrementalPipelineOptions unguarded;
+  unguarded.close_loops = true;
+  unguarded.loop_closure.max_move_per_path = 1e9;
+  unguarded.loop_closure.max_scale_change = 1e9;
+  const IncrementalReconstruction folded =
+      ReconstructIncrementally(scene.tracks, scene.camera, unguarded);
+  ASSERT_TRUE(folded.loop_closure.has_value());
+  EXPECT_GE(folded.loop_closure->loops.size(), 1u);
+  EXPECT_GT(Evaluate(folded, scene).ate_rmse, 2.0 * Evaluate(closed, scene).ate_rmse);
+}
+
 TEST(LoopClosure, NeedsDescriptorsAndValidOptions) {
   const SyntheticScene scene = MakeRing(20, 40.0, 7);
   IncrementalPipelineOptions options;
@@ -193,6 +261,12 @@ TEST(LoopClosure, NeedsDescriptorsAndValidOptions) {
   EXPECT_THROW(bad.Check(), Error);
   bad = LoopClosureOptions();
   bad.max_reprojection_error_px = 0;
+  EXPECT_THROW(bad.Check(), Error);
+  bad = LoopClosureOptions();
+  bad.max_move_per_path = 0;
+  EXPECT_THROW(bad.Check(), Error);
+  bad = LoopClosureOptions();
+  bad.max_scale_change = 0.5;
   EXPECT_THROW(bad.Check(), Error);
 }
 

@@ -82,6 +82,8 @@ TEST(RunReconstruction, LoopClosureReportsWhatItSearched) {
   ASSERT_TRUE(loops.is_object());
   EXPECT_GE(loops["keyframes_searched"].get<int>(), 3);
   EXPECT_TRUE(loops["loops"].empty());
+  ASSERT_TRUE(loops["rejected"].is_array());
+  EXPECT_EQ(loops["verified"].get<size_t>(), loops["loops"].size() + loops["rejected"].size());
   EXPECT_EQ(loops["points_fused"], 0);
   EXPECT_TRUE(closed.runs.front().run.tracks.HasDescriptors());
   const Reconstruction& a = plain.runs.front().run.mapping.reconstruction;

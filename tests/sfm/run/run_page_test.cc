@@ -165,6 +165,11 @@ TEST(RunPage, SaysWhatLoopClosureFound) {
   EXPECT_EQ(LoopClosureWords(closed).rfind("5 loops closed: frames 1990 → 3, ", 0), 0u);
   EXPECT_NE(LoopClosureWords(closed).find("…"), std::string::npos);
   EXPECT_NE(LoopClosureWords(closed).find("180 points fused"), std::string::npos);
+  EXPECT_EQ(LoopClosureWords(closed).find("rejected"), std::string::npos);
+  closed.rejected.resize(2);
+  EXPECT_NE(LoopClosureWords(closed).find("2 verified but rejected"), std::string::npos);
+  closed.loops.clear();
+  EXPECT_NE(LoopClosureWords(closed).find("2 verified but rejected"), std::string::npos);
   // Without the flag: no such fact.
   const ReconstructionRunResult plain = RunReconstruction(Example());
   ASSERT_TRUE(plain.success()) << plain.failure;
