@@ -134,8 +134,10 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
   parser.AddFlag("loop-closure",
                  "video that returns to where it has been: revisited places are found by "
                  "appearance among the keyframes, verified by their 3-D points and closed (a "
-                 "Sim(3) pose graph, then the final adjustment); report.json 'loop_closure' lists "
-                 "the loops",
+                 "Sim(3) pose graph, then the final adjustment) if it moves the camera by at "
+                 "most 10 % of the path between its two ends (a larger move is taken for a "
+                 "look-alike place); report.json 'loop_closure' lists the loops closed and "
+                 "rejected",
                  &o->loop_closure);
   parser.AddOption("max-working-size", "N",
                    "track and map frames whose larger side exceeds N pixels at N, and write the "

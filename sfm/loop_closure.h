@@ -58,7 +58,7 @@ struct LoopClosureOptions {
   // fraction of the path between the two frames (drift of a few per cent of the path is what
   // incremental mapping accumulates; docs/long_video.md), and its similarity's scale must lie
   // within [1 / max_scale_change, max_scale_change].
-  double max_move_per_path = 0.3;
+  double max_move_per_path = 0.1;
   double max_scale_change = 1.8;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
