@@ -137,10 +137,11 @@ class YamlChecker {
 
  private:
   void Require(bool condition, int number, const std::string& reason) const {
-    COMIC_CHECK(condition, kInvalidData,
-                path_ << ": line " << number
-                      << (parent_.empty() ? "" : " (under " + std::string(parent_) + ")")
-                      << " is not the YAML an OpenCV or ROS calibration is written in: " << reason);
+    COMIC_CHECK(
+        condition, kInvalidData,
+        path_ << ": line " << number
+              << (parent_.empty() ? "" : " (under " + std::string(parent_) + ")")
+              << " is outside the OpenCV FileStorage YAML a calibration is written in: " << reason);
   }
 
   void CheckLine(int number, std::string_view raw) {
@@ -246,9 +247,10 @@ class XmlChecker {
   void Require(bool condition, const std::string& reason) const {
     int line = 1;
     for (size_t i = 0; i < std::min(pos_, text_.size()); ++i) line += text_[i] == '\n';
-    COMIC_CHECK(condition, kInvalidData,
-                path_ << ": line " << line
-                      << " is not the XML an OpenCV calibration is written in: " << reason);
+    COMIC_CHECK(
+        condition, kInvalidData,
+        path_ << ": line " << line
+              << " is outside the OpenCV FileStorage XML a calibration is written in: " << reason);
   }
 
   void SkipBlanks() {
