@@ -139,6 +139,11 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                  "look-alike place); report.json 'loop_closure' lists the loops closed and "
                  "rejected",
                  &o->loop_closure);
+  parser.AddOption("loop-closure-max-move", "F",
+                   "with --loop-closure: the largest move a loop may ask of the camera, as a "
+                   "fraction of the path between its two ends (larger: drift that large is "
+                   "corrected, but a look-alike place is more likely taken for a revisit)",
+                   &o->loop_closure_max_move);
   parser.AddOption("max-working-size", "N",
                    "track and map frames whose larger side exceeds N pixels at N, and write the "
                    "models in the input's pixels (0: the input's size; --resize-height decides "

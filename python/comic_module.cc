@@ -820,6 +820,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"init_max_gap", Field(&o->init_max_gap)},
                        {"keyframes", Field(&o->keyframes)},
                        {"loop_closure", Field(&o->loop_closure)},
+                       {"loop_closure_max_move", Field(&o->loop_closure_max_move)},
                        {"max_working_size", Field(&o->max_working_size)},
                        {"min_registered", Field(&o->min_registered)},
                        {"threads", Field(&o->threads)},

@@ -108,6 +108,25 @@ std::vector<std::vector<double>> BagsOfWords(const std::vector<std::vector<int>>
   return bags;
 }
 
+// The most similar candidates (ties: the earlier keyframe), at most candidates_per_keyframe, none
+// within consistency_window keyframes of a more similar one.
+std::vector<LoopCandidate> DistinctBest(std::vector<LoopCandidate> passed,
+                                        const LoopDetectionOptions& options) {
+  std::stable_sort(
+      passed.begin(), passed.end(),
+      [](const LoopCandidate& a, const LoopCandidate& b) { return a.similarity > b.similarity; });
+  std::vector<LoopCandidate> best;
+  for (const LoopCandidate& candidate : passed) {
+    if (static_cast<int>(best.size()) == options.candidates_per_keyframe) break;
+    const bool near_a_better_one =
+        std::any_of(best.begin(), best.end(), [&](const LoopCandidate& kept) {
+          return std::abs(kept.match - candidate.match) <= options.consistency_window;
+        });
+    if (!near_a_better_one) best.push_back(candidate);
+  }
+  return best;
+}
+
 double Cosine(const std::vector<double>& a, const std::vector<double>& b) {
   double dot = 0.0;
   for (size_t w = 0; w < a.size(); ++w) dot += a[w] * b[w];
@@ -126,6 +145,9 @@ void LoopDetectionOptions::Check() const {
   COMIC_CHECK(min_consecutive >= 1 && consistency_window >= 0, kInvalidArgument,
               "loop detection: min_consecutive >= 1 and consistency_window >= 0 needed, got "
                   << min_consecutive << ", " << consistency_window);
+  COMIC_CHECK(
+      candidates_per_keyframe >= 1, kInvalidArgument,
+      "loop detection: candidates_per_keyframe must be >= 1, got " << candidates_per_keyframe);
   COMIC_CHECK(min_frame_separation >= 1, kInvalidArgument,
               "loop detection: min_frame_separation must be >= 1, got " << min_frame_separation);
   COMIC_CHECK(min_similarity >= 0 && min_similarity <= 1 && min_ratio_to_previous >= 0,
@@ -170,30 +192,33 @@ std::vector<LoopCandidate> DetectLoopCandidates(const std::vector<cv::Mat>& desc
   for (const cv::Mat& d : descriptors) words.push_back(vocabulary.Words(d));
   const std::vector<std::vector<double>> bags = BagsOfWords(words, vocabulary.Size());
 
-  LoopCandidate last_passed;  // the previous keyframe's, if it passed the thresholds
+  std::vector<LoopCandidate> previous_passed;  // the previous keyframe's, that passed
   for (size_t q = 1; q < bags.size(); ++q) {
     const double previous = Cosine(bags[q], bags[q - 1]);
-    LoopCandidate best;
+    std::vector<LoopCandidate> passed;
     for (size_t c = 0; c < q; ++c) {
       if (frames[q] - frames[c] < options.min_frame_separation) break;
-      const double similarity = Cosine(bags[q], bags[c]);
-      if (similarity > best.similarity) {
-        best.query = static_cast<int>(q);
-        best.match = static_cast<int>(c);
-        best.similarity = similarity;
+      LoopCandidate candidate;
+      candidate.query = static_cast<int>(q);
+      candidate.match = static_cast<int>(c);
+      candidate.similarity = Cosine(bags[q], bags[c]);
+      candidate.ratio_to_previous = previous > 0 ? candidate.similarity / previous : 1e9;
+      if (candidate.similarity > 0 && candidate.similarity >= options.min_similarity &&
+          candidate.ratio_to_previous >= options.min_ratio_to_previous) {
+        passed.push_back(candidate);
       }
     }
-    best.ratio_to_previous = previous > 0 ? best.similarity / previous : 1e9;
-    if (best.match < 0 || best.similarity < options.min_similarity ||
-        best.ratio_to_previous < options.min_ratio_to_previous) {
-      last_passed = LoopCandidate();
-      continue;
+    passed = DistinctBest(std::move(passed), options);
+    for (LoopCandidate& candidate : passed) {
+      candidate.consecutive = 1;
+      for (const LoopCandidate& before : previous_passed) {
+        if (std::abs(before.match - candidate.match) <= options.consistency_window) {
+          candidate.consecutive = std::max(candidate.consecutive, before.consecutive + 1);
+        }
+      }
+      if (candidate.consecutive >= options.min_consecutive) candidates.push_back(candidate);
     }
-    const bool consistent = last_passed.query == static_cast<int>(q) - 1 &&
-                            std::abs(last_passed.match - best.match) <= options.consistency_window;
-    best.consecutive = consistent ? last_passed.consecutive + 1 : 1;
-    last_passed = best;
-    if (best.consecutive >= options.min_consecutive) candidates.push_back(best);
+    previous_passed = std::move(passed);
   }
   return candidates;
 }

@@ -29,6 +29,11 @@ struct LoopDetectionOptions {
   // one before (a single look-alike does not close a loop).
   int min_consecutive = 2;
   int consistency_window = 2;
+  // Places each keyframe may revisit: the most similar keyframes passing both thresholds, at
+  // least consistency_window + 1 keyframes apart (not the neighbours of one place). On a route
+  // of look-alike places the best one is often not the true revisit (docs/long_video.md); the
+  // caller's geometric and odometry checks sort them out.
+  int candidates_per_keyframe = 3;
 
   void Check() const;
 };
@@ -56,8 +61,9 @@ class Vocabulary {
   cv::Mat centers_;  // CV_32F, one word per row
 };
 
-// For each keyframe (in order), its best revisit candidate among the keyframes at least
-// min_frame_separation frames before it, if one passes both thresholds. `descriptors[k]` are the
+// For each keyframe (in order), its best revisit candidates (up to candidates_per_keyframe, most
+// similar first) among the keyframes at least min_frame_separation frames before it that pass
+// both thresholds and the consistency check. `descriptors[k]` are the
 // keyframe's descriptors (CV_8U rows), `frames[k]` its frame index (increasing).
 std::vector<LoopCandidate> DetectLoopCandidates(const std::vector<cv::Mat>& descriptors,
                                                 const std::vector<int>& frames,

@@ -85,8 +85,11 @@ def test_loop_closure_keyword(harris_run):
     # KITTI's 12 frames never return: the keyframes are searched, nothing is closed, and the
     # model is the one without loop closure.
     reconstruction, _ = harris_run
-    closed = comic.reconstruct(FRAMES, detector="harris", gt=POSES, loop_closure=True)
+    closed = comic.reconstruct(
+        FRAMES, detector="harris", gt=POSES, loop_closure=True, loop_closure_max_move=0.2
+    )
     assert closed.report["options"]["loop_closure"] is True
+    assert closed.report["options"]["loop_closure_max_move"] == 0.2
     assert reconstruction.report["loop_closure"] is None
     assert closed.report["loop_closure"]["keyframes_searched"] >= 3
     assert closed.report["loop_closure"]["loops"] == []

@@ -58,6 +58,9 @@ void ReconstructionRunOptions::Check() const {
               "--global-ba-growth must be > 1, got " << global_ba_growth);
   COMIC_CHECK(global_ba_max_images >= 0, kInvalidArgument,
               "--global-ba-max-images must be >= 0 (0: every frame), got " << global_ba_max_images);
+  COMIC_CHECK(loop_closure_max_move > 0.0, kInvalidArgument,
+              "--loop-closure-max-move must be > 0 (a fraction of the path), got "
+                  << loop_closure_max_move);
   COMIC_CHECK(init_angle > 0.0 && init_angle < 90.0, kInvalidArgument,
               "--init-angle must be in (0, 90) degrees, got " << init_angle);
   COMIC_CHECK(init_max_gap >= 0, kInvalidArgument,
@@ -122,6 +125,7 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
   options.mapper.max_working_image_size = run.max_working_size;
   options.mapper.keyframes_only = run.keyframes && !image_set;
   options.mapper.close_loops = run.loop_closure && !image_set;
+  options.mapper.loop_closure.max_move_per_path = run.loop_closure_max_move;
   // `threads` is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no output may depend
   // on the thread count. They stay on one thread; detection and the export use `threads`.

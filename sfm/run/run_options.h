@@ -87,6 +87,9 @@ struct ReconstructionRunOptions {
   // --loop-closure: revisited places found by appearance, verified and closed at the end of each
   // model's growth (IncrementalPipelineOptions::close_loops). Video only, as --keyframes.
   bool loop_closure = false;
+  // --loop-closure-max-move F: a verified loop is closed only if it moves the query's camera by
+  // at most F of the path between its two frames (LoopClosureOptions::max_move_per_path).
+  double loop_closure_max_move = LoopClosureOptions().max_move_per_path;
   int threads = 0;  // detection and the export (0: one per core); never the bundle adjustments
   // --cache DIR: each detector's detections, descriptors and tracks are kept in
   // DIR/tracks-<detector>-<key>.bin and reused by a re-run with the same frames, detector and

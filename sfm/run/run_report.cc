@@ -154,6 +154,7 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"init_angle_deg", options.init_angle},
           {"keyframes", options.keyframes && !inputs.image_set},
           {"loop_closure", options.loop_closure && !inputs.image_set},
+          {"loop_closure_max_move", options.loop_closure_max_move},
           {"init_max_gap", inputs.image_set ? nlohmann::json("all frames (image set)")
                                             : nlohmann::json(options.init_max_gap)},
           {"max_working_size", options.max_working_size},

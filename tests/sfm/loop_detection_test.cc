@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
+#include <utility>
 
 #include "io/core/error.h"
 #include "sfm/pose_graph.h"
@@ -139,6 +141,53 @@ TEST(LoopDetection, FoundLoopsCloseThePoseGraph) {
   EXPECT_LT(gap_after, 0.2 * gap_before);
 }
 
+// A route with a look-alike: keyframes 20-22 show places 3-5 again with the same parked cars
+// (words only they and the revisit have), so for each revisit (30-32) the look-alike is the most
+// similar keyframe and the true place 3-5 the second. Exact prototype rows, no noise: every
+// similarity is fixed by construction.
+TEST(LoopDetection, ALookAlikeDoesNotHideTheTrueRevisit) {
+  cv::RNG rng(5);
+  const auto words = [&](int count) {
+    cv::Mat rows(count, 128, CV_8U);
+    rng.fill(rows, cv::RNG::UNIFORM, 0, 256);
+    return rows;
+  };
+  std::vector<cv::Mat> places, cars;
+  for (int p = 0; p < 30; ++p) places.push_back(words(6));
+  for (int c = 0; c < 3; ++c) cars.push_back(words(6));
+  std::vector<cv::Mat> descriptors;
+  std::vector<int> frames;
+  for (int k = 0; k < 33; ++k) {
+    cv::Mat keyframe;
+    if (k >= 20 && k <= 22) {
+      cv::vconcat(places[k - 17], cars[k - 20], keyframe);  // the look-alike of place 3-5
+    } else if (k >= 30) {
+      cv::vconcat(places[k - 27], cars[k - 30], keyframe);  // the revisit of place 3-5
+    } else {
+      keyframe = places[k].clone();
+    }
+    descriptors.push_back(keyframe);
+    frames.push_back(10 * k);
+  }
+  LoopDetectionOptions options;
+  options.vocabulary_size = 1000;  // more than the rows: every prototype is its own word
+  const auto matches_of_revisits = [&](const std::vector<LoopCandidate>& found) {
+    std::set<std::pair<int, int>> pairs;
+    for (const LoopCandidate& c : found) {
+      if (c.query >= 30) pairs.insert({c.query, c.match});
+    }
+    return pairs;
+  };
+  // The best only: the revisit is confirmed by the look-alike alone.
+  options.candidates_per_keyframe = 1;
+  EXPECT_EQ(matches_of_revisits(DetectLoopCandidates(descriptors, frames, options)),
+            (std::set<std::pair<int, int>>{{31, 21}, {32, 22}}));
+  // The default three: the true places too, each confirmed by the keyframe before it.
+  options.candidates_per_keyframe = 3;
+  EXPECT_EQ(matches_of_revisits(DetectLoopCandidates(descriptors, frames, options)),
+            (std::set<std::pair<int, int>>{{31, 21}, {31, 4}, {32, 22}, {32, 5}}));
+}
+
 TEST(LoopDetection, RejectsBadInput) {
   LoopDetectionOptions options;
   cv::Mat floats(3, 128, CV_32F, cv::Scalar(0));
@@ -148,6 +197,9 @@ TEST(LoopDetection, RejectsBadInput) {
   EXPECT_THROW(DetectLoopCandidates({bytes}, {0, 1}, options), Error);
   options.vocabulary_size = 1;
   EXPECT_THROW(DetectLoopCandidates({bytes, bytes}, {0, 50}, options), Error);
+  options = LoopDetectionOptions();
+  options.candidates_per_keyframe = 0;
+  EXPECT_THROW(options.Check(), Error);
 }
 
 }  // namespace

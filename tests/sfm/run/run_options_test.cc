@@ -54,6 +54,7 @@ TEST(ReconstructionRunOptions, MessagesNameTheFlags) {
       {[](auto* o) { o->local_ba_images = 1; }, "--local-ba-images"},
       {[](auto* o) { o->global_ba_growth = 1.0; }, "--global-ba-growth"},
       {[](auto* o) { o->global_ba_max_images = -1; }, "--global-ba-max-images"},
+      {[](auto* o) { o->loop_closure_max_move = 0.0; }, "--loop-closure-max-move"},
       {[](auto* o) { o->init_angle = 90.0; }, "--init-angle"},
       {[](auto* o) { o->init_max_gap = -1; }, "--init-max-gap"},
       {[](auto* o) { o->max_working_size = 10; }, "--max-working-size"},
@@ -105,6 +106,19 @@ TEST(ReconstructionRunOptions, SelfCalibrationRefinesFocalAndDistortion) {
   window.match_window = 3;
   EXPECT_FALSE(MakeSequenceReconstructionOptions(options, window, false)
                    .mapper.mapper.ignore_two_view_tracks);
+}
+
+// --loop-closure and --loop-closure-max-move reach the mapper's loop closure.
+TEST(ReconstructionRunOptions, LoopClosureOptionsReachTheMapper) {
+  ReconstructionRunOptions options;
+  const frontend::TrackerOptions tracker = DefaultRunTrackerOptions();
+  EXPECT_FALSE(MakeSequenceReconstructionOptions(options, tracker, false).mapper.close_loops);
+  options.loop_closure = true;
+  options.loop_closure_max_move = 0.25;
+  const SequenceReconstructionOptions made =
+      MakeSequenceReconstructionOptions(options, tracker, false);
+  EXPECT_TRUE(made.mapper.close_loops);
+  EXPECT_EQ(made.mapper.loop_closure.max_move_per_path, 0.25);
 }
 
 }  // namespace
