@@ -2,7 +2,6 @@
 
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <exception>
 #include <fstream>
 #include <opencv2/core.hpp>
@@ -11,6 +10,7 @@
 #include "io/colmap/colmap_binary_model.h"
 #include "io/core/error.h"
 #include "io/datasets/ground_truth_cameras.h"
+#include "io/datasets/number_field.h"
 #include "io/datasets/opencv_storage_text.h"
 
 namespace comic::io {
@@ -38,13 +38,6 @@ std::string ReadText(const std::string& path) {
   std::ostringstream text;
   text << file.rdbuf();
   return text.str();
-}
-
-bool ParseNumber(const std::string& field, double* value) {
-  char* end = nullptr;
-  *value = std::strtod(field.c_str(), &end);
-  // The whole field: a NUL byte inside it is not the end of the number.
-  return end != field.c_str() && end == field.c_str() + field.size() && std::isfinite(*value);
 }
 
 // The lines that are neither blank nor '#' comments, split into fields.
@@ -93,10 +86,12 @@ cv::Mat ReadSmallMatrix(const cv::FileNode& node, const std::string& path, const
   return matrix;
 }
 
-CameraCalibration ReadOpenCvFile(const std::string& path) {
+// Parses the text already read and checked, not the file again: one read, and the bytes checked
+// are the bytes parsed even if the file changes meanwhile.
+CameraCalibration ReadOpenCvText(const std::string& text, const std::string& path) {
   cv::FileStorage storage;
   try {
-    storage.open(path, cv::FileStorage::READ);
+    storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   } catch (const std::exception&) {
     // cv::Exception, and what OpenCV's parser lets through from below it (an empty YAML key
     // throws std::length_error from std::string, found by fuzz_ground_truth).
@@ -186,15 +181,15 @@ CameraCalibration ReadColmapCameras(
   calibration.format = "colmap";
   calibration.model = model;
   double width = 0, height = 0;
-  COMIC_CHECK(ParseNumber(fields[2], &width) && ParseNumber(fields[3], &height) && width >= 1 &&
-                  height >= 1 && width == std::floor(width) && height == std::floor(height) &&
-                  width <= 1e6 && height <= 1e6,
+  COMIC_CHECK(ParseNumberField(fields[2], &width) && ParseNumberField(fields[3], &height) &&
+                  width >= 1 && height >= 1 && width == std::floor(width) &&
+                  height == std::floor(height) && width <= 1e6 && height <= 1e6,
               kInvalidData, where << ": WIDTH and HEIGHT must be positive integers");
   calibration.width = static_cast<int>(width);
   calibration.height = static_cast<int>(height);
   for (int i = 0; i < num_params; ++i) {
     double value = 0;
-    COMIC_CHECK(ParseNumber(fields[4 + i], &value), kInvalidData,
+    COMIC_CHECK(ParseNumberField(fields[4 + i], &value), kInvalidData,
                 where << ": parameter '" << fields[4 + i] << "' is not a number");
     calibration.params.push_back(value);
   }
@@ -222,7 +217,7 @@ CameraCalibration ReadCameraCalibrationFile(const std::string& path) {
     // OpenCV 4.6's parsers hang or crash on some malformed files: only the part of the formats a
     // calibration is written in reaches them.
     CheckOpenCvStorageText(text, path);
-    return ReadOpenCvFile(path);
+    return ReadOpenCvText(text, path);
   }
   const auto lines = ContentLines(text);
   // COLMAP: "CAMERA_ID MODEL ..." (an integer, then a name), or the file is named cameras.txt.
@@ -237,7 +232,7 @@ CameraCalibration ReadCameraCalibrationFile(const std::string& path) {
     for (const std::string& field : fields) {
       if (field.back() == ':') continue;
       double value = 0;
-      COMIC_CHECK(ParseNumber(field, &value), kInvalidData,
+      COMIC_CHECK(ParseNumberField(field, &value), kInvalidData,
                   path << ":" << line_number << ": '" << field << "' is not a number");
       values.push_back(value);
     }

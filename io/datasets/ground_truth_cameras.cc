@@ -2,9 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -14,6 +12,7 @@
 #include "io/core/file_utils.h"
 #include "io/datasets/kitti_odometry.h"
 #include "io/datasets/nerf_transforms.h"
+#include "io/datasets/number_field.h"
 
 namespace comic::io {
 namespace {
@@ -44,18 +43,9 @@ std::vector<TextLine> NonBlankLines(const std::string& path, bool strip_label) {
   return lines;
 }
 
-bool ParseDouble(const std::string& text, double* value) {
-  errno = 0;
-  char* end = nullptr;
-  *value = std::strtod(text.c_str(), &end);
-  // The whole text: a NUL byte inside it is not the end of the number.
-  return end != text.c_str() && end == text.c_str() + text.size() && errno == 0 &&
-         std::isfinite(*value);
-}
-
 double Number(const std::string& path, int line, const std::string& text) {
   double value = 0.0;
-  COMIC_CHECK(ParseDouble(text, &value), kInvalidData,
+  COMIC_CHECK(ParseNumberField(text, &value), kInvalidData,
               path << ":" << line << ": '" << text << "' is not a number");
   return value;
 }
@@ -180,7 +170,7 @@ GroundTruthFormat DetectGroundTruthFormat(const std::string& path) {
   const std::vector<TextLine> lines = NonBlankLines(path, false);
   COMIC_CHECK(!lines.empty(), kInvalidData, path << ": empty ground-truth file");
   double value = 0.0;
-  if (lines[0].fields.size() == 1 && ParseDouble(lines[0].fields[0], &value)) {
+  if (lines[0].fields.size() == 1 && ParseNumberField(lines[0].fields[0], &value)) {
     return GroundTruthFormat::kMiddlebury;
   }
   if (lines[0].fields.size() == 12) return GroundTruthFormat::kKitti;

@@ -1,12 +1,11 @@
 #include "io/datasets/kitti_odometry.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/datasets/number_field.h"
 
 namespace comic::io {
 namespace {
@@ -33,12 +32,9 @@ cv::Matx34d ParseMatrix34(const std::string& path, int line_number, const std::s
   std::vector<double> values;
   std::string field;
   while (in >> field) {
-    errno = 0;
-    char* end = nullptr;
-    const double value = std::strtod(field.c_str(), &end);
-    // The whole field: a NUL byte inside it is not the end of the number.
-    COMIC_CHECK(end == field.c_str() + field.size() && errno == 0 && std::isfinite(value),
-                kInvalidData, path << ":" << line_number << ": '" << field << "' is not a number");
+    double value = 0.0;
+    COMIC_CHECK(ParseNumberField(field, &value), kInvalidData,
+                path << ":" << line_number << ": '" << field << "' is not a number");
     values.push_back(value);
   }
   COMIC_CHECK(

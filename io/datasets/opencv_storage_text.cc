@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <optional>
 #include <sstream>
 #include <string_view>
 #include <vector>
 
 #include "io/core/error.h"
+#include "io/datasets/number_field.h"
 
 namespace comic::io {
 
@@ -42,10 +42,8 @@ bool IsNumber(std::string_view token) {
       return false;
     }
   }
-  const std::string copy(token);
-  char* end = nullptr;
-  std::strtod(copy.c_str(), &end);
-  return end == copy.c_str() + copy.size();
+  double value = 0.0;
+  return ParseNumberField(token, &value);
 }
 
 // Plain words: "d", "plumb_bob", "narrow_stereo", "2f", numbers; single spaces between words.

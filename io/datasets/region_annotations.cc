@@ -22,7 +22,8 @@ bool ParseNumbers(const std::string& line, std::vector<double>* numbers, std::st
     errno = 0;
     char* end = nullptr;
     const double value = std::strtod(field.c_str(), &end);
-    // The whole field: a NUL byte inside it is not the end of the number.
+    // The whole field: a NUL byte inside it is not the end of the number. Unlike the other
+    // readers' ParseNumberField, NaN is a value here (VOT's frames without annotation).
     if (end != field.c_str() + field.size() || errno == ERANGE) {
       *bad_field = field;
       return false;
