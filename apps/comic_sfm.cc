@@ -114,8 +114,8 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                    &o->global_ba_growth);
   parser.AddOption("global-ba-max-images", "N",
                    "long video: those adjustments hold only the N newest (key)frames variable, "
-                   "the older ones seeing their points constant; the final one is over the whole "
-                   "model (0: every frame)",
+                   "the older ones seeing their points constant, and the final one adjusts the "
+                   "model in overlapping windows of N (0: every frame, one adjustment)",
                    &o->global_ba_max_images);
   parser.AddOption("init-angle", "DEG",
                    "initial pair: a point's triangulation angle that counts fully towards the "

@@ -620,6 +620,27 @@ size_t IncrementalMapper::TriangulateImage(image_t image_id) {
   return num_new;
 }
 
+size_t IncrementalMapper::TriangulateTracksOf(const std::set<image_t>& image_ids) {
+  std::set<int> track_ids;
+  for (image_t image_id : image_ids) {
+    for (int t : track_of_feature_[FrameOfImageId(image_id)]) {
+      if (t >= 0) track_ids.insert(t);
+    }
+  }
+  size_t num_new = 0;
+  for (int t : track_ids) num_new += TriangulateOrCompleteTrack(t, /*retriangulate=*/true);
+  return num_new;
+}
+
+std::set<image_t> IncrementalMapper::NewestKeyframes(int num_images) const {
+  std::set<image_t> image_ids;
+  for (auto it = registration_order_.rbegin(); it != registration_order_.rend(); ++it) {
+    if (static_cast<int>(image_ids.size()) >= num_images) break;
+    if (reconstruction_.image(*it).registered && IsKeyframe(*it)) image_ids.insert(*it);
+  }
+  return image_ids;
+}
+
 size_t IncrementalMapper::TriangulateAllTracks() {
   size_t num_new = 0;
   for (size_t t = 0; t < tracks_->tracks.size(); ++t) {
@@ -881,30 +902,73 @@ BundleAdjustmentSummary IncrementalMapper::AdjustGlobalBundle(
   COMIC_CHECK(max_num_images >= 0, kInvalidArgument,
               "mapper: max_num_images must be >= 0 (0: every image), got " << max_num_images);
   BundleAdjustmentConfig config;
-  for (auto it = registration_order_.rbegin(); it != registration_order_.rend(); ++it) {
-    if (max_num_images > 0 && static_cast<int>(config.image_ids.size()) >= max_num_images) break;
-    const Image& image = reconstruction_.image(*it);
-    if (image.registered && IsKeyframe(*it)) config.image_ids.insert(*it);
-  }
+  config.image_ids = NewestKeyframes(
+      max_num_images > 0 ? max_num_images : static_cast<int>(registration_order_.size()));
   FixGauge(&config);
+  // A bounded adjustment moves only the points its frames see: only those are filtered (a walk
+  // over the whole model after each would grow with it).
+  std::set<point3D_t> point_ids;
+  if (max_num_images > 0) {
+    for (image_t id : config.image_ids) {
+      for (const Point2D& point2D : reconstruction_.image(id).points2D) {
+        if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
+      }
+    }
+  }
   if (max_num_images > 0 && config.constant_pose_ids.empty() &&
-      config.fixed_scale_image_ids.empty()) {
+      config.fixed_scale_image_ids.empty() &&
+      ConstantNeighbourImages(reconstruction_, config.image_ids, point_ids).size() < 2) {
     // Without the initial pair the frames outside the window fix the gauge; a window that shares
     // no point with them (a merged model's separate part) would float: adjust everything.
+    return AdjustGlobalBundle(ba_options, 0);
+  }
+  const BundleAdjustmentSummary summary =
+      BundleAdjuster(ba_options, config).Solve(&reconstruction_);
+  if (max_num_images == 0) {
+    FilterPoints();
+  } else if (!point_ids.empty()) {
+    FilterPoints(point_ids);
+  }
+  return summary;
+}
+
+std::vector<BundleAdjustmentSummary> IncrementalMapper::AdjustGlobalBundleInWindows(
+    const BundleAdjustmentOptions& ba_options, int window_num_images) {
+  COMIC_CHECK(window_num_images >= 2, kInvalidArgument,
+              "mapper: windows of at least 2 images, got " << window_num_images);
+  // The registered keyframes in the order they were registered (a frame registered again after
+  // losing its pose counts where it first was).
+  std::vector<image_t> keyframes;
+  std::set<image_t> seen;
+  for (image_t id : registration_order_) {
+    if (reconstruction_.image(id).registered && IsKeyframe(id) && seen.insert(id).second) {
+      keyframes.push_back(id);
+    }
+  }
+  const size_t window = static_cast<size_t>(window_num_images);
+  const size_t step = std::max<size_t>(1, window / 2);
+  std::vector<BundleAdjustmentSummary> summaries;
+  for (size_t begin = 0; begin < keyframes.size(); begin += step) {
+    const size_t end = std::min(keyframes.size(), begin + window);
+    BundleAdjustmentConfig config;
+    config.image_ids.insert(keyframes.begin() + begin, keyframes.begin() + end);
+    FixGauge(&config);
     std::set<point3D_t> point_ids;
     for (image_t id : config.image_ids) {
       for (const Point2D& point2D : reconstruction_.image(id).points2D) {
         if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
       }
     }
-    if (ConstantNeighbourImages(reconstruction_, config.image_ids, point_ids).size() < 2) {
-      return AdjustGlobalBundle(ba_options, 0);
+    if (config.constant_pose_ids.empty() && config.fixed_scale_image_ids.empty() &&
+        ConstantNeighbourImages(reconstruction_, config.image_ids, point_ids).size() < 2) {
+      config.constant_pose_ids.insert(keyframes[begin]);
+      if (end - begin >= 2) config.fixed_scale_image_ids.insert(keyframes[begin + 1]);
     }
+    summaries.push_back(BundleAdjuster(ba_options, config).Solve(&reconstruction_));
+    if (!point_ids.empty()) FilterPoints(point_ids);
+    if (end == keyframes.size()) break;
   }
-  const BundleAdjustmentSummary summary =
-      BundleAdjuster(ba_options, config).Solve(&reconstruction_);
-  FilterPoints();
-  return summary;
+  return summaries;
 }
 
 size_t IncrementalMapper::FilterPoints(const std::set<point3D_t>& point3D_ids) {

@@ -224,6 +224,13 @@ class IncrementalMapper {
   // Triangulates and completes every track (e.g. after a global bundle adjustment). Returns the
   // number of new points.
   size_t TriangulateAllTracks();
+  // The same for the tracks that `image_ids` observe, in track order (after an adjustment of
+  // those images only: the other tracks' views did not move).
+  size_t TriangulateTracksOf(const std::set<image_t>& image_ids);
+
+  // The `num_images` most recently registered keyframes: the variable images of
+  // AdjustGlobalBundle(ba_options, num_images).
+  std::set<image_t> NewestKeyframes(int num_images) const;
 
   // A correspondence between a feature of this model's frame and one of another model's frame
   // that the tracks do not hold (e.g. found by matching the frames at the seam between two
@@ -275,6 +282,16 @@ class IncrementalMapper {
   // constant and anchor the gauge), so that its cost stops growing with the model.
   BundleAdjustmentSummary AdjustGlobalBundle(const BundleAdjustmentOptions& ba_options,
                                              int max_num_images = 0);
+
+  // Bundle adjustment of every registered keyframe in windows, so that neither its cost per
+  // frame nor its memory grows with the model: windows of `window_num_images` keyframes in
+  // registration order, from the oldest, each starting half a window after the one before, so
+  // that every keyframe is variable in one or two of them. The frames outside a window that see
+  // its points are held constant and fix its gauge (the initial pair fixes the first window's;
+  // a window that shares no point with the rest keeps its own first pose and second scale).
+  // Filters each window's points. Returns one summary per window, oldest first.
+  std::vector<BundleAdjustmentSummary> AdjustGlobalBundleInWindows(
+      const BundleAdjustmentOptions& ba_options, int window_num_images);
 
   // Removes observations with large reprojection error or negative depth and points with too
   // small a triangulation angle among `point3D_ids` (all points if empty). Returns the number of

@@ -74,11 +74,10 @@ struct IncrementalPipelineOptions {
   double global_ba_growth_ratio = 1.5;
   // Those adjustments hold at most this many of the most recently registered (key)frames
   // variable, with every point they see; older frames seeing those points are held constant
-  // (0: every frame), and run also whenever half that many frames were registered since the
-  // last one (a linear schedule once the model is larger than the window). The final adjustments of
-  // a model are always over all of it. Long video: an adjustment of the whole model costs in
-  // proportion to it, and the growth ratio alone makes the total grow faster than the frames
-  // (docs/long_video.md).
+  // (0: every frame). The final adjustments of a model larger than the window run in overlapping
+  // windows of this many keyframes (IncrementalMapper::AdjustGlobalBundleInWindows), with the
+  // intrinsics held. Long video: an adjustment of the whole model costs in proportion to it, so
+  // whole-model adjustments make the cost per frame grow with the video (docs/long_video.md).
   int global_ba_max_images = 0;
   // Attempts to register a frame before it is given up.
   int max_registration_trials = 3;

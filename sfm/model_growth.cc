@@ -139,16 +139,15 @@ class ModelGrower {
     return false;
   }
 
-  // When the model has grown by global_ba_growth_ratio since the last global adjustment; with
-  // bounded adjustments (global_ba_max_images) also every half window, so that every frame is
-  // in at least one of them and their total grows linearly with the frames.
+  // When the model has grown by global_ba_growth_ratio since the last global adjustment. Bounded
+  // adjustments (global_ba_max_images) keep that schedule: the final sweep of windows puts
+  // every frame in an adjustment, and adjusting every half window as well cost more for a worse
+  // trajectory on the rendered loop drive (docs/long_video.md).
   bool GlobalAdjustmentDue() const {
     const double num_registered =
         static_cast<double>(mapper_.reconstruction().NumRegisteredImages());
     const double last = static_cast<double>(num_registered_at_last_global_ba_);
-    if (num_registered >= options_.global_ba_growth_ratio * last) return true;
-    const int window = options_.global_ba_max_images;
-    return window > 0 && num_registered >= last + std::max(1, window / 2);
+    return num_registered >= options_.global_ba_growth_ratio * last;
   }
 
   bool RetryAfterGlobalAdjustment() {
@@ -214,7 +213,14 @@ class ModelGrower {
 
   void AdjustAndTriangulate() {
     AdjustGlobally();
-    mapper_.TriangulateAllTracks();
+    // After a bounded adjustment only the tracks of its frames can have changed; walking every
+    // track after each of them would grow with the video.
+    const int window = options_.global_ba_max_images;
+    if (window > 0) {
+      mapper_.TriangulateTracksOf(mapper_.NewestKeyframes(window));
+    } else {
+      mapper_.TriangulateAllTracks();
+    }
     num_registered_at_last_global_ba_ = mapper_.reconstruction().NumRegisteredImages();
     // The adjusted poses and the new points may now explain frames that failed before.
     num_trials_.clear();
@@ -227,6 +233,20 @@ class ModelGrower {
     BundleAdjustmentOptions ba_options = options_.global_ba;
     if (final) ba_options.function_tolerance = options_.final_global_ba_function_tolerance;
     const Reconstruction& model = mapper_.reconstruction();
+    const int window = options_.global_ba_max_images;
+    if (final && window > 0 && NumRegisteredKeyframes() > window) {
+      // Bounded adjustments bound the final one too: the model in overlapping windows, so that
+      // neither its cost per frame nor its memory grows with the video (issue 26). The
+      // intrinsics stay as the adjustments while the model grew left them: refined in one
+      // window they would disagree with the frames held constant around it.
+      HoldIntrinsics(&ba_options);
+      for (const BundleAdjustmentSummary& summary :
+           mapper_.AdjustGlobalBundleInWindows(ba_options, window)) {
+        result_.ba.AddGlobal(summary);
+        result_.final_ba = summary;
+      }
+      return;
+    }
     if (intrinsics_held_ ||
         static_cast<int>(model.NumRegisteredImages()) < options_.refine_intrinsics_min_num_images) {
       HoldIntrinsics(&ba_options);
@@ -287,6 +307,13 @@ class ModelGrower {
     if (decision.keyframe) return;
     decision.keyframe = true;
     decision.reason = reason;
+  }
+
+  int NumRegisteredKeyframes() const {
+    int count = 0;
+    for (image_t id : mapper_.reconstruction().RegisteredImageIds())
+      count += mapper_.IsKeyframe(id);
+    return count;
   }
 
   static void HoldIntrinsics(BundleAdjustmentOptions* ba_options) {

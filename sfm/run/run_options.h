@@ -74,7 +74,8 @@ struct ReconstructionRunOptions {
   int local_ba_images = IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;
   // --global-ba-max-images N: the adjustments as a model grows hold at most N of its newest
-  // (key)frames variable (IncrementalPipelineOptions::global_ba_max_images; 0: all).
+  // (key)frames variable, and the final one runs in windows of N
+  // (IncrementalPipelineOptions::global_ba_max_images; 0: all).
   int global_ba_max_images = 0;
   double init_angle = 4.0;  // degrees
   // A video's initial-pair gap (0: no limit, the gap grows as far as the tracks reach); see

@@ -150,6 +150,50 @@ TEST(IncrementalMapper, NonKeyframesArePosedButStayOutOfTheMapUntilLocalized) {
   EXPECT_LT(estimated.angularDistance(expected) * 180.0 / M_PI, 0.5);
 }
 
+// Every frame of the forward scene registered and triangulated, without any global adjustment.
+void RegisterEveryFrame(IncrementalMapper* mapper) {
+  const auto pair = mapper->FindInitialPair();
+  ASSERT_TRUE(pair.has_value());
+  ASSERT_GT(mapper->RegisterInitialPair(*pair), 100u);
+  for (std::vector<image_t> next = mapper->NextImageCandidates(); !next.empty();
+       next = mapper->NextImageCandidates()) {
+    ASSERT_TRUE(mapper->RegisterNextImage(next[0]));
+    mapper->TriangulateImage(next[0]);
+  }
+}
+
+// The final adjustment of long video in windows (issue 26): half-overlapping windows from the
+// oldest frame cover the model, none holds more than its window variable, and the model ends as
+// consistent as after one adjustment of everything.
+TEST(IncrementalMapper, AdjustsTheModelInOverlappingWindows) {
+  const SyntheticScene scene = ForwardScene();
+  IncrementalMapper windowed(scene.tracks, scene.camera, IncrementalMapper::Options());
+  RegisterEveryFrame(&windowed);
+  ASSERT_EQ(windowed.reconstruction().NumRegisteredImages(), 16u);
+  IncrementalMapper whole(scene.tracks, scene.camera, IncrementalMapper::Options());
+  RegisterEveryFrame(&whole);
+  const double error_before = windowed.reconstruction().ComputeMeanReprojectionError();
+  ASSERT_EQ(whole.reconstruction().ComputeMeanReprojectionError(), error_before);
+
+  const std::vector<BundleAdjustmentSummary> windows =
+      windowed.AdjustGlobalBundleInWindows(BundleAdjustmentOptions(), 4);
+  // 16 frames, 4 a window, a new window every 2: starting at 0, 2, ..., 12.
+  ASSERT_EQ(windows.size(), 7u);
+  for (const BundleAdjustmentSummary& summary : windows) {
+    EXPECT_TRUE(summary.usable);
+    EXPECT_LE(summary.num_variable_images, 4);
+    EXPECT_GT(summary.num_images, summary.num_variable_images) << "neighbours held constant";
+    EXPECT_LE(summary.final_rmse_px, summary.initial_rmse_px + 1e-9);
+  }
+  const double error_windowed = windowed.reconstruction().ComputeMeanReprojectionError();
+  whole.AdjustGlobalBundle(BundleAdjustmentOptions());
+  const double error_whole = whole.reconstruction().ComputeMeanReprojectionError();
+  EXPECT_LT(error_windowed, error_before);
+  EXPECT_LT(error_windowed, 1.05 * error_whole)
+      << "windows " << error_windowed << " px, whole " << error_whole << " px";
+  EXPECT_THROW(windowed.AdjustGlobalBundleInWindows(BundleAdjustmentOptions(), 1), Error);
+}
+
 // Two tracks of one point that overlap in two frames (a detector's duplicate corner), made one
 // point by a link (a merge or a loop closure): completing the tracks afterwards must not give the
 // point a second observation in a frame it already sees.
