@@ -289,15 +289,29 @@ LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
             .descriptors);
     node_frames.push_back(IncrementalMapper::FrameOfImageId(image_id));
   }
+  const std::map<int, double> path = PathLengthByFrame(model);
+  RevisitPrior near_by_odometry;
+  if (options.odometry_prior) {
+    near_by_odometry = [&](int query, int match) {
+      const double distance = (ProjectionCenter(model.image(nodes[query]).cam_from_world) -
+                               ProjectionCenter(model.image(nodes[match]).cam_from_world))
+                                  .norm();
+      const bool near =
+          distance <= options.max_move_per_path *
+                          std::abs(path.at(node_frames[query]) - path.at(node_frames[match]));
+      summary.num_ruled_out_by_odometry += !near;
+      return near;
+    };
+  }
   const std::vector<LoopCandidate> candidates =
-      nodes.size() >= 2 ? DetectLoopCandidates(node_descriptors, node_frames, options.detection)
-                        : std::vector<LoopCandidate>();
+      nodes.size() >= 2
+          ? DetectLoopCandidates(node_descriptors, node_frames, options.detection, near_by_odometry)
+          : std::vector<LoopCandidate>();
   summary.num_candidates = static_cast<int>(candidates.size());
 
   // Stage 2: geometric verification of each candidate the tracks do not already link, then
   // consistency with the odometry.
   std::vector<Verification> loops;
-  const std::map<int, double> path = PathLengthByFrame(model);
   for (const LoopCandidate& candidate : candidates) {
     const image_t q = nodes[candidate.query];
     const image_t m = nodes[candidate.match];

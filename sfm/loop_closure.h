@@ -60,6 +60,13 @@ struct LoopClosureOptions {
   // within [1 / max_scale_change, max_scale_change].
   double max_move_per_path = 0.1;
   double max_scale_change = 1.8;
+  // The same bound as a prior, before appearance: a keyframe's revisit candidates are only the
+  // earlier keyframes whose camera centre lies within max_move_per_path of the path between
+  // them. On a route of look-alike places the bag of words alone ranks far places above the true
+  // revisit; with the prior the rendered loop drive's end verifies against its start, but those
+  // similarities ask for moves 2-5x the drift and closing them made the model worse
+  // (docs/long_video.md), so it is off until verification is stricter.
+  bool odometry_prior = false;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -84,6 +91,9 @@ struct LoopClosureSummary {
   int num_nodes = 0;       // keyframes described
   int num_candidates = 0;  // appearance candidates
   int num_verified = 0;    // of those, verified geometrically
+  // Keyframe pairs alike enough to be candidates but too far apart for the odometry
+  // (odometry_prior): look-alike places ruled out before verification.
+  int num_ruled_out_by_odometry = 0;
   // The verified loops consistent with the odometry, closed...
   std::vector<LoopClosureEdge> loops;
   // ... and those that are not (a move too long for their path, or a scale too far from 1).

@@ -175,7 +175,8 @@ std::vector<int> Vocabulary::Words(const cv::Mat& descriptors) const {
 
 std::vector<LoopCandidate> DetectLoopCandidates(const std::vector<cv::Mat>& descriptors,
                                                 const std::vector<int>& frames,
-                                                const LoopDetectionOptions& options) {
+                                                const LoopDetectionOptions& options,
+                                                const RevisitPrior& plausible) {
   options.Check();
   COMIC_CHECK(descriptors.size() == frames.size(), kInvalidArgument,
               "loop detection: " << descriptors.size() << " descriptor sets for " << frames.size()
@@ -204,7 +205,8 @@ std::vector<LoopCandidate> DetectLoopCandidates(const std::vector<cv::Mat>& desc
       candidate.similarity = Cosine(bags[q], bags[c]);
       candidate.ratio_to_previous = previous > 0 ? candidate.similarity / previous : 1e9;
       if (candidate.similarity > 0 && candidate.similarity >= options.min_similarity &&
-          candidate.ratio_to_previous >= options.min_ratio_to_previous) {
+          candidate.ratio_to_previous >= options.min_ratio_to_previous &&
+          (!plausible || plausible(candidate.query, candidate.match))) {
         passed.push_back(candidate);
       }
     }

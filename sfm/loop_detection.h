@@ -6,6 +6,7 @@
 // (sfm/pose_graph.h).
 #pragma once
 
+#include <functional>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -64,9 +65,14 @@ class Vocabulary {
 // For each keyframe (in order), its best revisit candidates (up to candidates_per_keyframe, most
 // similar first) among the keyframes at least min_frame_separation frames before it that pass
 // both thresholds and the consistency check. `descriptors[k]` are the
-// keyframe's descriptors (CV_8U rows), `frames[k]` its frame index (increasing).
+// keyframe's descriptors (CV_8U rows), `frames[k]` its frame index (increasing). With
+// `plausible`, only the earlier keyframes it accepts for a keyframe compete (the caller's prior,
+// e.g. the odometry's bound on drift): a look-alike the prior rules out then cannot outrank the
+// true revisit. It is asked only about pairs that pass both thresholds.
+using RevisitPrior = std::function<bool(int query, int match)>;
 std::vector<LoopCandidate> DetectLoopCandidates(const std::vector<cv::Mat>& descriptors,
                                                 const std::vector<int>& frames,
-                                                const LoopDetectionOptions& options);
+                                                const LoopDetectionOptions& options,
+                                                const RevisitPrior& plausible = nullptr);
 
 }  // namespace comic::sfm

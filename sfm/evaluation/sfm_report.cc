@@ -26,6 +26,7 @@ nlohmann::json LoopClosureToJson(const LoopClosureSummary& summary) {
   };
   return {{"keyframes_searched", summary.num_nodes},
           {"candidates", summary.num_candidates},
+          {"ruled_out_by_odometry", summary.num_ruled_out_by_odometry},
           {"verified", summary.num_verified},
           {"loops", edges(summary.loops)},
           {"rejected", edges(summary.rejected)},

@@ -190,11 +190,15 @@ io::BarChart DetectorChart(const std::vector<DetectorRun>& runs, const std::stri
 }  // namespace
 
 std::string LoopClosureWords(const LoopClosureSummary& summary) {
-  const std::string rejected =
+  std::string rejected =
       summary.rejected.empty()
           ? ""
           : " · " + std::to_string(summary.rejected.size()) +
                 " verified but rejected: inconsistent with the odometry (look-alike places)";
+  if (summary.num_ruled_out_by_odometry > 0) {
+    rejected += " · " + std::to_string(summary.num_ruled_out_by_odometry) +
+                " look-alike pairs too far apart for the odometry";
+  }
   if (summary.loops.empty()) {
     return "no loop found among " + std::to_string(summary.num_nodes) + " keyframes searched (" +
            std::to_string(summary.num_candidates) + " candidates by appearance)" + rejected;

@@ -174,11 +174,21 @@ TEST(LoopClosure, ARingRoadIsClosedWhereItIsRevisitedWhenItsDriftIsAllowed) {
   const IncrementalReconstruction refused = ReconstructWithLoopClosure(scene, {});
   ASSERT_TRUE(refused.loop_closure.has_value());
   EXPECT_TRUE(refused.loop_closure->loops.empty());
+  EXPECT_EQ(refused.loop_closure->num_ruled_out_by_odometry, 0);
   ASSERT_GE(refused.loop_closure->rejected.size(), 1u);
   for (const LoopClosureEdge& loop : refused.loop_closure->rejected) {
     EXPECT_GT(loop.loop_move, LoopClosureOptions().max_move_per_path * loop.path_length);
   }
   ExpectSameModel(open, refused);
+  // The same bound as a prior before appearance: the revisits are ruled out unverified.
+  LoopClosureOptions prior;
+  prior.odometry_prior = true;
+  const IncrementalReconstruction ruled_out = ReconstructWithLoopClosure(scene, prior);
+  ASSERT_TRUE(ruled_out.loop_closure.has_value());
+  EXPECT_TRUE(ruled_out.loop_closure->loops.empty());
+  EXPECT_GE(ruled_out.loop_closure->num_ruled_out_by_odometry, 1);
+  EXPECT_EQ(ruled_out.loop_closure->num_verified, 0);
+  ExpectSameModel(open, ruled_out);
   ASSERT_EQ(open.status, ReconstructionStatus::kSuccess);
   ASSERT_EQ(closed.status, ReconstructionStatus::kSuccess);
   EXPECT_FALSE(open.loop_closure.has_value());
@@ -263,6 +273,14 @@ TEST(LoopClosure, ALookAlikePlaceIsRejectedByTheOdometry) {
         << loop.query_frame << " / " << loop.match_frame;
   }
   ExpectSameModel(open, closed);
+  // The same bound as a prior before appearance rules the look-alikes out unverified.
+  LoopClosureOptions prior;
+  prior.odometry_prior = true;
+  const IncrementalReconstruction ruled_out = ReconstructWithLoopClosure(scene, prior);
+  ASSERT_TRUE(ruled_out.loop_closure.has_value());
+  EXPECT_TRUE(ruled_out.loop_closure->loops.empty());
+  EXPECT_GE(ruled_out.loop_closure->num_ruled_out_by_odometry, 1);
+  ExpectSameModel(open, ruled_out);
 
   IncrementalPipelineOptions unguarded;
   unguarded.close_loops = true;

@@ -186,6 +186,13 @@ TEST(LoopDetection, ALookAlikeDoesNotHideTheTrueRevisit) {
   options.candidates_per_keyframe = 3;
   EXPECT_EQ(matches_of_revisits(DetectLoopCandidates(descriptors, frames, options)),
             (std::set<std::pair<int, int>>{{31, 21}, {31, 4}, {32, 22}, {32, 5}}));
+  // The best only, with a prior that rules out keyframes 10 or more before the revisit's start
+  // (an odometry that knows the look-alike street is elsewhere): the true places alone.
+  options.candidates_per_keyframe = 1;
+  const RevisitPrior not_the_look_alike = [](int, int match) { return match < 10; };
+  EXPECT_EQ(
+      matches_of_revisits(DetectLoopCandidates(descriptors, frames, options, not_the_look_alike)),
+      (std::set<std::pair<int, int>>{{31, 4}, {32, 5}}));
 }
 
 TEST(LoopDetection, RejectsBadInput) {

@@ -81,6 +81,7 @@ TEST(RunReconstruction, LoopClosureReportsWhatItSearched) {
   const nlohmann::json& loops = report.at("loop_closure");
   ASSERT_TRUE(loops.is_object());
   EXPECT_GE(loops["keyframes_searched"].get<int>(), 3);
+  EXPECT_GE(loops["ruled_out_by_odometry"].get<int>(), 0);
   EXPECT_TRUE(loops["loops"].empty());
   ASSERT_TRUE(loops["rejected"].is_array());
   EXPECT_EQ(loops["verified"].get<size_t>(), loops["loops"].size() + loops["rejected"].size());
