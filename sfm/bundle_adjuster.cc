@@ -282,6 +282,17 @@ double ProcessCpuSeconds() {
   return static_cast<double>(time.tv_sec) + 1e-9 * static_cast<double>(time.tv_nsec);
 }
 
+std::set<point3D_t> PointsSeenBy(const Reconstruction& reconstruction,
+                                 const std::set<image_t>& image_ids) {
+  std::set<point3D_t> point_ids;
+  for (image_t image_id : image_ids) {
+    for (const Point2D& point2D : reconstruction.image(image_id).points2D) {
+      if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
+    }
+  }
+  return point_ids;
+}
+
 std::set<image_t> ConstantNeighbourImages(const Reconstruction& reconstruction,
                                           const std::set<image_t>& image_ids,
                                           const std::set<point3D_t>& point_ids) {
@@ -311,11 +322,7 @@ struct ProblemContents {
 ProblemContents GatherProblemContents(const Reconstruction& reconstruction,
                                       const BundleAdjustmentConfig& config) {
   ProblemContents contents;
-  for (image_t image_id : config.image_ids) {
-    for (const Point2D& point2D : reconstruction.image(image_id).points2D) {
-      if (point2D.HasPoint3D()) contents.point_ids.insert(point2D.point3D_id);
-    }
-  }
+  contents.point_ids = PointsSeenBy(reconstruction, config.image_ids);
   std::set<image_t> observing_ids(config.image_ids.begin(), config.image_ids.end());
   contents.neighbour_ids =
       ConstantNeighbourImages(reconstruction, config.image_ids, contents.point_ids);

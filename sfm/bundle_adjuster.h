@@ -117,6 +117,10 @@ bool EvaluateReprojection(const double* pose, const double* point, const double*
 // CPU time consumed by this process so far (all threads), seconds.
 double ProcessCpuSeconds();
 
+// The 3-D points the images observe: what an adjustment of those images refines.
+std::set<point3D_t> PointsSeenBy(const Reconstruction& reconstruction,
+                                 const std::set<image_t>& image_ids);
+
 // Registered images outside `image_ids` that observe one of `point_ids`: an adjustment of
 // `image_ids` (and of the points they see) holds these images' poses constant.
 std::set<image_t> ConstantNeighbourImages(const Reconstruction& reconstruction,

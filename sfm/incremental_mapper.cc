@@ -866,12 +866,7 @@ BundleAdjustmentSummary IncrementalMapper::AdjustLocalBundle(
     variable.insert(other_id);
   }
 
-  std::set<point3D_t> point_ids;
-  for (image_t id : variable) {
-    for (const Point2D& point2D : reconstruction_.image(id).points2D) {
-      if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
-    }
-  }
+  const std::set<point3D_t> point_ids = PointsSeenBy(reconstruction_, variable);
   // Registered images outside the window that see its points: the adjuster holds them constant.
   const size_t num_constant_neighbours =
       ConstantNeighbourImages(reconstruction_, variable, point_ids).size();
@@ -907,14 +902,8 @@ BundleAdjustmentSummary IncrementalMapper::AdjustGlobalBundle(
   FixGauge(&config);
   // A bounded adjustment moves only the points its frames see: only those are filtered (a walk
   // over the whole model after each would grow with it).
-  std::set<point3D_t> point_ids;
-  if (max_num_images > 0) {
-    for (image_t id : config.image_ids) {
-      for (const Point2D& point2D : reconstruction_.image(id).points2D) {
-        if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
-      }
-    }
-  }
+  const std::set<point3D_t> point_ids =
+      max_num_images > 0 ? PointsSeenBy(reconstruction_, config.image_ids) : std::set<point3D_t>();
   if (max_num_images > 0 && config.constant_pose_ids.empty() &&
       config.fixed_scale_image_ids.empty() &&
       ConstantNeighbourImages(reconstruction_, config.image_ids, point_ids).size() < 2) {
@@ -953,12 +942,7 @@ std::vector<BundleAdjustmentSummary> IncrementalMapper::AdjustGlobalBundleInWind
     BundleAdjustmentConfig config;
     config.image_ids.insert(keyframes.begin() + begin, keyframes.begin() + end);
     FixGauge(&config);
-    std::set<point3D_t> point_ids;
-    for (image_t id : config.image_ids) {
-      for (const Point2D& point2D : reconstruction_.image(id).points2D) {
-        if (point2D.HasPoint3D()) point_ids.insert(point2D.point3D_id);
-      }
-    }
+    const std::set<point3D_t> point_ids = PointsSeenBy(reconstruction_, config.image_ids);
     if (config.constant_pose_ids.empty() && config.fixed_scale_image_ids.empty() &&
         ConstantNeighbourImages(reconstruction_, config.image_ids, point_ids).size() < 2) {
       config.constant_pose_ids.insert(keyframes[begin]);

@@ -292,10 +292,12 @@ LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
   const std::map<int, double> path = PathLengthByFrame(model);
   RevisitPrior near_by_odometry;
   if (options.odometry_prior) {
-    near_by_odometry = [&](int query, int match) {
-      const double distance = (ProjectionCenter(model.image(nodes[query]).cam_from_world) -
-                               ProjectionCenter(model.image(nodes[match]).cam_from_world))
-                                  .norm();
+    std::vector<Eigen::Vector3d> node_centers;
+    for (image_t image_id : nodes) {
+      node_centers.push_back(ProjectionCenter(model.image(image_id).cam_from_world));
+    }
+    near_by_odometry = [&, node_centers](int query, int match) {
+      const double distance = (node_centers[query] - node_centers[match]).norm();
       const bool near =
           distance <= options.max_move_per_path *
                           std::abs(path.at(node_frames[query]) - path.at(node_frames[match]));

@@ -161,6 +161,19 @@ void ExpectSameModel(const IncrementalReconstruction& a, const IncrementalRecons
   }
 }
 
+// With the odometry's bound as a prior before appearance (odometry_prior): pairs are ruled out,
+// none is verified or closed, and the model is the one without loop closure, `open`.
+void ExpectRuledOutByThePrior(const SyntheticScene& scene, const IncrementalReconstruction& open) {
+  LoopClosureOptions prior;
+  prior.odometry_prior = true;
+  const IncrementalReconstruction ruled_out = ReconstructWithLoopClosure(scene, prior);
+  ASSERT_TRUE(ruled_out.loop_closure.has_value());
+  EXPECT_TRUE(ruled_out.loop_closure->loops.empty());
+  EXPECT_GE(ruled_out.loop_closure->num_ruled_out_by_odometry, 1);
+  EXPECT_EQ(ruled_out.loop_closure->num_verified, 0);
+  ExpectSameModel(open, ruled_out);
+}
+
 // The ring's mapper drifts hard (noise, outliers and broken tracks on a short clip): its loops
 // ask for moves of 15–22 % of their path, more than the default check allows, which cannot tell
 // such drift from a look-alike place. The default leaves the ring open and says why; allowed
@@ -181,14 +194,7 @@ TEST(LoopClosure, ARingRoadIsClosedWhereItIsRevisitedWhenItsDriftIsAllowed) {
   }
   ExpectSameModel(open, refused);
   // The same bound as a prior before appearance: the revisits are ruled out unverified.
-  LoopClosureOptions prior;
-  prior.odometry_prior = true;
-  const IncrementalReconstruction ruled_out = ReconstructWithLoopClosure(scene, prior);
-  ASSERT_TRUE(ruled_out.loop_closure.has_value());
-  EXPECT_TRUE(ruled_out.loop_closure->loops.empty());
-  EXPECT_GE(ruled_out.loop_closure->num_ruled_out_by_odometry, 1);
-  EXPECT_EQ(ruled_out.loop_closure->num_verified, 0);
-  ExpectSameModel(open, ruled_out);
+  ExpectRuledOutByThePrior(scene, open);
   ASSERT_EQ(open.status, ReconstructionStatus::kSuccess);
   ASSERT_EQ(closed.status, ReconstructionStatus::kSuccess);
   EXPECT_FALSE(open.loop_closure.has_value());
@@ -274,13 +280,7 @@ TEST(LoopClosure, ALookAlikePlaceIsRejectedByTheOdometry) {
   }
   ExpectSameModel(open, closed);
   // The same bound as a prior before appearance rules the look-alikes out unverified.
-  LoopClosureOptions prior;
-  prior.odometry_prior = true;
-  const IncrementalReconstruction ruled_out = ReconstructWithLoopClosure(scene, prior);
-  ASSERT_TRUE(ruled_out.loop_closure.has_value());
-  EXPECT_TRUE(ruled_out.loop_closure->loops.empty());
-  EXPECT_GE(ruled_out.loop_closure->num_ruled_out_by_odometry, 1);
-  ExpectSameModel(open, ruled_out);
+  ExpectRuledOutByThePrior(scene, open);
 
   IncrementalPipelineOptions unguarded;
   unguarded.close_loops = true;
