@@ -473,6 +473,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
   result.seam_matching_cpu_time_s = set.seam_matching_cpu_time_s;
   result.num_local_ba = set.ba.num_local_ba;
   result.num_global_ba = set.ba.num_global_ba;
+  result.num_final_ba_windows = set.ba.num_final_ba_windows;
   result.num_local_ba_iterations = set.ba.num_local_ba_iterations;
   result.num_global_ba_iterations = set.ba.num_global_ba_iterations;
   result.local_ba_time_s = set.ba.local_ba_time_s;

@@ -74,10 +74,11 @@ struct IncrementalPipelineOptions {
   double global_ba_growth_ratio = 1.5;
   // Those adjustments hold at most this many of the most recently registered (key)frames
   // variable, with every point they see; older frames seeing those points are held constant
-  // (0: every frame). The final adjustments of a model larger than the window run in overlapping
-  // windows of this many keyframes (IncrementalMapper::AdjustGlobalBundleInWindows), with the
-  // intrinsics held. Long video: an adjustment of the whole model costs in proportion to it, so
-  // whole-model adjustments make the cost per frame grow with the video (docs/long_video.md).
+  // (0: every frame). The final adjustment of a model larger than the window is one sweep of
+  // overlapping windows of this many keyframes (IncrementalMapper::AdjustGlobalBundleInWindows),
+  // with the intrinsics held. Long video: an adjustment of the whole model costs in proportion to
+  // it, so whole-model adjustments make the cost per frame grow with the video
+  // (docs/long_video.md).
   int global_ba_max_images = 0;
   // Attempts to register a frame before it is given up.
   int max_registration_trials = 3;
@@ -243,6 +244,7 @@ struct IncrementalReconstruction {
   // Over all models grown:
   int num_local_ba = 0;
   int num_global_ba = 0;
+  int num_final_ba_windows = 0;  // of those, windows of bounded final adjustments
   // Levenberg-Marquardt iterations summed over those adjustments (their cost, load-free).
   int num_local_ba_iterations = 0;
   int num_global_ba_iterations = 0;

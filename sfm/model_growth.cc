@@ -23,6 +23,7 @@ void BundleAdjustmentTally::AddGlobal(const BundleAdjustmentSummary& summary) {
 void BundleAdjustmentTally::Add(const BundleAdjustmentTally& other) {
   num_local_ba += other.num_local_ba;
   num_global_ba += other.num_global_ba;
+  num_final_ba_windows += other.num_final_ba_windows;
   num_local_ba_iterations += other.num_local_ba_iterations;
   num_global_ba_iterations += other.num_global_ba_iterations;
   local_ba_time_s += other.local_ba_time_s;
@@ -75,12 +76,17 @@ class ModelGrower {
       result_.loop_closure = CloseLoops(tracks_, options_.loop_closure, &mapper_);
     }
     // Final refinement: adjust, recover tracks (and loop points) the improved poses now explain,
-    // adjust again.
+    // adjust again. A bounded final adjustment sweeps the model once: the points recovered after
+    // it are a percent of the model, and a second sweep cost a fifth of the mapping on the
+    // rendered loop drive for the same trajectory (docs/long_video.md).
     AdjustGlobally(/*final=*/true);
     const size_t num_fused = mapper_.FuseLinkedPoints(result_.loop_closure.links,
                                                       /*keep_unexplained=*/true);
     result_.loop_closure.num_points_fused += num_fused;
-    if (mapper_.TriangulateAllTracks() > 0 || num_fused > 0) AdjustGlobally(/*final=*/true);
+    const size_t num_recovered = mapper_.TriangulateAllTracks();
+    if ((num_recovered > 0 || num_fused > 0) && !FinalAdjustmentBounded()) {
+      AdjustGlobally(/*final=*/true);
+    }
     // The frames outside the map, posed against it as it is final.
     for (image_t image_id : mapper_.LocalizeNonKeyframes()) {
       result_.non_keyframes_lost.push_back(IncrementalMapper::FrameOfImageId(image_id));
@@ -157,7 +163,10 @@ class ModelGrower {
       return false;
     }
     num_registered_at_last_retry_ = num_registered;
-    if (num_registered_at_last_global_ba_ < num_registered) AdjustAndTriangulate();
+    // The frames left out can be anywhere in the model, not only beside the adjusted window.
+    if (num_registered_at_last_global_ba_ < num_registered) {
+      AdjustAndTriangulate(TracksToTriangulate::kEveryTrack);
+    }
     num_trials_.clear();
     return !mapper_.NextImageCandidates().empty();
   }
@@ -211,12 +220,14 @@ class ModelGrower {
     return num_added;
   }
 
-  void AdjustAndTriangulate() {
+  // After a bounded adjustment only the tracks of its frames can have changed; walking every
+  // track after each of them would grow with the video.
+  enum class TracksToTriangulate { kOfAdjustedFrames, kEveryTrack };
+
+  void AdjustAndTriangulate(TracksToTriangulate tracks = TracksToTriangulate::kOfAdjustedFrames) {
     AdjustGlobally();
-    // After a bounded adjustment only the tracks of its frames can have changed; walking every
-    // track after each of them would grow with the video.
     const int window = options_.global_ba_max_images;
-    if (window > 0) {
+    if (window > 0 && tracks == TracksToTriangulate::kOfAdjustedFrames) {
       mapper_.TriangulateTracksOf(mapper_.NewestKeyframes(window));
     } else {
       mapper_.TriangulateAllTracks();
@@ -234,7 +245,7 @@ class ModelGrower {
     if (final) ba_options.function_tolerance = options_.final_global_ba_function_tolerance;
     const Reconstruction& model = mapper_.reconstruction();
     const int window = options_.global_ba_max_images;
-    if (final && window > 0 && NumRegisteredKeyframes() > window) {
+    if (final && FinalAdjustmentBounded()) {
       // Bounded adjustments bound the final one too: the model in overlapping windows, so that
       // neither its cost per frame nor its memory grows with the video (issue 26). The
       // intrinsics stay as the adjustments while the model grew left them: refined in one
@@ -243,6 +254,7 @@ class ModelGrower {
       for (const BundleAdjustmentSummary& summary :
            mapper_.AdjustGlobalBundleInWindows(ba_options, window)) {
         result_.ba.AddGlobal(summary);
+        ++result_.ba.num_final_ba_windows;
         result_.final_ba = summary;
       }
       return;
@@ -307,6 +319,12 @@ class ModelGrower {
     if (decision.keyframe) return;
     decision.keyframe = true;
     decision.reason = reason;
+  }
+
+  // Whether the final adjustment runs in windows (global_ba_max_images below the keyframes).
+  bool FinalAdjustmentBounded() const {
+    const int window = options_.global_ba_max_images;
+    return window > 0 && NumRegisteredKeyframes() > window;
   }
 
   int NumRegisteredKeyframes() const {

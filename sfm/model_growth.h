@@ -29,6 +29,8 @@ using SeamLinker = std::function<std::vector<IncrementalMapper::FeatureLink>(
 struct BundleAdjustmentTally {
   int num_local_ba = 0;
   int num_global_ba = 0;
+  // Of the global adjustments, the windows of bounded final adjustments (global_ba_max_images).
+  int num_final_ba_windows = 0;
   int num_local_ba_iterations = 0;
   int num_global_ba_iterations = 0;
   double local_ba_time_s = 0.0;

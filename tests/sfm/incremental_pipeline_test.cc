@@ -518,8 +518,11 @@ TEST(IncrementalPipeline, KeyframesOnlyPosesEveryFrameWithSmallerAdjustments) {
   EXPECT_EQ(bounded.registered_frames, Range(0, 59));
   ASSERT_GT(num_keyframes, 8) << "the final adjustment would be one window";
   EXPECT_LE(bounded.final_ba.num_variable_images, 8);
-  // ... several windows where one adjustment held everything.
+  // ... several windows where one adjustment held everything, swept once: half-overlapping
+  // windows of 8 over the keyframes, and no second sweep after the tracks are completed.
   EXPECT_GT(bounded.num_global_ba, result.num_global_ba);
+  EXPECT_EQ(result.num_final_ba_windows, 0);
+  EXPECT_EQ(bounded.num_final_ba_windows, 1 + (num_keyframes - 8 + 3) / 4);
   const auto bounded_evaluation = Evaluate(bounded, scene);
   ASSERT_TRUE(bounded_evaluation.has_value());
   EXPECT_LT(bounded_evaluation->ate_fraction_of_path, 0.01);
