@@ -84,6 +84,10 @@ IncrementalMapper::IncrementalMapper(const frontend::FeatureTracks& tracks, cons
       track_of_feature_[obs.frame][obs.feature] = static_cast<int>(t);
     }
   }
+  track_num_linked_features_.assign(tracks.tracks.size(), 0);
+  frame_num_tracks_with_points_.assign(tracks.NumFrames(), 0);
+  track_touched_.assign(tracks.tracks.size(), 0);
+  reconstruction_.RecordLinkChanges(true);  // the model has no point yet: the counts are all 0
 }
 
 namespace {
@@ -413,24 +417,43 @@ point3D_t IncrementalMapper::TrackPoint(int track_id) const {
   return kInvalidPoint3DId;
 }
 
-std::vector<image_t> IncrementalMapper::NextImageCandidates() const {
-  // Which tracks have a point, from one pass over the points (TrackPoint for every feature of
-  // every unregistered frame walked each track again, after every registration).
-  std::vector<char> track_has_point(tracks_->tracks.size(), 0);
-  for (const auto& [point3D_id, point] : reconstruction_.points3D()) {
-    if (point.track.empty()) continue;
-    const TrackElement& element = point.track.front();
-    const int t = track_of_feature_[FrameOfImageId(element.image_id)][element.point2D_idx];
-    if (t >= 0) track_has_point[t] = 1;
+void IncrementalMapper::CountTracksWithPoints() {
+  // Net change per track first: a re-triangulated point is unlinked and linked again, and its
+  // frames' counts need not move.
+  std::vector<std::pair<int, bool>> touched;  // track, whether it had a point before
+  for (const Reconstruction::LinkChange& change : reconstruction_.TakeLinkChanges()) {
+    const int t =
+        track_of_feature_[FrameOfImageId(change.element.image_id)][change.element.point2D_idx];
+    if (t < 0) continue;
+    if (!track_touched_[t]) {
+      track_touched_[t] = 1;
+      touched.emplace_back(t, track_num_linked_features_[t] > 0);
+    }
+    track_num_linked_features_[t] += change.linked ? 1 : -1;
   }
+  for (const auto& [t, had_point] : touched) {
+    track_touched_[t] = 0;
+    const bool has_point = track_num_linked_features_[t] > 0;
+    if (has_point == had_point) continue;
+    for (const frontend::TrackObservation& obs : tracks_->tracks[t].observations) {
+      frame_num_tracks_with_points_[obs.frame] += has_point ? 1 : -1;
+    }
+  }
+}
+
+int IncrementalMapper::NumTracksWithPoints(image_t image_id) {
+  COMIC_CHECK(reconstruction_.ExistsImage(image_id), kInvalidArgument,
+              "mapper: unknown image " << image_id);
+  CountTracksWithPoints();
+  return frame_num_tracks_with_points_[FrameOfImageId(image_id)];
+}
+
+std::vector<image_t> IncrementalMapper::NextImageCandidates() {
+  CountTracksWithPoints();
   std::vector<std::pair<int, image_t>> candidates;
   for (const auto& [image_id, image] : reconstruction_.images()) {
     if (image.registered) continue;
-    const int frame = FrameOfImageId(image_id);
-    int num_visible = 0;
-    for (int t : track_of_feature_[frame]) {
-      if (t >= 0 && track_has_point[t]) ++num_visible;
-    }
+    const int num_visible = frame_num_tracks_with_points_[FrameOfImageId(image_id)];
     if (num_visible >= options_.absolute_pose.min_num_inliers) {
       candidates.emplace_back(num_visible, image_id);
     }

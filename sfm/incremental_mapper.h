@@ -193,7 +193,11 @@ class IncrementalMapper {
 
   // Unregistered images ordered by how many of their tracks already have 3-D points (most
   // first, ties by frame), keeping those with at least absolute_pose.min_num_inliers of them.
-  std::vector<image_t> NextImageCandidates() const;
+  // A track has a point when any of its features observes one. Not const: it first brings the
+  // per-frame counts up to date with the model's changes since the last call.
+  std::vector<image_t> NextImageCandidates();
+  // How many of the frame's tracks have a 3-D point (what NextImageCandidates ranks by).
+  int NumTracksWithPoints(image_t image_id);
 
   // PnP RANSAC on the image's tracks that have 3-D points; on success sets its pose, registers
   // it and adds its inlier observations (none for a frame that is not a keyframe). Returns false
@@ -303,7 +307,11 @@ class IncrementalMapper {
   void ResetCamera(const Camera& camera);
 
   const Reconstruction& reconstruction() const { return reconstruction_; }
-  Reconstruction TakeReconstruction() { return std::move(reconstruction_); }
+  // The model, without the journal of changes the mapper kept (the mapper is spent after this).
+  Reconstruction TakeReconstruction() {
+    reconstruction_.RecordLinkChanges(false);
+    return std::move(reconstruction_);
+  }
   // Image id of frame index `frame` and back.
   static image_t ImageIdOfFrame(int frame) { return static_cast<image_t>(frame + 1); }
   static int FrameOfImageId(image_t image_id) { return static_cast<int>(image_id) - 1; }
@@ -357,6 +365,15 @@ class IncrementalMapper {
   int last_num_pose_inliers_ = 0;
   std::vector<int> best_failed_pose_inliers_;
   std::vector<char> is_keyframe_;  // per frame; empty: every frame
+  // Kept current from the model's link changes (Reconstruction::TakeLinkChanges) by
+  // CountTracksWithPoints, so that choosing the next frame does not walk every point after
+  // every registration (a cost that grew with the video: docs/long_video.md).
+  std::vector<int> track_num_linked_features_;     // per track: features observing a 3-D point
+  std::vector<int> frame_num_tracks_with_points_;  // per frame: its tracks with a linked feature
+  std::vector<char> track_touched_;                // scratch of CountTracksWithPoints, all 0
+
+  // Applies the model's link changes since the last call to the two counts above.
+  void CountTracksWithPoints();
 };
 
 }  // namespace comic::sfm

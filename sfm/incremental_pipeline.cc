@@ -266,14 +266,15 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
   ModelSet set;
   if (options.keyframes_only) set.keyframes = SelectKeyframes(tracks, options.keyframes);
   // The initial pairs are searched once and reused; only when every remaining candidate touches
-  // an excluded frame is the search repeated without those frames.
+  // an excluded frame is the search repeated without those frames. The search's mapper (every
+  // frame's features again) lives only during a search: kept, it doubled the mapper's memory
+  // on long video (docs/long_video.md); the search depends on nothing but the tracks.
   IncrementalMapper::Options search_options = options.mapper;
-  std::optional<IncrementalMapper> searcher;
-  searcher.emplace(tracks, camera, search_options);
   const auto search = [&](const std::set<image_t>& excluded,
                           IncrementalMapper::InitialPairSearch* seen) {
     const double cpu_start = ProcessCpuSeconds();
-    std::vector<IncrementalMapper::InitialPair> pairs = searcher->FindInitialPairs(excluded, seen);
+    std::vector<IncrementalMapper::InitialPair> pairs =
+        IncrementalMapper(tracks, camera, search_options).FindInitialPairs(excluded, seen);
     set.initial_pair_search_cpu_time_s += ProcessCpuSeconds() - cpu_start;
     ++set.num_initial_pair_searches;
     return pairs;
@@ -283,7 +284,6 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
     // COLMAP's relaxation; the diagnosis of a failure stays that of the strict search.
     search_options.init_min_num_matches = std::max(5, search_options.init_min_num_matches / 2);
     search_options.init_min_num_inliers = std::max(5, search_options.init_min_num_inliers / 2);
-    searcher.emplace(tracks, camera, search_options);
     candidates = search({}, nullptr);
   }
   SeamLinking seam_linking(frame_matcher, options, &set);

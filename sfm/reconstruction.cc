@@ -77,7 +77,7 @@ point3D_t Reconstruction::AddPoint3D(const Eigen::Vector3d& xyz,
   point.color = color;
   point.track = track;
   for (const TrackElement& element : track) {
-    images_.at(element.image_id).points2D[element.point2D_idx].point3D_id = point3D_id;
+    SetPoint3DId(images_.at(element.image_id), element.point2D_idx, point3D_id);
   }
   points3D_.emplace(point3D_id, std::move(point));
   next_point3D_id_ = std::max(next_point3D_id_, point3D_id + 1);
@@ -99,7 +99,7 @@ void Reconstruction::AddObservation(point3D_t point3D_id, const TrackElement& el
         "reconstruction: point " << point3D_id << " already observed in image " << img.image_id);
   }
   point.track.push_back(element);
-  img.points2D[element.point2D_idx].point3D_id = point3D_id;
+  SetPoint3DId(img, element.point2D_idx, point3D_id);
 }
 
 void Reconstruction::DeleteObservation(image_t image_id, point2D_t point2D_idx) {
@@ -116,15 +116,22 @@ void Reconstruction::DeleteObservation(image_t image_id, point2D_t point2D_idx) 
   point.track.erase(
       std::remove(point.track.begin(), point.track.end(), TrackElement{image_id, point2D_idx}),
       point.track.end());
-  img.points2D[point2D_idx].point3D_id = kInvalidPoint3DId;
+  SetPoint3DId(img, point2D_idx, kInvalidPoint3DId);
 }
 
 void Reconstruction::DeletePoint3D(point3D_t point3D_id) {
   const Point3D& point = point3D(point3D_id);
   for (const TrackElement& element : point.track) {
-    images_.at(element.image_id).points2D[element.point2D_idx].point3D_id = kInvalidPoint3DId;
+    SetPoint3DId(images_.at(element.image_id), element.point2D_idx, kInvalidPoint3DId);
   }
   points3D_.erase(point3D_id);
+}
+
+void Reconstruction::SetPoint3DId(Image& image, point2D_t point2D_idx, point3D_t point3D_id) {
+  image.points2D[point2D_idx].point3D_id = point3D_id;
+  if (record_link_changes_) {
+    link_changes_.push_back({{image.image_id, point2D_idx}, point3D_id != kInvalidPoint3DId});
+  }
 }
 
 void Reconstruction::RegisterImage(image_t image_id) { image(image_id).registered = true; }

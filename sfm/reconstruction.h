@@ -16,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sfm/camera.h"
@@ -90,6 +91,23 @@ class Reconstruction {
   // Removes a point and unlinks its observations.
   void DeletePoint3D(point3D_t point3D_id);
 
+  // A 2-D point linked to (`linked`) or unlinked from a 3-D point.
+  struct LinkChange {
+    TrackElement element;
+    bool linked = false;
+  };
+  // From now on every link and unlink of a 2-D point, implicit ones included (a point deleted
+  // with its last observations), is recorded in order until TakeLinkChanges(): the owner of a
+  // growing model keeps counts over it current without walking every point after every change
+  // (IncrementalMapper::NextImageCandidates).
+  // RecordLinkChanges(false) stops and drops what was recorded.
+  void RecordLinkChanges(bool record) {
+    record_link_changes_ = record;
+    if (!record) link_changes_ = {};
+  }
+  // The changes recorded since the last call, oldest first.
+  std::vector<LinkChange> TakeLinkChanges() { return std::exchange(link_changes_, {}); }
+
   void RegisterImage(image_t image_id);
   // Marks the image unregistered and removes all its observations.
   void DeRegisterImage(image_t image_id);
@@ -134,6 +152,11 @@ class Reconstruction {
   camera_t next_camera_id_ = 1;
   image_t next_image_id_ = 1;
   point3D_t next_point3D_id_ = 1;
+  bool record_link_changes_ = false;
+  std::vector<LinkChange> link_changes_;
+
+  // Links (or with kInvalidPoint3DId unlinks) one 2-D point of `image`, recording the change.
+  void SetPoint3DId(Image& image, point2D_t point2D_idx, point3D_t point3D_id);
 };
 
 }  // namespace comic::sfm

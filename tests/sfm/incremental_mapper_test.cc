@@ -150,6 +150,70 @@ TEST(IncrementalMapper, NonKeyframesArePosedButStayOutOfTheMapUntilLocalized) {
   EXPECT_LT(estimated.angularDistance(expected) * 180.0 / M_PI, 0.5);
 }
 
+// The per-frame counts that rank the next frames are kept from the model's link changes, not
+// recounted: through registrations, triangulation, re-triangulation, adjustment and filtering
+// (which deletes observations and, with the last two, points) they must equal a recount.
+TEST(IncrementalMapper, CountsOfTracksWithPointsFollowEveryChangeOfTheModel) {
+  SyntheticSceneOptions options;  // hand-held, with outliers for the filter to remove
+  options.num_frames = 20;
+  options.num_points = 900;
+  options.seed = 5;
+  const SyntheticScene scene = MakeSyntheticScene(options);
+  // A strict filter (below the noise level of 0.5 px; angles a hand-held baseline seldom gives)
+  // removes observations and whole points after every step.
+  IncrementalMapper::Options mapper_options;
+  mapper_options.filter_max_reprojection_error_px = 0.3;
+  mapper_options.filter_min_tri_angle_deg = 4.0;
+  IncrementalMapper mapper(scene.tracks, scene.camera, mapper_options);
+  const Reconstruction& model = mapper.reconstruction();
+  const auto expect_recount = [&]() {
+    std::vector<int> recount(scene.tracks.NumFrames(), 0);
+    for (const frontend::Track& track : scene.tracks.tracks) {
+      bool has_point = false;
+      for (const frontend::TrackObservation& o : track.observations) {
+        has_point = has_point || model.image(IncrementalMapper::ImageIdOfFrame(o.frame))
+                                     .points2D[o.feature]
+                                     .HasPoint3D();
+      }
+      for (const frontend::TrackObservation& o : track.observations) recount[o.frame] += has_point;
+    }
+    std::vector<std::pair<int, image_t>> expected;
+    for (size_t frame = 0; frame < recount.size(); ++frame) {
+      const image_t image_id = IncrementalMapper::ImageIdOfFrame(static_cast<int>(frame));
+      EXPECT_EQ(mapper.NumTracksWithPoints(image_id), recount[frame]) << "frame " << frame;
+      if (!model.image(image_id).registered &&
+          recount[frame] >= mapper_options.absolute_pose.min_num_inliers) {
+        expected.emplace_back(recount[frame], image_id);
+      }
+    }
+    std::stable_sort(expected.begin(), expected.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<image_t> expected_ids;
+    for (const auto& e : expected) expected_ids.push_back(e.second);
+    EXPECT_EQ(mapper.NextImageCandidates(), expected_ids);
+  };
+  expect_recount();  // no point yet: all zero
+  const auto pair = mapper.FindInitialPair();
+  ASSERT_TRUE(pair.has_value());
+  ASSERT_GT(mapper.RegisterInitialPair(*pair), 100u);
+  expect_recount();
+  size_t num_removed = 0;  // observations the adjustment's and the filter's steps removed
+  for (std::vector<image_t> next = mapper.NextImageCandidates(); !next.empty();
+       next = mapper.NextImageCandidates()) {
+    if (!mapper.RegisterNextImage(next.front())) break;
+    mapper.TriangulateImage(next.front());
+    expect_recount();
+    const size_t before = model.NumObservations();
+    mapper.AdjustLocalBundle(next.front(), BundleAdjustmentOptions(), 4);
+    mapper.FilterPoints();
+    num_removed += before - std::min(before, model.NumObservations());
+    expect_recount();
+  }
+  EXPECT_GT(model.NumRegisteredImages(), 10u);
+  EXPECT_GT(num_removed, 50u) << "observations must be unlinked for this to test it";
+  EXPECT_THROW(mapper.NumTracksWithPoints(9999), Error);
+}
+
 // Every frame of the forward scene registered and triangulated, without any global adjustment.
 void RegisterEveryFrame(IncrementalMapper* mapper) {
   const auto pair = mapper->FindInitialPair();

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+#include <vector>
+
 #include "io/core/error.h"
 
 namespace comic::sfm {
@@ -82,6 +85,43 @@ TEST(Reconstruction, ObservationsLinkBothWaysAndPointsNeedTwo) {
   EXPECT_EQ(reconstruction.image(2).NumPoints3D(), 0u);
   EXPECT_EQ(reconstruction.NumPoints3D(), 0u);
   EXPECT_EQ(reconstruction.RegisteredImageIds(), std::vector<image_t>({1}));
+}
+
+// The journal an owner keeps its counts from: every link and unlink in order, the implicit ones
+// (a point deleted with its second-last observation, a deregistered image) included.
+TEST(Reconstruction, RecordsEveryLinkChangeOnceAskedTo) {
+  std::vector<point3D_t> ids;
+  Reconstruction reconstruction = MakeTwoViewReconstruction(&ids);
+  EXPECT_TRUE(reconstruction.TakeLinkChanges().empty()) << "nothing recorded until asked";
+  reconstruction.RecordLinkChanges(true);
+  const auto changes = [&reconstruction]() {
+    std::vector<std::tuple<image_t, point2D_t, bool>> out;
+    for (const Reconstruction::LinkChange& c : reconstruction.TakeLinkChanges()) {
+      out.emplace_back(c.element.image_id, c.element.point2D_idx, c.linked);
+    }
+    return out;
+  };
+  using Changes = std::vector<std::tuple<image_t, point2D_t, bool>>;
+  reconstruction.DeleteObservation(2, 2);  // the point goes: both observations unlinked
+  EXPECT_EQ(changes(), Changes({{1, 2, false}, {2, 2, false}}));
+  EXPECT_TRUE(changes().empty()) << "taken once";
+  Image third;
+  third.camera_id = 1;
+  third.points2D.resize(1);
+  const image_t third_id = reconstruction.AddImage(third);
+  const point3D_t id = reconstruction.AddPoint3D({-1, 0.5, 4}, {{1, 2}, {2, 2}});
+  reconstruction.AddObservation(id, {third_id, 0});
+  reconstruction.DeleteObservation(1, 2);  // three -> two: only this one
+  EXPECT_EQ(changes(), Changes({{1, 2, true}, {2, 2, true}, {3, 0, true}, {1, 2, false}}));
+  reconstruction.DeRegisterImage(2);  // every point of image 2 had two observations: all go
+  EXPECT_EQ(changes(), Changes({{1, 0, false},
+                                {2, 0, false},
+                                {1, 1, false},
+                                {2, 1, false},
+                                {2, 2, false},
+                                {3, 0, false}}));
+  EXPECT_THROW(reconstruction.AddObservation(ids[0], {1, 0}), Error);  // the point is gone
+  EXPECT_TRUE(changes().empty()) << "a refused change records nothing";
 }
 
 TEST(Reconstruction, MisuseThrows) {
