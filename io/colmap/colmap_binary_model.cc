@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <ostream>
+#include <sstream>
 #include <type_traits>
 
 #include "io/core/error.h"
@@ -48,19 +50,19 @@ const CameraModelInfo* FindModelById(int64_t id) {
 // COLMAP marks a 2-D point without a 3-D point with point3D_t's largest value.
 constexpr uint64_t kInvalidPoint3DId = std::numeric_limits<uint64_t>::max();
 
-// Appends values little-endian, whatever the host's byte order.
+// Writes values to a stream little-endian, whatever the host's byte order.
 class LittleEndianWriter {
  public:
+  explicit LittleEndianWriter(std::ostream& out) : out_(out) {}
   template <typename T>
   void Put(T value) {
     static_assert(std::is_arithmetic_v<T>);
     uint8_t bytes[sizeof(T)];
     std::memcpy(bytes, &value, sizeof(T));
     if (!HostIsLittleEndian()) std::reverse(bytes, bytes + sizeof(T));
-    bytes_.append(reinterpret_cast<const char*>(bytes), sizeof(T));
+    out_.write(reinterpret_cast<const char*>(bytes), sizeof(T));
   }
-  void PutString(const std::string& text) { bytes_.append(text.c_str(), text.size() + 1); }
-  std::string Take() { return std::move(bytes_); }
+  void PutString(const std::string& text) { out_.write(text.c_str(), text.size() + 1); }
 
  private:
   static bool HostIsLittleEndian() {
@@ -69,8 +71,16 @@ class LittleEndianWriter {
     std::memcpy(&first, &one, 1);
     return first == 1;
   }
-  std::string bytes_;
+  std::ostream& out_;
 };
+
+// The bytes `write` puts on a stream.
+template <typename Write>
+std::string BytesOf(const ColmapTextModel& model, Write write) {
+  std::ostringstream out;
+  write(model, out);
+  return out.str();
+}
 
 // Reads values little-endian from a file's bytes; every read past the end throws
 // comic::Error(kInvalidData) naming the file and the offset.
@@ -147,8 +157,8 @@ int ColmapCameraModelNumParams(const std::string& model_name) {
   return info->num_params;
 }
 
-std::string ColmapCamerasBinary(const ColmapTextModel& model) {
-  LittleEndianWriter out;
+void WriteColmapCamerasBinary(const ColmapTextModel& model, std::ostream& stream) {
+  LittleEndianWriter out(stream);
   out.Put<uint64_t>(model.cameras.size());
   for (const ColmapCamera& camera : model.cameras) {
     const CameraModelInfo* info = FindModelByName(camera.model);
@@ -167,11 +177,10 @@ std::string ColmapCamerasBinary(const ColmapTextModel& model) {
     out.Put<uint64_t>(static_cast<uint64_t>(camera.height));
     for (const double param : camera.params) out.Put<double>(param);
   }
-  return out.Take();
 }
 
-std::string ColmapImagesBinary(const ColmapTextModel& model) {
-  LittleEndianWriter out;
+void WriteColmapImagesBinary(const ColmapTextModel& model, std::ostream& stream) {
+  LittleEndianWriter out(stream);
   out.Put<uint64_t>(model.images.size());
   for (const ColmapImage& image : model.images) {
     out.Put<uint32_t>(image.image_id);
@@ -188,11 +197,10 @@ std::string ColmapImagesBinary(const ColmapTextModel& model) {
                                              : static_cast<uint64_t>(point.point3D_id));
     }
   }
-  return out.Take();
 }
 
-std::string ColmapPoints3DBinary(const ColmapTextModel& model) {
-  LittleEndianWriter out;
+void WriteColmapPoints3DBinary(const ColmapTextModel& model, std::ostream& stream) {
+  LittleEndianWriter out(stream);
   out.Put<uint64_t>(model.points3D.size());
   for (const ColmapPoint3D& point : model.points3D) {
     out.Put<uint64_t>(point.point3D_id);
@@ -205,19 +213,32 @@ std::string ColmapPoints3DBinary(const ColmapTextModel& model) {
       out.Put<uint32_t>(element.point2D_idx);
     }
   }
-  return out.Take();
+}
+
+std::string ColmapCamerasBinary(const ColmapTextModel& model) {
+  return BytesOf(model, WriteColmapCamerasBinary);
+}
+
+std::string ColmapImagesBinary(const ColmapTextModel& model) {
+  return BytesOf(model, WriteColmapImagesBinary);
+}
+
+std::string ColmapPoints3DBinary(const ColmapTextModel& model) {
+  return BytesOf(model, WriteColmapPoints3DBinary);
 }
 
 void WriteColmapBinaryModel(const ColmapTextModel& model, const std::string& folder) {
   model.Check();
-  // Serialise everything before touching the disk, so only the renames remain to fail.
-  const std::string cameras = ColmapCamerasBinary(model);
-  const std::string images = ColmapImagesBinary(model);
-  const std::string points = ColmapPoints3DBinary(model);
   EnsureWritableDirectory(folder);
-  WriteFileAtomically(JoinPaths(folder, "cameras.bin"), cameras);
-  WriteFileAtomically(JoinPaths(folder, "images.bin"), images);
-  WriteFileAtomically(JoinPaths(folder, "points3D.bin"), points);
+  // Streamed, all three on disk before the first rename: a camera that cannot be written
+  // (unknown model) or a full disk leaves the old model whole.
+  auto file = [&](const char* name, void (*write)(const ColmapTextModel&, std::ostream&)) {
+    return StreamedFile{JoinPaths(folder, name),
+                        [&model, write](std::ostream& out) { write(model, out); }};
+  };
+  WriteFilesAtomically({file("cameras.bin", WriteColmapCamerasBinary),
+                        file("images.bin", WriteColmapImagesBinary),
+                        file("points3D.bin", WriteColmapPoints3DBinary)});
 }
 
 ColmapTextModel ReadColmapBinaryModel(const std::string& folder) {

@@ -13,6 +13,7 @@
 //                 double error, uint64 track_length, per element: uint32 image_id, point2D_idx
 #pragma once
 
+#include <iosfwd>
 #include <string>
 
 #include "io/colmap/colmap_text_model.h"
@@ -24,14 +25,20 @@ namespace comic::io {
 int ColmapCameraModelId(const std::string& model_name);
 int ColmapCameraModelNumParams(const std::string& model_name);
 
-// The three files' bytes (what WriteColmapBinaryModel writes). Check the model first; a camera
-// whose parameter count does not match its model throws comic::Error(kInvalidData).
+// The three files' bytes, streamed (what WriteColmapBinaryModel writes). Check the model first;
+// a camera whose parameter count does not match its model throws comic::Error(kInvalidData).
+void WriteColmapCamerasBinary(const ColmapTextModel& model, std::ostream& out);
+void WriteColmapImagesBinary(const ColmapTextModel& model, std::ostream& out);
+void WriteColmapPoints3DBinary(const ColmapTextModel& model, std::ostream& out);
+
+// The same as strings.
 std::string ColmapCamerasBinary(const ColmapTextModel& model);
 std::string ColmapImagesBinary(const ColmapTextModel& model);
 std::string ColmapPoints3DBinary(const ColmapTextModel& model);
 
-// Writes cameras.bin, images.bin and points3D.bin into `folder` (created if needed), each
-// atomically, after checking the model and serialising all three.
+// Writes cameras.bin, images.bin and points3D.bin into `folder` (created if needed) after
+// checking the model: streamed, and all three written before any replaces an old file
+// (io::WriteFilesAtomically), so an error while writing leaves the old model whole.
 void WriteColmapBinaryModel(const ColmapTextModel& model, const std::string& folder);
 
 // Reads the three files from `folder`. Throws comic::Error naming the file: kNotFound for a

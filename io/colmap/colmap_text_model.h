@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -74,11 +75,18 @@ void CheckColmapImageName(const std::string& name, const std::string& what);
 // file and line: kNotFound for a missing file, kInvalidData for a malformed line.
 ColmapTextModel ReadColmapTextModel(const std::string& folder);
 
-// Writes the three files into `folder` (created if needed), each atomically, with 17 significant
-// digits so that reading them back gives the same numbers. Checks the model first.
+// Writes the three files into `folder` (created if needed), with 17 significant digits so that
+// reading them back gives the same numbers. Checks the model first. Streamed to disk, and all
+// three written before any replaces an old file (io::WriteFilesAtomically): an error while
+// writing leaves the old model whole.
 void WriteColmapTextModel(const ColmapTextModel& model, const std::string& folder);
 
-// The three files as text (what WriteColmapTextModel writes).
+// The three files' text, streamed (what WriteColmapTextModel writes).
+void WriteColmapCamerasText(const ColmapTextModel& model, std::ostream& out);
+void WriteColmapImagesText(const ColmapTextModel& model, std::ostream& out);
+void WriteColmapPoints3DText(const ColmapTextModel& model, std::ostream& out);
+
+// The same as strings.
 std::string ColmapCamerasText(const ColmapTextModel& model);
 std::string ColmapImagesText(const ColmapTextModel& model);
 std::string ColmapPoints3DText(const ColmapTextModel& model);

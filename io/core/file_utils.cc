@@ -217,6 +217,31 @@ void WriteBytes(const std::string& temp, const char* data, size_t size, const st
               path << ": write failed: " << std::strerror(written ? errno : write_errno));
 }
 
+// Streams `write` into the new file `temp`; errors name `path` and say why, as WriteBytes.
+void WriteStream(const std::string& temp, const std::function<void(std::ostream&)>& write,
+                 const std::string& path) {
+  std::ofstream out(temp, std::ios::binary);
+  COMIC_CHECK(out.is_open(), kIo, path << ": cannot open for writing: " << std::strerror(errno));
+  write(out);
+  out.flush();
+  const bool written = out.good();
+  const int write_errno = errno;
+  out.close();
+  COMIC_CHECK(written && !out.fail(), kIo,
+              path << ": write failed: " << std::strerror(written ? errno : write_errno));
+}
+
+// Writes files[first..] each into its temporary file, the next inside the previous one's
+// WriteAtomically, so every byte is on disk before the first rename.
+void WriteFilesAtomicallyFrom(const std::vector<StreamedFile>& files, size_t first) {
+  if (first == files.size()) return;
+  const StreamedFile& file = files[first];
+  WriteAtomically(file.path, [&](const std::string& temp) {
+    WriteStream(temp, file.write, file.path);
+    WriteFilesAtomicallyFrom(files, first + 1);
+  });
+}
+
 }  // namespace
 
 void WriteFileAtomically(const std::string& path, const std::string& contents, bool overwrite) {
@@ -224,6 +249,10 @@ void WriteFileAtomically(const std::string& path, const std::string& contents, b
       path,
       [&](const std::string& temp) { WriteBytes(temp, contents.data(), contents.size(), path); },
       overwrite);
+}
+
+void WriteFilesAtomically(const std::vector<StreamedFile>& files) {
+  WriteFilesAtomicallyFrom(files, 0);
 }
 
 void CheckImageOutputFormat(const std::string& path, const std::string& what) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,19 @@ void WriteAtomically(const std::string& path, const std::function<void(const std
 // Atomic write of bytes to `path` (see WriteAtomically).
 void WriteFileAtomically(const std::string& path, const std::string& contents,
                          bool overwrite = true);
+
+// A file written by streaming into it: where it goes and what writes its contents.
+struct StreamedFile {
+  std::string path;
+  std::function<void(std::ostream&)> write;
+};
+
+// Streams every file into its own temporary file, then moves them all into place (the last
+// first), so a file never needs to be held in memory whole (a 5000-frame model's images.txt is
+// 369 MB), and anything thrown while writing (a full disk, a model that cannot be serialised)
+// leaves every old file whole and no temporary file behind. Only a failed rename, after the disk
+// has taken every byte, can leave some files new and others old.
+void WriteFilesAtomically(const std::vector<StreamedFile>& files);
 
 // Throws comic::Error(kInvalidArgument) naming `what` (the option) and `path` unless OpenCV can
 // encode an image in the format `path`'s extension names (cv::haveImageWriter); apps call it

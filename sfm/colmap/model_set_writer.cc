@@ -1,5 +1,7 @@
 #include "sfm/colmap/model_set_writer.h"
 
+#include <optional>
+
 #include "io/colmap/colmap_binary_model.h"
 #include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
@@ -37,11 +39,13 @@ std::vector<std::string> WriteModelSet(const IncrementalReconstruction& mapping,
   for (const IncrementalModel& model : mapping.other_models)
     models.push_back(&model.reconstruction);
   for (size_t k = 0; k < models.size(); ++k) {
-    const Reconstruction resized =
-        options.width > 0 && options.height > 0
-            ? ResizedReconstruction(*models[k], options.width, options.height)
-            : *models[k];
-    const io::ColmapTextModel model = ToColmapTextModel(resized);
+    // Resized only when asked: a copy of a 5000-frame model is hundreds of MB.
+    std::optional<Reconstruction> resized;
+    if (options.width > 0 && options.height > 0) {
+      resized = ResizedReconstruction(*models[k], options.width, options.height);
+    }
+    const io::ColmapTextModel model = ToColmapTextModel(resized ? *resized : *models[k]);
+    resized.reset();
     const std::string sparse = io::JoinPaths(folder, "sparse/" + std::to_string(k));
     if (k == 0 && options.text) io::WriteColmapTextModel(model, folder);
     if (options.binary) {

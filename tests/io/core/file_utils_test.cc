@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <opencv2/imgcodecs.hpp>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,35 @@ TEST(FileUtils, FailedWriteLeavesNothingBehind) {
                Error);
   EXPECT_FALSE(PathExists(path));
   EXPECT_TRUE(ListFiles(dir.path()).empty());
+}
+
+// A set of files is streamed and all written before any replaces an old one: a failure while
+// writing the last leaves every old file whole and nothing temporary behind.
+TEST(FileUtils, StreamedFilesAreAllWrittenBeforeAnyIsReplaced) {
+  ScopedTempDir dir;
+  const std::string first = dir.File("first.txt");
+  const std::string second = dir.File("second.txt");
+  WriteFilesAtomically({{first, [](std::ostream& out) { out << "one " << 1; }},
+                        {second, [](std::ostream& out) { out << "two " << 2.5; }}});
+  EXPECT_EQ(ReadFileToString(first), "one 1");
+  EXPECT_EQ(ReadFileToString(second), "two 2.5");
+
+  bool first_written = false;
+  EXPECT_THROW(WriteFilesAtomically({{first,
+                                      [&](std::ostream& out) {
+                                        out << "new";
+                                        first_written = true;
+                                      }},
+                                     {second,
+                                      [](std::ostream& out) {
+                                        out << "half";
+                                        throw Error(ErrorKind::kIo, "simulated failure mid-write");
+                                      }}}),
+               Error);
+  EXPECT_TRUE(first_written);
+  EXPECT_EQ(ReadFileToString(first), "one 1");
+  EXPECT_EQ(ReadFileToString(second), "two 2.5");
+  EXPECT_EQ(ListFiles(dir.path()), (std::vector<std::string>{"first.txt", "second.txt"}));
 }
 
 TEST(FileUtils, UnwritableOutputsGiveClearErrors) {
