@@ -1020,4 +1020,17 @@ size_t IncrementalMapper::FilterPoints(const std::set<point3D_t>& point3D_ids) {
   return num_removed;
 }
 
+size_t IncrementalMapper::NumSharedTracks(int frame1, int frame2) const {
+  std::vector<int> tracks1;
+  for (int t : track_of_feature_.at(frame1)) {
+    if (t >= 0) tracks1.push_back(t);
+  }
+  std::sort(tracks1.begin(), tracks1.end());
+  size_t shared = 0;
+  for (int t : track_of_feature_.at(frame2)) {
+    shared += t >= 0 && std::binary_search(tracks1.begin(), tracks1.end(), t);
+  }
+  return shared;
+}
+
 }  // namespace comic::sfm

@@ -312,6 +312,8 @@ class IncrementalMapper {
     reconstruction_.RecordLinkChanges(false);
     return std::move(reconstruction_);
   }
+  // The tracks frames `frame1` and `frame2` both have a feature in.
+  size_t NumSharedTracks(int frame1, int frame2) const;
   // Image id of frame index `frame` and back.
   static image_t ImageIdOfFrame(int frame) { return static_cast<image_t>(frame + 1); }
   static int FrameOfImageId(image_t image_id) { return static_cast<int>(image_id) - 1; }

@@ -141,6 +141,7 @@ struct ModelSet {
   bool no_initial_pair_left = false;  // the growth stopped for want of an initial pair
   int num_merges = 0;
   int num_seam_links = 0;
+  int num_appearance_links = 0;
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;
   int num_seam_matches = 0;
@@ -287,9 +288,16 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
   }
   SeamLinking seam_linking(frame_matcher, options, &set);
   SeamLinker linker;
-  if (frame_matcher) {
+  if (frame_matcher || options.close_loops) {
     linker = [&](const Reconstruction& current, const Reconstruction& earlier) {
-      return seam_linking(current, earlier);
+      std::vector<IncrementalMapper::FeatureLink> links;
+      if (frame_matcher) links = seam_linking(current, earlier);
+      // With loop closure, a model the camera came back to after the tracks broke (no seam).
+      if (links.empty() && options.close_loops) {
+        links = LinkModelsByAppearance(tracks, options.loop_closure, current, earlier).links;
+        set.num_appearance_links += !links.empty();
+      }
+      return links;
     };
   }
   std::set<image_t> tried;
@@ -466,6 +474,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
   result.num_models = set.num_attempts;
   result.num_merges = set.num_merges;
   result.num_seam_links = set.num_seam_links;
+  result.num_appearance_links = set.num_appearance_links;
   result.num_initial_pair_searches = set.num_initial_pair_searches;
   result.initial_pair_search_cpu_time_s = set.initial_pair_search_cpu_time_s;
   result.num_seam_matches = set.num_seam_matches;

@@ -235,7 +235,10 @@ struct IncrementalReconstruction {
   size_t initial_pair_num_points = 0;
   int num_models = 0;      // models started (attempts; merged ones included)
   int num_merges = 0;      // models merged into others
-  int num_seam_links = 0;  // of those, merged through matches at their seams
+  int num_seam_links = 0;  // of those, merged through matches at their seams or by appearance
+  // With close_loops: the models linked by appearance (LinkModelsByAppearance), seam matching
+  // having found nothing.
+  int num_appearance_links = 0;
   // The initial pair searches and the seam matches (FrameMatcher calls), with their CPU time.
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;

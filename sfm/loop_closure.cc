@@ -17,17 +17,20 @@ void LoopClosureOptions::Check() const {
   COMIC_CHECK(node_stride >= 1 && max_descriptors_per_node >= 1, kInvalidArgument,
               "loop closure: node_stride and max_descriptors_per_node must be >= 1, got "
                   << node_stride << ", " << max_descriptors_per_node);
-  COMIC_CHECK(min_inliers >= 3 && ransac_iterations >= 1 && max_shared_points >= 0,
+  COMIC_CHECK(min_inliers >= 3 && ransac_iterations >= 1 && max_shared_tracks >= 0,
               kInvalidArgument,
-              "loop closure: min_inliers >= 3, ransac_iterations >= 1, max_shared_points >= 0 "
+              "loop closure: min_inliers >= 3, ransac_iterations >= 1, max_shared_tracks >= 0 "
               "needed, got "
-                  << min_inliers << ", " << ransac_iterations << ", " << max_shared_points);
+                  << min_inliers << ", " << ransac_iterations << ", " << max_shared_tracks);
   COMIC_CHECK(max_move_per_path > 0 && max_scale_change >= 1, kInvalidArgument,
               "loop closure: max_move_per_path must be > 0 and max_scale_change >= 1, got "
                   << max_move_per_path << ", " << max_scale_change);
   COMIC_CHECK(max_reprojection_error_px > 0 && loop_edge_weight > 0, kInvalidArgument,
               "loop closure: max_reprojection_error_px and loop_edge_weight must be > 0, got "
                   << max_reprojection_error_px << ", " << loop_edge_weight);
+  COMIC_CHECK(
+      min_agreeing_model_links >= 1, kInvalidArgument,
+      "loop closure: min_agreeing_model_links must be >= 1, got " << min_agreeing_model_links);
   detection.Check();
   matching.Check();
   pose_graph.Check();
@@ -56,16 +59,6 @@ MappedFeatures CollectMappedFeatures(const frontend::FeatureTracks& tracks,
   return mapped;
 }
 
-size_t NumSharedPoints(const Reconstruction& model, image_t a, image_t b) {
-  std::set<point3D_t> points;
-  for (const Point2D& p : model.image(a).points2D) {
-    if (p.HasPoint3D()) points.insert(p.point3D_id);
-  }
-  size_t shared = 0;
-  for (const Point2D& p : model.image(b).points2D) shared += points.count(p.point3D_id);
-  return shared;
-}
-
 // One match between the mapped features of the query (q) and the earlier frame (m).
 struct LoopMatch {
   point2D_t q_idx = 0;
@@ -87,14 +80,24 @@ bool ProjectsNear(const Reconstruction& model, image_t image_id, const Eigen::Ve
   return projection && (*projection - image.points2D[idx].xy).norm() <= max_error_px;
 }
 
-std::vector<char> Agreeing(const Reconstruction& model, image_t q, image_t m, const Sim3d& m_from_q,
+// The two frames of a candidate and the models holding them (one model for a loop, two for a
+// link between models).
+struct FramePair {
+  const Reconstruction* query_model = nullptr;
+  image_t q = 0;
+  const Reconstruction* match_model = nullptr;
+  image_t m = 0;
+};
+
+std::vector<char> Agreeing(const FramePair& pair, const Sim3d& m_from_q,
                            const std::vector<LoopMatch>& matches, double max_error_px) {
   const Sim3d q_from_m = InverseSim3(m_from_q);
   std::vector<char> agree(matches.size(), 0);
   for (size_t k = 0; k < matches.size(); ++k) {
-    agree[k] =
-        ProjectsNear(model, m, m_from_q * matches[k].q_xyz, matches[k].m_idx, max_error_px) &&
-        ProjectsNear(model, q, q_from_m * matches[k].m_xyz, matches[k].q_idx, max_error_px);
+    agree[k] = ProjectsNear(*pair.match_model, pair.m, m_from_q * matches[k].q_xyz,
+                            matches[k].m_idx, max_error_px) &&
+               ProjectsNear(*pair.query_model, pair.q, q_from_m * matches[k].m_xyz,
+                            matches[k].q_idx, max_error_px);
   }
   return agree;
 }
@@ -116,11 +119,12 @@ int Count(const std::vector<char>& flags) {
 // RANSAC over triples with a seed of the pair (the same answer on every run), then a refit on
 // the agreeing matches.
 std::optional<Verification> Verify(const frontend::FeatureTracks& tracks,
-                                   const LoopClosureOptions& options, const Reconstruction& model,
-                                   image_t q, image_t m) {
+                                   const LoopClosureOptions& options, const FramePair& pair) {
   const int limit = std::numeric_limits<int>::max();
-  const MappedFeatures query = CollectMappedFeatures(tracks, model, q, limit);
-  const MappedFeatures earlier = CollectMappedFeatures(tracks, model, m, limit);
+  const image_t q = pair.q;
+  const image_t m = pair.m;
+  const MappedFeatures query = CollectMappedFeatures(tracks, *pair.query_model, q, limit);
+  const MappedFeatures earlier = CollectMappedFeatures(tracks, *pair.match_model, m, limit);
   if (query.descriptors.empty() || earlier.descriptors.empty()) return std::nullopt;
   std::vector<LoopMatch> matches;
   for (const frontend::PatchMatch& match :
@@ -128,8 +132,12 @@ std::optional<Verification> Verify(const frontend::FeatureTracks& tracks,
     LoopMatch loop_match;
     loop_match.q_idx = query.point2D_idxs[match.index1];
     loop_match.m_idx = earlier.point2D_idxs[match.index2];
-    loop_match.q_xyz = model.point3D(model.image(q).points2D[loop_match.q_idx].point3D_id).xyz;
-    loop_match.m_xyz = model.point3D(model.image(m).points2D[loop_match.m_idx].point3D_id).xyz;
+    loop_match.q_xyz =
+        pair.query_model->point3D(pair.query_model->image(q).points2D[loop_match.q_idx].point3D_id)
+            .xyz;
+    loop_match.m_xyz =
+        pair.match_model->point3D(pair.match_model->image(m).points2D[loop_match.m_idx].point3D_id)
+            .xyz;
     matches.push_back(loop_match);
   }
   const int n = static_cast<int>(matches.size());
@@ -147,7 +155,7 @@ std::optional<Verification> Verify(const frontend::FeatureTracks& tracks,
     const std::optional<Sim3d> model_from_sample = FitOn(matches, sample);
     if (!model_from_sample || model_from_sample->scale <= 0) continue;
     std::vector<char> agree =
-        Agreeing(model, q, m, *model_from_sample, matches, options.max_reprojection_error_px);
+        Agreeing(pair, *model_from_sample, matches, options.max_reprojection_error_px);
     const int count = Count(agree);
     if (count > best_count) {
       best_count = count;
@@ -158,7 +166,7 @@ std::optional<Verification> Verify(const frontend::FeatureTracks& tracks,
   const std::optional<Sim3d> refit = FitOn(matches, best);
   if (!refit || refit->scale <= 0) return std::nullopt;
   const std::vector<char> agree =
-      Agreeing(model, q, m, *refit, matches, options.max_reprojection_error_px);
+      Agreeing(pair, *refit, matches, options.max_reprojection_error_px);
   if (Count(agree) < options.min_inliers) return std::nullopt;
   Verification verification;
   verification.m_from_q = *refit;
@@ -266,7 +274,103 @@ bool ConsistentWithOdometry(const LoopClosureOptions& options, const Reconstruct
          edge.scale <= options.max_scale_change && edge.scale * options.max_scale_change >= 1.0;
 }
 
+// Every node_stride-th registered frame of `model` with mapped features (the frames outside
+// the map have none), for the appearance search between models.
+std::vector<image_t> ModelNodes(const LoopClosureOptions& options, const Reconstruction& model) {
+  std::vector<image_t> mapped;
+  for (image_t image_id : model.RegisteredImageIds()) {
+    if (model.image(image_id).NumPoints3D() > 0) mapped.push_back(image_id);
+  }
+  std::vector<image_t> nodes;
+  for (size_t k = 0; k < mapped.size(); k += options.node_stride) nodes.push_back(mapped[k]);
+  return nodes;
+}
+
+// How many of `other`'s inliers the similarity of `one` also explains.
+int NumExplained(const Verification& one, const FramePair& other_pair, const Verification& other,
+                 double max_error_px) {
+  return Count(Agreeing(other_pair, one.m_from_q, other.inliers, max_error_px));
+}
+
 }  // namespace
+
+ModelLinks LinkModelsByAppearance(const frontend::FeatureTracks& tracks,
+                                  const LoopClosureOptions& options, const Reconstruction& current,
+                                  const Reconstruction& earlier) {
+  options.Check();
+  COMIC_CHECK(tracks.HasDescriptors(), kInvalidArgument,
+              "linking models: the tracks have no descriptors");
+  ModelLinks result;
+  // Stage 1: candidates by appearance over the nodes of both models in frame order; only pairs
+  // across the two models compete.
+  std::vector<std::pair<int, const Reconstruction*>> nodes;  // (frame, model), frame order
+  for (const Reconstruction* model : {&current, &earlier}) {
+    for (image_t image_id : ModelNodes(options, *model)) {
+      nodes.emplace_back(IncrementalMapper::FrameOfImageId(image_id), model);
+    }
+  }
+  std::sort(nodes.begin(), nodes.end());
+  for (size_t k = 1; k < nodes.size(); ++k) {
+    // Models of one run hold disjoint frames; a frame in both is linked by MergeModel already.
+    if (nodes[k].first == nodes[k - 1].first) return result;
+  }
+  std::vector<cv::Mat> node_descriptors;
+  std::vector<int> node_frames;
+  for (const auto& [frame, model] : nodes) {
+    node_descriptors.push_back(CollectMappedFeatures(tracks, *model,
+                                                     IncrementalMapper::ImageIdOfFrame(frame),
+                                                     options.max_descriptors_per_node)
+                                   .descriptors);
+    node_frames.push_back(frame);
+  }
+  const RevisitPrior across = [&](int query, int match) {
+    return nodes[query].second != nodes[match].second;
+  };
+  const std::vector<LoopCandidate> candidates =
+      nodes.size() >= 2
+          ? DetectLoopCandidates(node_descriptors, node_frames, options.detection, across)
+          : std::vector<LoopCandidate>();
+  result.num_candidates = static_cast<int>(candidates.size());
+
+  // Stage 2: each candidate verified as a loop is, oriented current -> earlier (X_earlier ≈
+  // S X_current), whichever of its frames came first.
+  std::vector<FramePair> pairs;
+  std::vector<Verification> verified;
+  for (const LoopCandidate& candidate : candidates) {
+    int c = candidate.query;
+    int e = candidate.match;
+    if (nodes[c].second != &current) std::swap(c, e);
+    const FramePair pair{&current, IncrementalMapper::ImageIdOfFrame(nodes[c].first), &earlier,
+                         IncrementalMapper::ImageIdOfFrame(nodes[e].first)};
+    std::optional<Verification> verification = Verify(tracks, options, pair);
+    if (!verification) continue;
+    pairs.push_back(pair);
+    verified.push_back(std::move(*verification));
+  }
+  result.num_verified = static_cast<int>(verified.size());
+
+  // Stage 3: the largest group of verified pairs that one similarity explains (each explaining
+  // at least half of the others' inliers); a single look-alike on a repeated texture is a
+  // consistent similarity too, so one pair alone links nothing.
+  std::vector<size_t> best_group;
+  for (size_t i = 0; i < verified.size(); ++i) {
+    std::vector<size_t> group;
+    for (size_t j = 0; j < verified.size(); ++j) {
+      const int explained =
+          NumExplained(verified[i], pairs[j], verified[j], options.max_reprojection_error_px);
+      if (2 * explained >= static_cast<int>(verified[j].inliers.size())) group.push_back(j);
+    }
+    if (group.size() > best_group.size()) best_group = std::move(group);
+  }
+  result.num_agreeing = static_cast<int>(best_group.size());
+  if (result.num_agreeing < options.min_agreeing_model_links) return result;
+  for (size_t j : best_group) {
+    for (const LoopMatch& match : verified[j].inliers) {
+      result.links.push_back({pairs[j].q, match.q_idx, pairs[j].m, match.m_idx});
+    }
+  }
+  return result;
+}
 
 LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
                               const LoopClosureOptions& options, IncrementalMapper* mapper) {
@@ -317,8 +421,14 @@ LoopClosureSummary CloseLoops(const frontend::FeatureTracks& tracks,
   for (const LoopCandidate& candidate : candidates) {
     const image_t q = nodes[candidate.query];
     const image_t m = nodes[candidate.match];
-    if (NumSharedPoints(model, q, m) >= static_cast<size_t>(options.max_shared_points)) continue;
-    std::optional<Verification> verified = Verify(tracks, options, model, q, m);
+    // Tracks, not points: after a merge by appearance (LinkModelsByAppearance) the two sides of
+    // the seam share the linked points but no track, and their loops are still to close.
+    if (mapper->NumSharedTracks(IncrementalMapper::FrameOfImageId(q),
+                                IncrementalMapper::FrameOfImageId(m)) >=
+        static_cast<size_t>(options.max_shared_tracks)) {
+      continue;
+    }
+    std::optional<Verification> verified = Verify(tracks, options, {&model, q, &model, m});
     if (!verified) continue;
     ++summary.num_verified;
     verified->edge.similarity = candidate.similarity;

@@ -49,8 +49,9 @@ struct LoopClosureOptions {
   int min_inliers = 30;
   double max_reprojection_error_px = 4.0;
   int ransac_iterations = 400;
-  // A candidate whose two frames already share this many points is not a loop.
-  int max_shared_points = 10;
+  // A candidate whose two frames already share this many tracks is not a loop (the tracks link
+  // them; points would not do: after a merge by appearance the two sides share linked points).
+  int max_shared_tracks = 10;
   PoseGraphOptions pose_graph;
   // Weight of a loop edge against a consecutive one.
   double loop_edge_weight = 1.0;
@@ -67,6 +68,9 @@ struct LoopClosureOptions {
   // similarities ask for moves 2-5x the drift and closing them made the model worse
   // (docs/long_video.md), so it is off until verification is stricter.
   bool odometry_prior = false;
+  // Linking two models by appearance (LinkModelsByAppearance): the verified frame pairs one
+  // similarity must explain before their matches link the models.
+  int min_agreeing_model_links = 2;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -109,6 +113,23 @@ struct LoopClosureSummary {
   PoseGraphSummary pose_graph;
   double cpu_time_s = 0.0;
 };
+
+// Links between two models of one video that share no frame, track or seam: the camera came
+// back to a place the earlier model holds after something broke the tracks (a blurred frame on
+// the way back of the bag clip played forwards then backwards). The frames of the two models
+// that look alike (the appearance search above, over both models' nodes, only pairs across
+// them) are verified as loops are; the matches of the largest group of verified pairs that one
+// similarity explains become links for IncrementalMapper::MergeModel (in `current` first). Fewer
+// than min_agreeing_model_links agreeing pairs link nothing: one pair alone can be a look-alike.
+struct ModelLinks {
+  std::vector<IncrementalMapper::FeatureLink> links;
+  int num_candidates = 0;  // appearance candidates across the two models
+  int num_verified = 0;    // of those, verified geometrically
+  int num_agreeing = 0;    // of those, in the largest group one similarity explains
+};
+ModelLinks LinkModelsByAppearance(const frontend::FeatureTracks& tracks,
+                                  const LoopClosureOptions& options, const Reconstruction& current,
+                                  const Reconstruction& earlier);
 
 // Finds, verifies and closes the loops of the model `mapper` holds (see above); nothing changes
 // when none is verified. `tracks` are the mapper's, with descriptors (frontend::FeatureTracks::

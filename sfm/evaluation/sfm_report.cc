@@ -101,6 +101,7 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.num_models_started = mapping.num_models;
   report.num_merges = mapping.num_merges;
   report.num_seam_links = mapping.num_seam_links;
+  report.num_appearance_links = mapping.num_appearance_links;
   report.num_initial_pair_searches = mapping.num_initial_pair_searches;
   report.initial_pair_search_cpu_time_s = mapping.initial_pair_search_cpu_time_s;
   report.num_seam_matches = mapping.num_seam_matches;
@@ -203,6 +204,7 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
   json["mapping"] = {{"models_started", report.num_models_started},
                      {"merges", report.num_merges},
                      {"seam_links", report.num_seam_links},
+                     {"appearance_links", report.num_appearance_links},
                      {"initial_pair_searches", report.num_initial_pair_searches},
                      {"seam_matches", report.num_seam_matches},
                      {"working_scale", report.working_scale}};

@@ -56,6 +56,7 @@ struct SfmRunReport {
   int num_models_started = 0;
   int num_merges = 0;
   int num_seam_links = 0;
+  int num_appearance_links = 0;
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;
   int num_seam_matches = 0;

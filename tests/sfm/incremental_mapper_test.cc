@@ -153,6 +153,28 @@ TEST(IncrementalMapper, NonKeyframesArePosedButStayOutOfTheMapUntilLocalized) {
 // The per-frame counts that rank the next frames are kept from the model's link changes, not
 // recounted: through registrations, triangulation, re-triangulation, adjustment and filtering
 // (which deletes observations and, with the last two, points) they must equal a recount.
+// Loop closure skips pairs of frames the tracks already link (sfm/loop_closure.h): the count
+// is that of the tracks holding a feature of each frame, and falls as the frames part.
+TEST(IncrementalMapper, CountsTheTracksTwoFramesShare) {
+  const SyntheticScene scene = ForwardScene();
+  const IncrementalMapper mapper(scene.tracks, scene.camera, IncrementalMapper::Options());
+  for (int frame2 : {1, 5, 15}) {
+    size_t expected = 0;
+    for (const frontend::Track& track : scene.tracks.tracks) {
+      bool in0 = false, in2 = false;
+      for (const frontend::TrackObservation& obs : track.observations) {
+        in0 = in0 || obs.frame == 0;
+        in2 = in2 || obs.frame == frame2;
+      }
+      expected += in0 && in2;
+    }
+    EXPECT_EQ(mapper.NumSharedTracks(0, frame2), expected) << "frame " << frame2;
+    EXPECT_EQ(mapper.NumSharedTracks(frame2, 0), expected) << "frame " << frame2;
+  }
+  EXPECT_GT(mapper.NumSharedTracks(0, 1), mapper.NumSharedTracks(0, 15));
+  EXPECT_GT(mapper.NumSharedTracks(0, 1), 100u);
+}
+
 TEST(IncrementalMapper, CountsOfTracksWithPointsFollowEveryChangeOfTheModel) {
   SyntheticSceneOptions options;  // hand-held, with outliers for the filter to remove
   options.num_frames = 20;

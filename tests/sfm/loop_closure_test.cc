@@ -127,6 +127,25 @@ void AddDescriptors(SyntheticScene* scene, uint32_t seed, size_t num_patterns = 
   tracks.Check();
 }
 
+// Every track stops before `frame` and goes on after it as a new track of the same point, and
+// `frame` keeps its features but no track: a blurred frame that breaks the tracking.
+void BreakTracksAt(SyntheticScene* scene, int frame) {
+  std::vector<frontend::Track>& tracks = scene->tracks.tracks;
+  const size_t num_tracks = tracks.size();
+  for (size_t t = 0; t < num_tracks; ++t) {
+    frontend::Track before, after;
+    for (const frontend::TrackObservation& obs : tracks[t].observations) {
+      if (obs.frame < frame) before.observations.push_back(obs);
+      if (obs.frame > frame) after.observations.push_back(obs);
+    }
+    tracks[t] = std::move(before);
+    if (after.observations.empty()) continue;
+    tracks.push_back(std::move(after));
+    scene->track_point_index.push_back(scene->track_point_index[t]);
+  }
+  scene->tracks.Check();
+}
+
 TrajectoryEvaluation Evaluate(const IncrementalReconstruction& result,
                               const SyntheticScene& scene) {
   const auto evaluation =
@@ -247,6 +266,48 @@ TEST(LoopClosure, AClipPlayedForwardsThenBackwardsEndsWhereItStarted) {
   const TrajectoryEvaluation after = Evaluate(closed, scene);
   EXPECT_LT(after.end_to_start_error, 0.5 * before.end_to_start_error)
       << "before " << before.end_to_start_error << " after " << after.end_to_start_error;
+}
+
+// The way back breaks at a blurred frame (90: no track crosses it), so its last 29 frames share
+// no track, frame or seam with the model of the first 90. With loop closure the two models are
+// linked by appearance (the way back's frames are the way out's) and merged: one model of every
+// frame (the blurred one only interpolated), each frame of the way back where its twin on the
+// way out is. Without it there are two models.
+TEST(LoopClosure, AModelTheCameraCameBackToIsLinkedByAppearance) {
+  SyntheticScene scene = MakeRing(60, 150.0, 21, /*back_and_forth=*/true);
+  BreakTracksAt(&scene, 90);
+  AddDescriptors(&scene, 22);
+  const auto [open, closed] = ReconstructWithAndWithoutLoopClosure(scene);
+  EXPECT_GE(open.num_models, 2);
+  EXPECT_LE(open.reconstruction.NumRegisteredImages(), 90u);
+  EXPECT_EQ(open.num_appearance_links, 0);
+
+  ASSERT_EQ(closed.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(closed.num_appearance_links, 1);
+  EXPECT_EQ(closed.reconstruction.NumRegisteredImages(), 120u);
+  EXPECT_EQ(closed.interpolated_frames, std::vector<int>{90});
+  // Frame f of the way back is frame 119 - f of the way out: twins of the merged frames meet.
+  const Reconstruction& model = closed.reconstruction;
+  const auto center = [&](int frame) {
+    return ProjectionCenter(model.image(IncrementalMapper::ImageIdOfFrame(frame)).cam_from_world);
+  };
+  double way_out = 0.0;
+  for (int f = 1; f < 60; ++f) way_out += (center(f) - center(f - 1)).norm();
+  for (int f = 91; f < 120; ++f) {
+    EXPECT_LT((center(f) - center(119 - f)).norm(), 0.02 * way_out) << "frame " << f;
+  }
+}
+
+// The same break on a road seen once: the two models look at different walls, so nothing links
+// them by appearance.
+TEST(LoopClosure, ModelsOfPlacesSeenOnceAreNotLinked) {
+  SyntheticScene scene = MakeRing(70, 200.0, 5);
+  BreakTracksAt(&scene, 35);
+  AddDescriptors(&scene, 6);
+  const IncrementalReconstruction closed = ReconstructWithLoopClosure(scene, {});
+  EXPECT_GE(closed.num_models, 2);
+  EXPECT_EQ(closed.num_appearance_links, 0);
+  EXPECT_LE(closed.reconstruction.NumRegisteredImages(), 36u);
 }
 
 TEST(LoopClosure, NoRevisitNoLoopAndTheSameModel) {
