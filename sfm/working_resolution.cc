@@ -66,13 +66,14 @@ Camera ResizedCamera(const Camera& camera, int width, int height) {
   return resized;
 }
 
-Reconstruction ResizedReconstruction(const Reconstruction& reconstruction, int width, int height) {
-  Reconstruction resized = reconstruction;
-  if (reconstruction.cameras().empty()) return resized;
+std::optional<Reconstruction> ResizedReconstruction(const Reconstruction& reconstruction, int width,
+                                                    int height) {
+  if (reconstruction.cameras().empty()) return std::nullopt;
   const Camera& camera = reconstruction.cameras().begin()->second;
-  if (camera.width == width && camera.height == height) return resized;
+  if (camera.width == width && camera.height == height) return std::nullopt;
+  std::optional<Reconstruction> resized = reconstruction;
   ScaleReconstruction(static_cast<double>(height) / static_cast<double>(camera.height), width,
-                      height, &resized);
+                      height, &*resized);
   return resized;
 }
 

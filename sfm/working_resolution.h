@@ -12,6 +12,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <optional>
 
 #include "frontend/matching/track.h"
 #include "sfm/reconstruction.h"
@@ -38,7 +39,9 @@ void ScaleReconstruction(double factor, int width, int height, Reconstruction* r
 Camera ResizedCamera(const Camera& camera, int width, int height);
 
 // A copy of `reconstruction` in images of width x height (its cameras' size scaled by one factor,
-// height over height, as frames are resized; ScaleReconstruction).
-Reconstruction ResizedReconstruction(const Reconstruction& reconstruction, int width, int height);
+// height over height, as frames are resized; ScaleReconstruction); nullopt when it is in images
+// of that size already, or has no camera (no copy: a 5000-frame model is hundreds of MB).
+std::optional<Reconstruction> ResizedReconstruction(const Reconstruction& reconstruction, int width,
+                                                    int height);
 
 }  // namespace comic::sfm

@@ -39,7 +39,7 @@ std::vector<std::string> WriteModelSet(const IncrementalReconstruction& mapping,
   for (const IncrementalModel& model : mapping.other_models)
     models.push_back(&model.reconstruction);
   for (size_t k = 0; k < models.size(); ++k) {
-    // Resized only when asked: a copy of a 5000-frame model is hundreds of MB.
+    // Copied only to be resized: a 5000-frame model is hundreds of MB.
     std::optional<Reconstruction> resized;
     if (options.width > 0 && options.height > 0) {
       resized = ResizedReconstruction(*models[k], options.width, options.height);

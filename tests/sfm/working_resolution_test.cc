@@ -41,7 +41,11 @@ TEST(WorkingResolution, TracksAndModelsGoThereAndBack) {
   image.camera_id = camera_id;
   image.points2D.push_back({Eigen::Vector2d(scaled.x, scaled.y)});
   const image_t image_id = model.AddImage(image);
-  const Reconstruction back = ResizedReconstruction(model, 640, 480);
+  ASSERT_TRUE(ResizedReconstruction(model, 640, 480).has_value());
+  const Reconstruction back = *ResizedReconstruction(model, 640, 480);
+  // Already that size, or no camera: nothing to copy.
+  EXPECT_FALSE(ResizedReconstruction(back, 640, 480).has_value());
+  EXPECT_FALSE(ResizedReconstruction(Reconstruction(), 640, 480).has_value());
   const Camera& camera = back.cameras().begin()->second;
   EXPECT_EQ(camera.width, 640);
   EXPECT_EQ(camera.height, 480);
