@@ -116,8 +116,8 @@ DescriptorMatchOptions GuidedOptions(const ImageSetMatchingOptions& options) {
 void MatchPairs(const ImageSetMatchingOptions& options, ProgressCounter* progress,
                 ImageSetMatching* result) {
   const FeatureTracks& tracks = result->tracks;
-  const std::vector<std::pair<int, int>> pairs =
-      ImageSetPairs(static_cast<int>(tracks.NumFrames()), options.window);
+  const std::vector<std::pair<int, int>> pairs = ImageSetPairs(
+      static_cast<int>(tracks.NumFrames()), options.window, options.quadratic_overlap);
   struct PairResult {
     std::vector<PatchMatch> verified;
     int num_raw = 0;
@@ -235,7 +235,8 @@ ImageSetMatching MatchSource(const FrameSource& source, const Detector& detector
                              const ImageSetMatchingProgress& progress) {
   options.Check();
   const size_t per_detector =
-      source.num_frames + ImageSetPairs(source.num_frames, options.window).size();
+      source.num_frames +
+      ImageSetPairs(source.num_frames, options.window, options.quadratic_overlap).size();
   const auto* combined = dynamic_cast<const CombinedDetector*>(&detector);
   if (combined == nullptr) {
     return MatchWithOneDetector(source, detector, options, progress, 0, per_detector);
@@ -274,11 +275,14 @@ void ImageSetMatchingOptions::Check() const {
   verification.Check();
 }
 
-std::vector<std::pair<int, int>> ImageSetPairs(int num_frames, int window) {
+std::vector<std::pair<int, int>> ImageSetPairs(int num_frames, int window, bool quadratic_overlap) {
   std::vector<std::pair<int, int>> pairs;
   for (int i = 0; i < num_frames; ++i) {
-    for (int j = i + 1; j < num_frames && (window <= 0 || j - i <= window); ++j) {
-      pairs.emplace_back(i, j);
+    const int last_in_window = window <= 0 ? num_frames - 1 : std::min(num_frames - 1, i + window);
+    for (int j = i + 1; j <= last_in_window; ++j) pairs.emplace_back(i, j);
+    if (!quadratic_overlap || window <= 0) continue;
+    for (int64_t step = 1; i + step < num_frames; step *= 2) {
+      if (i + step > last_in_window) pairs.emplace_back(i, static_cast<int>(i + step));
     }
   }
   return pairs;

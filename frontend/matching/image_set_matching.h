@@ -45,6 +45,11 @@ struct ImageSetMatchingOptions {
   int max_features = 2000;
   // Frame pairs: every pair (0), or each frame with the next `window` frames.
   int window = 0;
+  // With a window, each frame is also matched with the frames 2^k after it (k >= 0, as far as
+  // the sequence goes): COLMAP's sequential matcher's quadratic overlap. A video whose tracks
+  // break for a few frames (blur, a passing occluder) is still linked across the break, and the
+  // pairs grow as n log n rather than n².
+  bool quadratic_overlap = false;
   // Unset: DescriptorOptionsFor(the detector's name), the options measured for its features.
   std::optional<DescriptorOptions> descriptor;
   DescriptorMatchOptions matching;
@@ -97,9 +102,11 @@ struct ImageSetMatching {
 // Called with (work done, total work): frames described, then pairs matched, counted together.
 using ImageSetMatchingProgress = std::function<void(size_t done, size_t total)>;
 
-// The frame pairs (i < j) matched for `num_frames` frames: all of them, or those with
-// j − i <= window.
-std::vector<std::pair<int, int>> ImageSetPairs(int num_frames, int window);
+// The frame pairs (i < j) matched for `num_frames` frames: all of them (window 0), or those with
+// j − i <= window, and with `quadratic_overlap` also those with j − i a power of two. In order of
+// i, then j.
+std::vector<std::pair<int, int>> ImageSetPairs(int num_frames, int window,
+                                               bool quadratic_overlap = false);
 
 // Matches the frames of `sequence` (as opened, e.g. resized). A combined detector's components are
 // detected, described and matched one by one (features of different detectors are never matched

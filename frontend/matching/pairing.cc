@@ -258,15 +258,34 @@ bool MatchesByDescriptors(FeatureMatcher matcher, const PairingChoice& choice) {
          (choice.measured && !choice.looks_like_video);
 }
 
+bool IsVideo(const PairingChoice& choice) {
+  return choice.chosen.mode == PairingMode::kSequential ||
+         (choice.chosen.mode == PairingMode::kWindow &&
+          choice.requested.mode == PairingMode::kWindow);
+}
+
 ImageSetMatchingOptions ImageSetMatchingOptionsForPairing(const Pairing& pairing,
                                                           const TrackerOptions& tracker,
                                                           int num_threads) {
   COMIC_CHECK(pairing.mode != PairingMode::kAuto, kInvalidArgument,
               "pairing: choose a pairing (ChoosePairing) before setting up the matching");
   ImageSetMatchingOptions options;
-  options.window = pairing.mode == PairingMode::kExhaustive ? 0
-                   : pairing.mode == PairingMode::kWindow   ? pairing.window
-                                                            : 1;
+  switch (pairing.mode) {
+    case PairingMode::kAuto:
+    case PairingMode::kExhaustive:
+      options.window = 0;
+      break;
+    case PairingMode::kWindow:
+      options.window = pairing.window;
+      break;
+    case PairingMode::kSequential:
+      // A video by descriptors is matched as COLMAP's sequential matcher does by default: each
+      // frame with the next 10 and with those 2^k after it, so that tracks continue across a
+      // few bad frames and the far pairs tie the trajectory together.
+      options.window = kSequentialDescriptorWindow;
+      options.quadratic_overlap = true;
+      break;
+  }
   options.min_response = tracker.min_response;
   options.max_features = tracker.max_features;
   options.num_threads = num_threads;

@@ -124,8 +124,18 @@ FeatureMatcher ParseFeatureMatcher(const std::string& name);
 // COLMAP's exhaustive matcher).
 bool MatchesByDescriptors(FeatureMatcher matcher, const PairingChoice& choice);
 
+// The frames are in time order (a video, or the folder of its frames): the pairing chosen is
+// sequential, or a window of frames was asked for (auto picks a window only for a large image
+// set).
+bool IsVideo(const PairingChoice& choice);
+
+// The frames after each frame that a video matched by descriptors pairs it with (COLMAP's
+// sequential matcher's default overlap), besides those 2^k after it.
+inline constexpr int kSequentialDescriptorWindow = 10;
+
 // The descriptor matching of `choice` (not kAuto): every pair for kExhaustive, the next K frames
-// for kWindow K, the next frame for kSequential; the features selected as `tracker` selects them
+// for kWindow K, the next kSequentialDescriptorWindow frames and those 2^k after each frame for
+// kSequential; the features selected as `tracker` selects them
 // (min_response, max_features); `num_threads` threads.
 ImageSetMatchingOptions ImageSetMatchingOptionsForPairing(const Pairing& pairing,
                                                           const TrackerOptions& tracker,

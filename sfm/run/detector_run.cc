@@ -78,8 +78,9 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
                         const RunCallbacks& callbacks) {
   const frontend::DetectorOptions detector_options = RunDetectorOptions(detector, options);
   const std::unique_ptr<frontend::Detector> made = frontend::MakeDetector(detector_options);
-  SequenceReconstructionOptions sfm_options = MakeSequenceReconstructionOptions(
-      options, inputs.tracker, inputs.camera.refine_intrinsics, inputs.image_set);
+  SequenceReconstructionOptions sfm_options =
+      MakeSequenceReconstructionOptions(options, inputs.tracker, inputs.camera.refine_intrinsics,
+                                        inputs.image_set, frontend::IsVideo(inputs.pairing));
   if (callbacks.adjustment_progress) {
     sfm_options.mapper.global_ba.progress = [&](const BundleAdjustmentProgress& progress) {
       callbacks.adjustment_progress(detector, progress);

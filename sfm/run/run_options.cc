@@ -101,7 +101,10 @@ void ReconstructionRunOptions::Check() const {
 
 SequenceReconstructionOptions MakeSequenceReconstructionOptions(
     const ReconstructionRunOptions& run, const frontend::TrackerOptions& tracker,
-    bool refine_intrinsics, const std::optional<frontend::ImageSetMatchingOptions>& image_set) {
+    bool refine_intrinsics, const std::optional<frontend::ImageSetMatchingOptions>& image_set,
+    bool video) {
+  // Frames without an order: an image set matched by descriptors.
+  const bool unordered = image_set.has_value() && !video;
   SequenceReconstructionOptions options;
   options.tracker = tracker;
   options.image_set = image_set;
@@ -114,17 +117,17 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
   // track of two views is often all a sparse ring has (docs/sfm.md "Two-view tracks and the
   // global loss"), and for image sets matched by descriptors.
   options.mapper.mapper.ignore_two_view_tracks =
-      !run.two_view_tracks && tracker.match_window <= 1 && !image_set;
+      !run.two_view_tracks && tracker.match_window <= 1 && !unordered;
   options.mapper.local_ba_num_images = run.local_ba_images;
   options.mapper.global_ba_growth_ratio = run.global_ba_growth;
   options.mapper.global_ba_max_images = run.global_ba_max_images;
   options.mapper.mapper.init_tri_angle_deg = run.init_angle;
   options.mapper.mapper.init_max_frame_gap = run.init_max_gap;
   // An image set's frame order says nothing about which views are near: any two may start.
-  if (image_set) options.mapper.mapper.init_max_frame_gap = 1 << 30;
+  if (unordered) options.mapper.mapper.init_max_frame_gap = 1 << 30;
   options.mapper.max_working_image_size = run.max_working_size;
-  options.mapper.keyframes_only = run.keyframes && !image_set;
-  options.mapper.close_loops = run.loop_closure && !image_set;
+  options.mapper.keyframes_only = run.keyframes && !unordered;
+  options.mapper.close_loops = run.loop_closure && !unordered;
   options.mapper.loop_closure.max_move_per_path = run.loop_closure_max_move;
   // `threads` is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no output may depend

@@ -138,10 +138,14 @@ struct ReconstructionRunOptions {
 // The SfM options of one run: the mapping flags, the tracker options resolved for the frames, and
 // the self-calibration rule (a camera no calibration gave has its focal length and distortion
 // refined unless --fixed-intrinsics; camera_resolution.h), and the descriptor matching of an
-// image set (`image_set`, RunInputs). Check()ed.
+// image set (`image_set`, RunInputs). `video`: the frames are in time order (a video, or a
+// folder of its frames), whatever matched them: the mapper may then lean on that order (the
+// initial pair near in time, keyframes, loop closure, poses through gaps); an unordered image
+// set matched by descriptors gets none of it. Check()ed.
 SequenceReconstructionOptions MakeSequenceReconstructionOptions(
     const ReconstructionRunOptions& options, const frontend::TrackerOptions& tracker,
     bool refine_intrinsics,
-    const std::optional<frontend::ImageSetMatchingOptions>& image_set = std::nullopt);
+    const std::optional<frontend::ImageSetMatchingOptions>& image_set = std::nullopt,
+    bool video = false);
 
 }  // namespace comic::sfm

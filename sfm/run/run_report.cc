@@ -107,6 +107,8 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
   const Camera& c = inputs.camera.camera;
   const frontend::TrackerOptions& tracker = inputs.tracker;
   const io::ImageSequenceOptions& sequence = options.sequence;
+  // An image set matched by descriptors: no frame order for the mapper to use.
+  const bool unordered = inputs.image_set.has_value() && !frontend::IsVideo(inputs.pairing);
   return {{"frames", options.frames},
           {"first", sequence.first_frame},
           {"last", sequence.last_frame},
@@ -146,17 +148,16 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"ignore_gt_intrinsics", options.camera.ignore_gt_intrinsics},
           {"camera_model", options.camera.camera_model},
           {"retriangulate", !options.no_retriangulate},
-          {"two_view_tracks",
-           options.two_view_tracks || tracker.match_window > 1 || inputs.image_set.has_value()},
+          {"two_view_tracks", options.two_view_tracks || tracker.match_window > 1 || unordered},
           {"local_ba_images", options.local_ba_images},
           {"global_ba_growth", options.global_ba_growth},
           {"global_ba_max_images", options.global_ba_max_images},
           {"init_angle_deg", options.init_angle},
-          {"keyframes", options.keyframes && !inputs.image_set},
-          {"loop_closure", options.loop_closure && !inputs.image_set},
+          {"keyframes", options.keyframes && !unordered},
+          {"loop_closure", options.loop_closure && !unordered},
           {"loop_closure_max_move", options.loop_closure_max_move},
-          {"init_max_gap", inputs.image_set ? nlohmann::json("all frames (image set)")
-                                            : nlohmann::json(options.init_max_gap)},
+          {"init_max_gap", unordered ? nlohmann::json("all frames (image set)")
+                                     : nlohmann::json(options.init_max_gap)},
           {"max_working_size", options.max_working_size},
           {"input_size",
            {inputs.sequence->SourceFrameSize().width, inputs.sequence->SourceFrameSize().height}},

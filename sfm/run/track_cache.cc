@@ -210,6 +210,7 @@ void AddImageSet(const frontend::ImageSetMatchingOptions& o, KeyText& key) {
   COMIC_KEY(p, o, min_response);
   COMIC_KEY(p, o, max_features);
   COMIC_KEY(p, o, window);
+  COMIC_KEY(p, o, quadratic_overlap);
   key.Add(p + "descriptor", o.descriptor.has_value());
   if (o.descriptor) {
     const frontend::DescriptorOptions& d = *o.descriptor;

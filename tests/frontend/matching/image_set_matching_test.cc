@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -199,6 +200,17 @@ TEST(ImageSetMatching, PairsAndOptions) {
   EXPECT_EQ(ImageSetPairs(4, 1), (std::vector<std::pair<int, int>>{{0, 1}, {1, 2}, {2, 3}}));
   EXPECT_EQ(ImageSetPairs(4, 2).size(), 5u);
   EXPECT_TRUE(ImageSetPairs(1, 0).empty());
+  // COLMAP's quadratic overlap: past the window, the frames 2^k after each frame.
+  EXPECT_EQ(
+      ImageSetPairs(6, 1, true),
+      (std::vector<std::pair<int, int>>{
+          {0, 1}, {0, 2}, {0, 4}, {1, 2}, {1, 3}, {1, 5}, {2, 3}, {2, 4}, {3, 4}, {3, 5}, {4, 5}}));
+  EXPECT_EQ(ImageSetPairs(4, 0, true).size(), 6u);  // every pair already
+  // 300 frames, window 10: 10 each (fewer at the end) plus 16, 32, ..., 256 where they fit.
+  const auto pairs = ImageSetPairs(300, 10, true);
+  EXPECT_EQ(std::count(pairs.begin(), pairs.end(), std::make_pair(0, 256)), 1);
+  EXPECT_EQ(std::count(pairs.begin(), pairs.end(), std::make_pair(0, 12)), 0);
+  EXPECT_EQ(std::count(pairs.begin(), pairs.end(), std::make_pair(100, 132)), 1);
   ImageSetMatchingOptions options;
   EXPECT_EQ(options.verification.min_num_inliers, 15);  // COLMAP's defaults
   EXPECT_EQ(options.verification.max_error_px, 4.0);

@@ -124,7 +124,10 @@ TEST(Pairing, ImageSetsAndExhaustivePairsAreMatchedByDescriptors) {
   EXPECT_EQ(all.min_response, 0.5f);
   EXPECT_EQ(all.num_threads, 3);
   EXPECT_EQ(ImageSetMatchingOptionsForPairing({PairingMode::kWindow, 7}, tracker, 0).window, 7);
-  EXPECT_EQ(ImageSetMatchingOptionsForPairing({PairingMode::kSequential, 0}, tracker, 0).window, 1);
+  const ImageSetMatchingOptions sequential =
+      ImageSetMatchingOptionsForPairing({PairingMode::kSequential, 0}, tracker, 0);
+  EXPECT_EQ(sequential.window, kSequentialDescriptorWindow);
+  EXPECT_TRUE(sequential.quadratic_overlap);
   EXPECT_THROW(ImageSetMatchingOptionsForPairing({PairingMode::kAuto, 0}, tracker, 0), Error);
 }
 
