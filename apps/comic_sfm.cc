@@ -41,6 +41,7 @@ struct CommandLine {
 void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, CommandLine* c) {
   parser.AddPositional("FRAMES", "folder of images, or video file", &o->frames);
   apps::AddDetectorFlag(parser, &c->detector);
+  apps::AddScaleLevelsFlag(parser, &o->detector_options.scale_space.num_levels);
   parser.AddFlag(
       "compare",
       "run every detector of --detectors on the same frames; writes --output/<detector>/ "

@@ -73,6 +73,7 @@ void DetectorOptions::Check() const {
   if (name == "hessian") hessian.Check();
   if (name == "mser") mser.Check();
   if (name == "fast") fast.Check();
+  scale_space.Check();
 }
 
 std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options) {
@@ -86,12 +87,22 @@ std::unique_ptr<Detector> MakeDetector(const DetectorOptions& options) {
     }
     return std::make_unique<CombinedDetector>(std::move(components));
   }
-  if (options.name == "comic") return std::make_unique<ComicDirectDetector>(options.comic);
-  if (options.name == "comic-paper") return std::make_unique<ComicDetector>(options.comic_paper);
-  if (options.name == "harris") return std::make_unique<HarrisDetector>(options.harris);
-  if (options.name == "hessian") return std::make_unique<HessianDetector>(options.hessian);
-  if (options.name == "mser") return std::make_unique<MserDetector>(options.mser);
-  return std::make_unique<FastDetector>(options.fast);
+  std::unique_ptr<Detector> detector;
+  if (options.name == "comic") {
+    detector = std::make_unique<ComicDirectDetector>(options.comic);
+  } else if (options.name == "comic-paper") {
+    detector = std::make_unique<ComicDetector>(options.comic_paper);
+  } else if (options.name == "harris") {
+    detector = std::make_unique<HarrisDetector>(options.harris);
+  } else if (options.name == "hessian") {
+    detector = std::make_unique<HessianDetector>(options.hessian);
+  } else if (options.name == "mser") {
+    detector = std::make_unique<MserDetector>(options.mser);
+  } else {
+    detector = std::make_unique<FastDetector>(options.fast);
+  }
+  if (options.scale_space.num_levels == 1) return detector;
+  return std::make_unique<ScaleSpaceDetector>(std::move(detector), options.scale_space);
 }
 
 std::unique_ptr<Detector> MakeDetector(const std::string& name) {

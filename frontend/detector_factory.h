@@ -24,6 +24,7 @@
 #include "frontend/comic/comic_detector.h"
 #include "frontend/comic/comic_direct_detector.h"
 #include "frontend/detector.h"
+#include "frontend/scale_space_detector.h"
 
 namespace comic::frontend {
 
@@ -39,6 +40,10 @@ struct DetectorOptions {
   HessianDetectorOptions hessian;
   MserDetectorOptions mser;
   FastDetectorOptions fast;
+  // Every detector of the name in scale space (ScaleSpaceDetector): num_levels 1, the default, is
+  // the detector alone. A combined name puts each component in scale space on its own, so that
+  // its features are still tracked component by component.
+  ScaleSpaceDetectorOptions scale_space;
 
   // Throws comic::Error(kInvalidArgument) for an unknown name (listing the valid ones) or bad
   // options of the named detector.

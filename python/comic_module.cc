@@ -223,6 +223,7 @@ frontend::DetectorOptions MakeDetectorOptions(const std::string& name, const py:
   COMIC_CHECK(name.find('+') == std::string::npos, kInvalidArgument,
               "detector_options are one detector's; '" << name << "' names several");
   OptionTable table = DetectorOptionTable(&detector_options);
+  table.emplace("scale_levels", Field(&detector_options.scale_space.num_levels));
   if (!threads) table.erase("threads");
   ApplyOptions(options, table, "detector '" + name + "'");
   detector_options.Check();
@@ -796,6 +797,7 @@ Setter WriteFrames(std::string* field, const char* implicit) {
 // comic_sfm's options by their flags' names (apps/comic_sfm.cc), into the run's options.
 OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet) {
   OptionTable table = {{"detector", Field(&o->detector)},
+                       {"scale_levels", Field(&o->detector_options.scale_space.num_levels)},
                        {"compare", Field(&o->compare)},
                        {"detectors", Field(&o->detectors)},
                        {"intrinsics", Field(&o->camera.intrinsics)},
@@ -865,8 +867,13 @@ py::dict Reconstruct(const std::string& frames, const py::dict& options,
   if (!detector_options.empty()) {
     COMIC_CHECK(!run.compare, kInvalidArgument,
                 "detector_options are one detector's, not --compare's");
+    const int scale_levels = run.detector_options.scale_space.num_levels;  // scale_levels=
     run.detector_options =
         MakeDetectorOptions(run.DetectorList().front(), detector_options, /*threads=*/false);
+    // detector_options' own scale_levels wins over the keyword's only when it is given.
+    if (!detector_options.contains("scale_levels")) {
+      run.detector_options.scale_space.num_levels = scale_levels;
+    }
   }
   const sfm::RunCallbacks callbacks = RunCallbacksFor(callback, quiet, "comic.reconstruct");
   sfm::ReconstructionRunResult result;

@@ -44,6 +44,13 @@ void AddDetectorFlag(ArgParser& parser, std::string* name) {
                    name);
 }
 
+void AddScaleLevelsFlag(ArgParser& parser, int* levels) {
+  parser.AddOption("scale-levels", "N",
+                   "detect on N levels of an image pyramid, each half the size of the one before "
+                   "(1 = the image as given only); features keep their level's scale",
+                   levels);
+}
+
 void AddDetectorListFlag(ArgParser& parser, std::string* list) {
   parser.AddOption("detectors", "LIST", "comma-separated detectors, one run each (empty = all)",
                    list);

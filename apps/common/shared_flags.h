@@ -24,6 +24,9 @@ void AddJsonFlag(ArgParser& parser, std::string* path);
 void AddResizeHeightFlag(ArgParser& parser, int* height);
 // --detector NAME: one of frontend::DetectorNames() (listed in the meaning).
 void AddDetectorFlag(ArgParser& parser, std::string* name);
+// --scale-levels N: every detector on N levels of an image pyramid, each half the size of the
+// one before (frontend/scale_space_detector.h); 1 = the image as given only.
+void AddScaleLevelsFlag(ArgParser& parser, int* levels);
 // --detectors LIST: comma-separated detector names, one run each.
 void AddDetectorListFlag(ArgParser& parser, std::string* list);
 // --max-features N: the N strongest features kept per frame (0 = all).

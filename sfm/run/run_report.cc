@@ -127,6 +127,7 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"gt", options.gt.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.gt)},
           {"gt_format", io::GroundTruthFormatName(inputs.gt_format)},
           {"max_features", tracker.max_features},
+          {"scale_levels", options.detector_options.scale_space.num_levels},
           {"search_radius_px", tracker.matcher.radius},
           {"unpredicted_radius_px", tracker.unpredicted_radius},
           {"matching", PairingToJson(inputs.pairing)},

@@ -32,7 +32,8 @@ COMIC_KEY_COVERS(frontend::HarrisDetectorOptions, 40);
 COMIC_KEY_COVERS(frontend::HessianDetectorOptions, 24);
 COMIC_KEY_COVERS(frontend::MserDetectorOptions, 32);
 COMIC_KEY_COVERS(frontend::FastDetectorOptions, 8);
-COMIC_KEY_COVERS(frontend::DetectorOptions, 320);
+COMIC_KEY_COVERS(frontend::ScaleSpaceDetectorOptions, 32);
+COMIC_KEY_COVERS(frontend::DetectorOptions, 352);
 COMIC_KEY_COVERS(frontend::TrackerOptions, 312);
 COMIC_KEY_COVERS(frontend::PatchMatcherOptions, 80);
 COMIC_KEY_COVERS(frontend::MatchVerificationOptions, 40);
@@ -134,6 +135,15 @@ void AddDetector(const frontend::DetectorOptions& options, KeyText& key) {
       throw Error(ErrorKind::kInvalidArgument,
                   "track cache: the options of detector '" + name + "' are not in the key");
     }
+  }
+  // The pyramid only when there is one: with one level the other fields change nothing, and the
+  // keys of caches made before the pyramid existed stay as they were.
+  const frontend::ScaleSpaceDetectorOptions& s = options.scale_space;
+  if (s.num_levels > 1) {
+    COMIC_KEY("scale_space.", s, num_levels);
+    COMIC_KEY("scale_space.", s, level_factor);
+    COMIC_KEY("scale_space.", s, duplicate_radius_px);
+    COMIC_KEY("scale_space.", s, min_level_size);
   }
 }
 

@@ -62,6 +62,14 @@ TEST(TrackCacheKey, FollowsTheFramesTheDetectorAndTheTrackerNotTheMapper) {
   frontend::DetectorOptions harris = detector;
   harris.harris.k = 0.05;
   EXPECT_NE(KeyOf(frames, harris, options), key);
+  frontend::DetectorOptions pyramid = detector;
+  pyramid.scale_space.level_factor = 3.0;  // with one level the factor changes nothing
+  EXPECT_EQ(KeyOf(frames, pyramid, options), key);
+  pyramid.scale_space.num_levels = 3;
+  const uint64_t three_levels = KeyOf(frames, pyramid, options);
+  EXPECT_NE(three_levels, key);
+  pyramid.scale_space.duplicate_radius_px = 2.0;
+  EXPECT_NE(KeyOf(frames, pyramid, options), three_levels);
   frontend::DetectorOptions fast = detector;
   fast.name = "fast";
   EXPECT_NE(KeyOf(frames, fast, options), key);
@@ -94,7 +102,8 @@ TEST(TrackCacheKey, TextNamesEverySetting) {
         "frames.size=1226x370\n", "frame=000001.png "}) {
     EXPECT_NE(text.find(line), std::string::npos) << line << " not in\n" << text;
   }
-  EXPECT_EQ(text.find("harris."), std::string::npos);  // only the detectors run
+  EXPECT_EQ(text.find("harris."), std::string::npos);       // only the detectors run
+  EXPECT_EQ(text.find("scale_space."), std::string::npos);  // one level: no pyramid
   EXPECT_EQ(TrackCacheFile("c", "harris", 0xabcull), "c/tracks-harris-0000000000000abc.bin");
 }
 
