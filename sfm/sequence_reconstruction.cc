@@ -49,8 +49,9 @@ SequenceTracking TrackFrames(const io::ImageSequence& sequence, const frontend::
   const auto start = std::chrono::steady_clock::now();
   SequenceTracking tracking;
   if (options.image_set) {
-    frontend::ImageSetMatching matched =
-        frontend::MatchImageSet(sequence, detector, *options.image_set, tracking_progress);
+    frontend::ImageSetMatching matched = frontend::MatchImageSet(
+        sequence, detector, *options.image_set,
+        frontend::ProgressInFrames(tracking_progress, sequence.NumFrames()));
     tracking.tracks = std::move(matched.tracks);
     tracking.track_building = matched.track_building;
     tracking.image_set_matching = matched.summary;

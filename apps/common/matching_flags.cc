@@ -12,12 +12,15 @@ void AddMatchingFlag(ArgParser& parser, std::string* matching) {
 }
 
 void AddMatcherFlag(ArgParser& parser, std::string* matcher) {
-  parser.AddOption("matcher", "M",
-                   "how the pairs are matched: patches (default: the patch tracker), descriptors "
-                   "(SIFT descriptors of every feature, with ratio test, cross check and "
-                   "fundamental-matrix verification as COLMAP's exhaustive matcher) or auto "
-                   "(descriptors for an image set, the patch tracker for a video)",
-                   matcher);
+  parser.AddOption(
+      "matcher", "M",
+      "how the pairs are matched: auto (default: descriptors for a video, the patch "
+      "tracker's image-set set-up for an image set), descriptors (SIFT descriptors of every "
+      "feature, ratio test, cross check and fundamental-matrix verification of every pair; a "
+      "video's frames each with the next 10 and those 2^k after it, as COLMAP's sequential "
+      "matcher; an image set's every pair) or patches (the patch tracker: faster, for clean "
+      "video)",
+      matcher);
 }
 
 }  // namespace comic::apps

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <utility>
 
@@ -273,6 +274,16 @@ void ImageSetMatchingOptions::Check() const {
   if (descriptor) descriptor->Check();
   matching.Check();
   verification.Check();
+}
+
+ImageSetMatchingProgress ProgressInFrames(std::function<void(size_t, size_t)> progress,
+                                          size_t num_frames) {
+  if (!progress) return {};
+  auto told = std::make_shared<size_t>(0);
+  return [progress = std::move(progress), num_frames, told](size_t done, size_t total) {
+    const size_t frames = total == 0 ? num_frames : done * num_frames / total;
+    while (*told < frames) progress(++*told, num_frames);
+  };
 }
 
 std::vector<std::pair<int, int>> ImageSetPairs(int num_frames, int window, bool quadratic_overlap) {

@@ -102,6 +102,11 @@ struct ImageSetMatching {
 // Called with (work done, total work): frames described, then pairs matched, counted together.
 using ImageSetMatchingProgress = std::function<void(size_t done, size_t total)>;
 
+// `progress` (frames done, frames) told the work of MatchImageSet in frames, as the patch tracker
+// tells its own: frame k of n once k/n of the steps are done, each k once, in order.
+ImageSetMatchingProgress ProgressInFrames(std::function<void(size_t, size_t)> progress,
+                                          size_t num_frames);
+
 // The frame pairs (i < j) matched for `num_frames` frames: all of them (window 0), or those with
 // j − i <= window, and with `quadratic_overlap` also those with j − i a power of two. In order of
 // i, then j.

@@ -119,9 +119,8 @@ enum class FeatureMatcher { kAuto, kPatches, kDescriptors };
 const char* FeatureMatcherName(FeatureMatcher matcher);
 FeatureMatcher ParseFeatureMatcher(const std::string& name);
 
-// Whether `choice` is matched by descriptors: kDescriptors always, kPatches never, kAuto for an
-// image set (the frames measured as not a video) and for the exhaustive pairing (every pair: as
-// COLMAP's exhaustive matcher).
+// Whether `choice` is matched by descriptors: kDescriptors always, kPatches never, kAuto for a
+// video (IsVideo; an image set keeps the patch tracker's image-set set-up, docs/matching.md).
 bool MatchesByDescriptors(FeatureMatcher matcher, const PairingChoice& choice);
 
 // The frames are in time order (a video, or the folder of its frames): the pairing chosen is

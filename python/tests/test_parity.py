@@ -25,7 +25,8 @@ TIME_COLUMNS = {"wall time s", "tracking s", "mapping s", "local BA s", "global 
 
 def without_durations(value):
     """A report without its measured durations: time_s keeps only its counts (num_*), a table
-    row loses its duration columns."""
+    row loses its duration columns, the CPU seconds of a stage (image_set_matching's *_cpu_s)
+    go."""
     if isinstance(value, dict):
         return {
             key: (
@@ -34,7 +35,7 @@ def without_durations(value):
                 else without_durations(item)
             )
             for key, item in value.items()
-            if key not in TIME_COLUMNS
+            if key not in TIME_COLUMNS and not key.endswith("_cpu_s")
         }
     if isinstance(value, list):
         return [without_durations(item) for item in value]

@@ -95,7 +95,10 @@ frontend::FeatureTracks Track(const ColmapExportRunOptions& options,
   const auto detector = frontend::MakeDetector(detector_options);
   if (callbacks.stage_started) callbacks.stage_started(RunStage::kTracking, options.detector);
   if (image_set) {
-    return frontend::MatchImageSet(sequence, *detector, *image_set, callbacks.frame_done).tracks;
+    return frontend::MatchImageSet(
+               sequence, *detector, *image_set,
+               frontend::ProgressInFrames(callbacks.frame_done, sequence.NumFrames()))
+        .tracks;
   }
   frontend::FeatureTracks tracks =
       frontend::TrackSequenceWithDetector(sequence, *detector, tracker, callbacks.frame_done)

@@ -39,7 +39,7 @@ struct ColmapExportRunOptions {
   // Each detector's own settings (Python's detector_options); comic's threads from `threads`.
   frontend::DetectorOptions detector_options;
   std::string matching = "auto";      // --matching
-  std::string matcher = "patches";    // --matcher (ReconstructionRunOptions::matcher)
+  std::string matcher = "auto";       // --matcher (ReconstructionRunOptions::matcher)
   TrackerSettings tracker;            // --max-features, --search-radius, ...
   io::ImageSequenceOptions sequence;  // --first, --last, --stride, --resize-height, --max-pixels
   int threads = 0;                    // --threads (0: one per core)

@@ -364,6 +364,13 @@ SequenceTracking TrackFramesThroughCache(
     file.tracks = std::move(tracking.tracks);  // lent, not copied: a long clip's tracks are large
     file.track_building = tracking.track_building;
     file.image_set_matching = tracking.image_set_matching;
+    // Measured CPU times are left out: the same frames and options give the same file, byte for
+    // byte, and a run read from the cache spent no time matching.
+    if (file.image_set_matching) {
+      frontend::ImageSetMatchingSummary& s = *file.image_set_matching;
+      s.detection_cpu_s = s.description_cpu_s = s.matching_cpu_s = s.verification_cpu_s =
+          s.track_building_cpu_s = 0.0;
+    }
     frontend::WriteTrackFile(use->file, file);
     tracking.tracks = std::move(file.tracks);
   }

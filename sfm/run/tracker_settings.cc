@@ -94,9 +94,10 @@ frontend::TrackerOptions TrackerOptionsForRun(const TrackerSettings& settings,
 std::optional<frontend::ImageSetMatchingOptions> ImageSetMatchingForRun(
     const std::string& matcher, const frontend::PairingChoice& choice,
     const frontend::TrackerOptions& tracker, int threads) {
-  if (!frontend::MatchesByDescriptors(frontend::ParseFeatureMatcher(matcher), choice)) {
-    return std::nullopt;
-  }
+  const frontend::FeatureMatcher chosen = frontend::ParseFeatureMatcher(matcher);
+  if (!frontend::MatchesByDescriptors(chosen, choice)) return std::nullopt;
+  // --match-window is the patch tracker's: given with auto, the tracker matches as it says.
+  if (chosen == frontend::FeatureMatcher::kAuto && tracker.match_window > 1) return std::nullopt;
   return frontend::ImageSetMatchingOptionsForPairing(choice.chosen, tracker, threads);
 }
 

@@ -65,7 +65,8 @@ frontend::TrackerOptions TrackerOptionsForRun(const TrackerSettings& settings,
                                               int num_frames);
 
 // The descriptor matching of a run, or std::nullopt when the patch tracker matches
-// (`matcher`: --matcher, frontend::MatchesByDescriptors): the chosen pairs, the features
+// (`matcher`: --matcher, frontend::MatchesByDescriptors; auto with the patch tracker's
+// --match-window given leaves the tracker to it): the chosen pairs, the features
 // `tracker` selects, `threads`. Throws comic::Error(kInvalidArgument) for a bad --matcher.
 std::optional<frontend::ImageSetMatchingOptions> ImageSetMatchingForRun(
     const std::string& matcher, const frontend::PairingChoice& choice,
