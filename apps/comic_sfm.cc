@@ -35,6 +35,7 @@ struct CommandLine {
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   apps::TrackerFlags tracker;
   apps::ObjectRegionFlags region{"", "", 11.0};
+  bool mask_keeps_nonzero = false;  // --mask-keeps-nonzero: COLMAP's mask convention
   bool quiet = false;
 };
 
@@ -161,6 +162,10 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                    "inside FRAMES or --output)",
                    &o->cache);
   apps::AddObjectRegionFlags(parser, &c->region);
+  parser.AddFlag("mask-keeps-nonzero",
+                 "--masks in COLMAP's convention (ImageReader.mask_path): features are removed "
+                 "where a mask is zero; by default (DAVIS annotations) where it is non-zero",
+                 &c->mask_keeps_nonzero);
   parser.AddOption("plot-plane", "P",
                    "trajectory plot plane: auto (x-z for KITTI, else the plane of largest "
                    "spread), xz, xy or yz",
@@ -191,6 +196,7 @@ void FinishOptions(const apps::ArgParser& parser, const CommandLine& c,
   o->sequence.max_pixels = c.max_pixels;
   o->tracker = apps::ToTrackerSettings(c.tracker, parser);
   o->masks = c.region.masks;
+  o->mask_drops_nonzero = !c.mask_keeps_nonzero;
   o->regions = c.region.regions;
   o->boundary_band = c.region.boundary_band;
 }
@@ -276,6 +282,10 @@ int Run(int argc, char** argv) {
       "comic_export_colmap writes with the same options; for a folder of images it needs\n"
       "--resize-height 0, a video's frames it writes as --write-frames does (the folder given,\n"
       "or images/ in --output), and COLMAP's --image_path is that folder.\n"
+      "--masks DIR (one mask per frame, non-zero = a moving object, as DAVIS annotations;\n"
+      "COLMAP's convention with --mask-keeps-nonzero) also removes every feature a mask covers,\n"
+      "or that lies within 2 px of it, before tracking or matching (report.json:\n"
+      "masked_features).\n"
       "--threads: detection and the export; the bundle adjustments run on one thread (Ceres'\n"
       "multi-threaded sums are not bit-for-bit repeatable). Progress goes to stdout (-q: off);\n"
       "a failed run writes report.json with a diagnosis, tracks.db and, when the camera only\n"

@@ -828,6 +828,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"threads", Field(&o->threads)},
                        {"cache", Field(&o->cache)},
                        {"masks", Field(&o->masks)},
+                       {"mask_drops_nonzero", Field(&o->mask_drops_nonzero)},
                        {"regions", Field(&o->regions)},
                        {"boundary_band", Field(&o->boundary_band)},
                        {"plot_plane", Field(&o->plot_plane)},

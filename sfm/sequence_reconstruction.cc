@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -48,19 +49,37 @@ SequenceTracking TrackFrames(const io::ImageSequence& sequence, const frontend::
   options.Check();
   const auto start = std::chrono::steady_clock::now();
   SequenceTracking tracking;
+  // The masks act here, once, for both paths: each frame's detection loses its masked features
+  // before the tracker or the matcher selects from it.
+  std::atomic<int64_t> masked(0);
+  frontend::DetectionFilter filter;
+  if (options.feature_masks) {
+    COMIC_CHECK(options.feature_masks->NumFrames() == sequence.NumFrames() &&
+                    (sequence.NumFrames() == 0 ||
+                     options.feature_masks->MaskSize() == sequence.FrameSize()),
+                kInvalidArgument,
+                "feature masks: " << options.feature_masks->NumFrames() << " masks of "
+                                  << options.feature_masks->MaskSize().width << "x"
+                                  << options.feature_masks->MaskSize().height << " for "
+                                  << sequence.NumFrames() << " frames of "
+                                  << sequence.FrameSize().width << "x"
+                                  << sequence.FrameSize().height);
+    filter = options.feature_masks->Filter(&masked);
+  }
   if (options.image_set) {
     frontend::ImageSetMatching matched = frontend::MatchImageSet(
         sequence, detector, *options.image_set,
-        frontend::ProgressInFrames(tracking_progress, sequence.NumFrames()));
+        frontend::ProgressInFrames(tracking_progress, sequence.NumFrames()), filter);
     tracking.tracks = std::move(matched.tracks);
     tracking.track_building = matched.track_building;
     tracking.image_set_matching = matched.summary;
   } else {
-    frontend::TrackingResult result =
-        frontend::TrackSequenceWithDetector(sequence, detector, options.tracker, tracking_progress);
+    frontend::TrackingResult result = frontend::TrackSequenceWithDetector(
+        sequence, detector, options.tracker, tracking_progress, filter);
     tracking.tracks = std::move(result.tracks);
     tracking.track_building = result.track_building;
   }
+  tracking.masked_features = masked.load();
   tracking.time_s = Seconds(start);
   return tracking;
 }
@@ -82,6 +101,7 @@ SequenceReconstruction ReconstructFromTracks(const io::ImageSequence& sequence,
   run.tracks = std::move(tracking.tracks);
   run.track_building = tracking.track_building;
   run.image_set_matching = tracking.image_set_matching;
+  run.masked_features = tracking.masked_features;
   run.tracking_time_s = tracking.time_s;
   // Loop closure recognises places by the descriptors of the tracked features (the database
   // written afterwards reuses them).

@@ -11,9 +11,12 @@
 //   if (HasModel(run.mapping.status)) { ... run.mapping.reconstruction (the largest model) }
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "frontend/detector.h"
+#include "frontend/feature_masks.h"
 #include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/track.h"
 #include "frontend/matching/tracker.h"
@@ -32,6 +35,10 @@ struct SequenceReconstructionOptions {
   // Image sets: when set, features are matched by descriptors over frame pairs with these options
   // (views far apart, turned, in any order) instead of being tracked (`tracker` is then unused).
   std::optional<frontend::ImageSetMatchingOptions> image_set;
+  // Masks of moving objects (frontend/feature_masks.h), one per frame at the frames' size as
+  // tracked: every feature they drop is removed from each frame's detection before tracking or
+  // matching, on both paths. Shared, not copied: a long clip's masks are large. Null: none.
+  std::shared_ptr<const frontend::FeatureMasks> feature_masks;
   // Incremental mapping.
   IncrementalPipelineOptions mapper;
   // Models whose tracks do not meet are linked through matches between the frames at their
@@ -52,6 +59,8 @@ struct SequenceReconstruction {
   frontend::TrackBuildSummary track_building;
   // With options.image_set: what descriptor matching met and cost.
   std::optional<frontend::ImageSetMatchingSummary> image_set_matching;
+  // Detected features removed by options.feature_masks (before the per-frame max_features cap).
+  int64_t masked_features = 0;
   IncrementalReconstruction mapping;  // in the pixels of the frames (the working size)
   // The size of the frames as stored; the frames were worked on at `frame_size` (resized, e.g. to
   // the working resolution: sfm/working_resolution.h). Models are written in the input's pixels.
@@ -71,6 +80,7 @@ struct SequenceTracking {
   frontend::FeatureTracks tracks;
   frontend::TrackBuildSummary track_building;
   std::optional<frontend::ImageSetMatchingSummary> image_set_matching;  // with options.image_set
+  int64_t masked_features = 0;  // detected features removed by options.feature_masks
   double time_s = 0.0;  // detection and tracking (or description and matching; or a cache read)
 };
 

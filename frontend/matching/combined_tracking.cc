@@ -89,9 +89,10 @@ TrackingResult MergeTrackingResults(const std::vector<TrackingResult>& parts,
 
 TrackingResult TrackSequenceWithDetector(const io::ImageSequence& sequence,
                                          const Detector& detector, const TrackerOptions& options,
-                                         const TrackingProgress& progress) {
+                                         const TrackingProgress& progress,
+                                         const DetectionFilter& filter) {
   const auto* combined = dynamic_cast<const CombinedDetector*>(&detector);
-  if (combined == nullptr) return TrackSequence(sequence, detector, options, progress);
+  if (combined == nullptr) return TrackSequence(sequence, detector, options, progress, filter);
   std::vector<TrackingResult> parts;
   const size_t n = sequence.NumFrames();
   const size_t total = n * combined->NumComponents();
@@ -102,7 +103,8 @@ TrackingResult TrackSequenceWithDetector(const io::ImageSequence& sequence,
         progress(c * n + done, total);
       };
     }
-    parts.push_back(TrackSequence(sequence, combined->Component(c), options, part_progress));
+    parts.push_back(
+        TrackSequence(sequence, combined->Component(c), options, part_progress, filter));
   }
   return MergeTrackingResults(parts, combined->Name());
 }

@@ -32,10 +32,12 @@ TrackingResult MergeTrackingResults(const std::vector<TrackingResult>& parts,
 std::vector<int> FirstFeatureOfEachPart(const std::vector<TrackingResult>& parts, int frame);
 
 // TrackSequence for any detector: a CombinedDetector's components are tracked one by one and
-// merged (progress counts the frames of all components); any other detector is tracked as is.
+// merged (progress counts the frames of all components; `filter` applies to each component's
+// detection); any other detector is tracked as is.
 TrackingResult TrackSequenceWithDetector(const io::ImageSequence& sequence,
                                          const Detector& detector, const TrackerOptions& options,
-                                         const TrackingProgress& progress = {});
+                                         const TrackingProgress& progress = {},
+                                         const DetectionFilter& filter = {});
 
 // The same over grey frames in memory (as TrackFrames).
 TrackingResult TrackFramesWithDetector(const std::vector<cv::Mat>& grays, const Detector& detector,

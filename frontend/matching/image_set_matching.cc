@@ -51,6 +51,7 @@ struct FrameSource {
   cv::Size image_size;
   std::vector<std::string> names;
   FrameReader read;
+  DetectionFilter filter;  // applied to each frame's detection (empty: none)
 };
 
 FeatureSet SelectFeatures(FeatureSet detected, const ImageSetMatchingOptions& options) {
@@ -93,7 +94,9 @@ void DescribeFrames(const FrameSource& source, const Detector& detector,
   std::vector<double> detection_s(source.num_frames, 0.0), description_s(source.num_frames, 0.0);
   ForEachFrame(source, options.num_threads, [&](int frame, const cv::Mat& gray) {
     const double t0 = ThreadCpuSeconds();
-    tracks.features[frame] = SelectFeatures(detector.Detect(gray), options);
+    FeatureSet detected = detector.Detect(gray);
+    if (source.filter) detected = source.filter(frame, std::move(detected));
+    tracks.features[frame] = SelectFeatures(std::move(detected), options);
     const double t1 = ThreadCpuSeconds();
     tracks.descriptors[frame] = DescribeFeatures(gray, tracks.features[frame], describe);
     detection_s[frame] = t1 - t0;
@@ -301,12 +304,14 @@ std::vector<std::pair<int, int>> ImageSetPairs(int num_frames, int window, bool 
 
 ImageSetMatching MatchImageSet(const io::ImageSequence& sequence, const Detector& detector,
                                const ImageSetMatchingOptions& options,
-                               const ImageSetMatchingProgress& progress) {
+                               const ImageSetMatchingProgress& progress,
+                               const DetectionFilter& filter) {
   FrameSource source;
   source.num_frames = static_cast<int>(sequence.NumFrames());
   source.image_size = sequence.FrameSize();
   source.names = sequence.FrameNames();
   source.read = [&sequence](int frame) { return sequence.ReadFrame(frame).gray; };
+  source.filter = filter;
   return MatchSource(source, detector, options, progress);
 }
 

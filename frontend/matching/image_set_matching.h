@@ -28,6 +28,7 @@
 
 #include "frontend/description/sift_descriptor.h"
 #include "frontend/detector.h"
+#include "frontend/feature_masks.h"
 #include "frontend/matching/descriptor_matcher.h"
 #include "frontend/matching/match_verification.h"
 #include "frontend/matching/track.h"
@@ -116,10 +117,12 @@ std::vector<std::pair<int, int>> ImageSetPairs(int num_frames, int window,
 // Matches the frames of `sequence` (as opened, e.g. resized). A combined detector's components are
 // detected, described and matched one by one (features of different detectors are never matched
 // to each other) and the results merged as frontend/matching/combined_tracking.h does. Throws
-// comic::Error for bad options or unreadable frames.
+// comic::Error for bad options or unreadable frames. `filter` (frontend/feature_masks.h), when
+// set, is applied to each frame's detection before the features are selected.
 ImageSetMatching MatchImageSet(const io::ImageSequence& sequence, const Detector& detector,
                                const ImageSetMatchingOptions& options,
-                               const ImageSetMatchingProgress& progress = {});
+                               const ImageSetMatchingProgress& progress = {},
+                               const DetectionFilter& filter = {});
 
 // Adds descriptors to tracks made without them (the patch tracker's): every feature of every frame
 // of `sequence` (the frames the tracks were made from, read again) described with `options`, or

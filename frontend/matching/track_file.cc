@@ -163,6 +163,7 @@ void PutSummaries(const TrackFile& file, Writer* out) {
   out->Put<int32_t>(building.num_conflicting_components);
   out->Put<int32_t>(building.num_dropped_features);
   out->Put<int32_t>(building.num_refused_matches);
+  out->Put<int64_t>(file.masked_features);
   out->Put<uint8_t>(file.image_set_matching.has_value());
   if (!file.image_set_matching) return;
   const ImageSetMatchingSummary& s = *file.image_set_matching;
@@ -184,6 +185,7 @@ void GetSummaries(Reader* in, TrackFile* file) {
   building.num_conflicting_components = in->Get<int32_t>("summary");
   building.num_dropped_features = in->Get<int32_t>("summary");
   building.num_refused_matches = in->Get<int32_t>("summary");
+  file->masked_features = in->Get<int64_t>("summary");
   if (in->Get<uint8_t>("summary") == 0) return;
   ImageSetMatchingSummary& s = file->image_set_matching.emplace();
   s.num_frames = in->Get<int32_t>("summary");

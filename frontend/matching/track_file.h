@@ -26,13 +26,17 @@
 namespace comic::frontend {
 
 // The version ReadTrackFile reads; files of other versions are refused (kInvalidData).
-inline constexpr uint32_t kTrackFileVersion = 1;
+// 2: the count of features removed by masks (masked_features).
+inline constexpr uint32_t kTrackFileVersion = 2;
 
 struct TrackFile {
   uint64_t key = 0;  // the writer's; the reader compares it with its own
   FeatureTracks tracks;
   TrackBuildSummary track_building;
   std::optional<ImageSetMatchingSummary> image_set_matching;
+  // Detected features that masks of moving objects removed (frontend/feature_masks.h): a cached
+  // run reports the same count as the run that made the file.
+  int64_t masked_features = 0;
 };
 
 // The bytes of the file. Throws comic::Error(kInvalidArgument) if `file.tracks` fails Check().

@@ -601,12 +601,14 @@ TrackingResult Tracker::Result() const {
 }
 
 TrackingResult TrackSequence(const io::ImageSequence& sequence, const Detector& detector,
-                             const TrackerOptions& options, const TrackingProgress& progress) {
+                             const TrackerOptions& options, const TrackingProgress& progress,
+                             const DetectionFilter& filter) {
   Tracker tracker(options, detector.Name(), &detector);
   for (size_t i = 0; i < sequence.NumFrames(); ++i) {
     const io::Frame frame = sequence.ReadFrame(i);
-    tracker.AddFrame(frame.gray,
-                     SelectTrackableFeatures(detector.Detect(frame.gray), frame.gray, options),
+    FeatureSet detected = detector.Detect(frame.gray);
+    if (filter) detected = filter(static_cast<int>(i), std::move(detected));
+    tracker.AddFrame(frame.gray, SelectTrackableFeatures(detected, frame.gray, options),
                      frame.name);
     if (progress) progress(i + 1, sequence.NumFrames());
   }

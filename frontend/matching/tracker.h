@@ -64,6 +64,7 @@
 #include <vector>
 
 #include "frontend/detector.h"
+#include "frontend/feature_masks.h"
 #include "frontend/matching/match_verification.h"
 #include "frontend/matching/patch_alignment.h"
 #include "frontend/matching/patch_matcher.h"
@@ -279,8 +280,11 @@ class Tracker {
 };
 
 // Detects on every frame of `sequence` (as opened, e.g. resized), tracks, and reports progress.
+// `filter` (frontend/feature_masks.h), when set, is applied to each frame's detection before the
+// features are selected (e.g. masks of moving objects).
 TrackingResult TrackSequence(const io::ImageSequence& sequence, const Detector& detector,
-                             const TrackerOptions& options, const TrackingProgress& progress = {});
+                             const TrackerOptions& options, const TrackingProgress& progress = {},
+                             const DetectionFilter& filter = {});
 
 // The same over grey frames in memory (all CV_8UC1 of one size); `frame_names` may be empty.
 TrackingResult TrackFrames(const std::vector<cv::Mat>& grays, const Detector& detector,

@@ -81,6 +81,7 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
   SequenceReconstructionOptions sfm_options =
       MakeSequenceReconstructionOptions(options, inputs.tracker, inputs.camera.refine_intrinsics,
                                         inputs.image_set, frontend::IsVideo(inputs.pairing));
+  sfm_options.feature_masks = inputs.feature_masks;
   if (callbacks.adjustment_progress) {
     sfm_options.mapper.global_ba.progress = [&](const BundleAdjustmentProgress& progress) {
       callbacks.adjustment_progress(detector, progress);

@@ -47,7 +47,8 @@ void ReadGroundTruth(const ReconstructionRunOptions& options, RunInputs* inputs)
                            options.gt_partial);
 }
 
-// --regions / --masks: per frame, the object region labelled (boundary band, interior).
+// --regions / --masks: per frame, the object region labelled (boundary band, interior); --masks
+// also remove the features they cover (frontend/feature_masks.h).
 void LabelRegions(const ReconstructionRunOptions& options, RunInputs* inputs) {
   if (options.regions.empty() && options.masks.empty()) return;
   const cv::Size source_size = inputs->sequence->SourceFrameSize();
@@ -59,6 +60,7 @@ void LabelRegions(const ReconstructionRunOptions& options, RunInputs* inputs) {
   } else {
     masks = io::MaskFolder::Open(options.masks);
   }
+  std::vector<cv::Mat> object_masks;
   for (int source_index : inputs->source_indices) {
     cv::Mat mask;
     if (regions) {
@@ -70,8 +72,15 @@ void LabelRegions(const ReconstructionRunOptions& options, RunInputs* inputs) {
                   options.masks << ": no mask for frame " << source_index);
       mask = masks->Read(source_index, source_size);
       if (mask.size() != frame_size) cv::resize(mask, mask, frame_size, 0, 0, cv::INTER_NEAREST);
+      object_masks.push_back(mask);
     }
     inputs->region_labels.push_back(frontend::LabelRegion(mask, options.boundary_band));
+  }
+  if (masks) {
+    frontend::FeatureMaskOptions mask_options;
+    mask_options.drop_nonzero = options.mask_drops_nonzero;
+    inputs->feature_masks =
+        std::make_shared<const frontend::FeatureMasks>(object_masks, mask_options);
   }
 }
 

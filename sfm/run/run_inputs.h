@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/feature_masks.h"
 #include "frontend/matching/image_set_matching.h"
 #include "frontend/matching/pairing.h"
 #include "frontend/matching/tracker.h"
@@ -31,6 +32,9 @@ struct RunInputs {
   std::optional<FrameGroundTruth> ground_truth;
   io::GroundTruthFormat gt_format = io::GroundTruthFormat::kAuto;
   std::vector<cv::Mat> region_labels;  // per frame, empty without --regions / --masks
+  // --masks: the features every detector drops, per frame (mask_drops_nonzero, a 2 px margin;
+  // frontend/feature_masks.h). Null without --masks (--regions only label).
+  std::shared_ptr<const frontend::FeatureMasks> feature_masks;
   PlotPlane plot_plane;
   bool plot_plane_from_estimate = false;  // auto without ground truth: PCA of our centres
   frontend::PairingChoice pairing;        // --matching resolved on the frames

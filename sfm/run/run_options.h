@@ -99,8 +99,15 @@ struct ReconstructionRunOptions {
   // no cache. Not inside an input folder nor inside --output (replaced by each run).
   std::string cache;
 
-  // ---- evaluation
-  std::string masks;            // --masks DIR
+  // ---- evaluation, and moving objects left out
+  // --masks DIR: one mask per source frame (DAVIS annotations). Every feature a mask covers, or
+  // lies within 2 px of, is removed before tracking or matching (frontend/feature_masks.h), and
+  // the points get boundary and interior statistics.
+  std::string masks;
+  // Which mask pixels remove features: true, non-zero (DAVIS: the moving object); false, zero
+  // (COLMAP's ImageReader.mask_path convention). The statistics take non-zero as the object
+  // either way.
+  bool mask_drops_nonzero = true;
   std::string regions;          // --regions FILE
   double boundary_band = 11.0;  // --boundary-band PX
   std::string plot_plane = "auto";

@@ -167,6 +167,7 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"cache", options.cache},
           {"regions", options.regions},
           {"masks", options.masks},
+          {"mask_drops_nonzero", options.mask_drops_nonzero},
           {"boundary_band_px", options.boundary_band}};
 }
 
@@ -182,6 +183,9 @@ nlohmann::json DetectorReportJson(const DetectorRun& run, const ReconstructionRu
                             {"conflicting_components_dropped", building.num_conflicting_components},
                             {"features_dropped", building.num_dropped_features},
                             {"matches_refused", building.num_refused_matches}};
+  // --masks: the detected features they removed (null without masks).
+  json["masked_features"] =
+      inputs.feature_masks ? nlohmann::json(run.run.masked_features) : nlohmann::json(nullptr);
   // --cache: where the tracks were kept, and whether this run read them instead of detecting.
   const TrackCacheUse& cache = run.track_cache;
   json["tracks_from_cache"] = cache.from_cache;

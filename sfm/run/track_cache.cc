@@ -298,6 +298,7 @@ std::optional<SequenceTracking> ReadCachedTracking(const std::string& file, uint
     tracking.tracks = std::move(read.tracks);
     tracking.track_building = read.track_building;
     tracking.image_set_matching = read.image_set_matching;
+    tracking.masked_features = read.masked_features;
     tracking.time_s = Seconds(start);
     return tracking;
   } catch (const Error& e) {
@@ -322,6 +323,10 @@ std::string TrackCacheKeyText(const frontend::DetectorOptions& detector,
   } else {
     AddTracker(options.tracker, key);
   }
+  // The masks decide which features exist: their dropped regions (the convention and the margin
+  // applied) as a hash, or none.
+  key.Add("feature_masks", options.feature_masks ? io::HexDigits(options.feature_masks->Hash())
+                                                 : std::string("none"));
   AddFrames(sequence, key);
   return out.str();
 }
@@ -364,6 +369,7 @@ SequenceTracking TrackFramesThroughCache(
     file.tracks = std::move(tracking.tracks);  // lent, not copied: a long clip's tracks are large
     file.track_building = tracking.track_building;
     file.image_set_matching = tracking.image_set_matching;
+    file.masked_features = tracking.masked_features;
     // Measured CPU times are left out: the same frames and options give the same file, byte for
     // byte, and a run read from the cache spent no time matching.
     if (file.image_set_matching) {

@@ -5,7 +5,8 @@
 //
 // The key is FNV-1a 64 of a canonical text (TrackCacheKeyText) of everything that decides the
 // tracks: the program's version, the detector's name and options, the tracker's options (or the
-// image-set matching's), the frames' size as worked on, and the frames themselves (each file's name
+// image-set matching's), the masks of moving objects (their dropped regions, hashed), the
+// frames' size as worked on, and the frames themselves (each file's name
 // and bytes; a video's bytes and the frame numbers used). Mapper options are not in it: changing
 // them is what the cache is for. Thread counts are not in it either: no output depends on them
 // (docs/sfm.md, determinism).

@@ -1,11 +1,12 @@
 // End to end on real video: the bundled KITTI example (always) and the 51-frame KITTI clip of
 // ../shared/data (the acceptance case: forward motion, every frame in one model, ATE < 1 % of
-// the path).
+// the path); masks of moving objects remove the features they cover on both front-end paths.
 #include "sfm/sequence_reconstruction.h"
 
 #include <gtest/gtest.h>
 
 #include "frontend/detector_factory.h"
+#include "frontend/feature_masks.h"
 #include "io/core/error.h"
 #include "io/datasets/ground_truth_cameras.h"
 #include "sfm/evaluation/ground_truth.h"
@@ -109,6 +110,65 @@ TEST(SequenceReconstruction, TracksMustBeOfTheFrames) {
               std::string::npos)
         << e.what();
   }
+}
+
+// Masks over the left half of three example frames (issue 47): on the patch tracker's path and
+// on the descriptor matcher's, every feature the masks (with their 2 px margin) cover is gone,
+// every other feature is kept as it was without masks, in its order, and the count of dropped
+// features is the count of the detector's candidates in the masks.
+TEST(SequenceReconstruction, MasksRemoveTheFeaturesTheyCoverOnBothPaths) {
+  io::ImageSequenceOptions three;
+  three.last_frame = 2;
+  const io::ImageSequence sequence =
+      io::ImageSequence::Open(test::ExampleDir() + "/image_l", three);
+  const cv::Size size = sequence.FrameSize();
+  std::vector<cv::Mat> object(3, cv::Mat(size, CV_8UC1, cv::Scalar(0)));
+  for (int f = 0; f < 3; ++f) {
+    object[f] = cv::Mat(size, CV_8UC1, cv::Scalar(0));
+    object[f].colRange(0, size.width / 2 + 7 * f).setTo(255);  // moves a little each frame
+  }
+  const auto masks =
+      std::make_shared<const frontend::FeatureMasks>(object, frontend::FeatureMaskOptions());
+  const auto detector = frontend::MakeDetector("harris");
+  int64_t candidates_in_masks = 0;
+  for (int f = 0; f < 3; ++f) {
+    for (const frontend::Feature& feature : detector->Detect(sequence.ReadFrame(f).gray)) {
+      candidates_in_masks += masks->Drops(f, feature.x, feature.y);
+    }
+  }
+  ASSERT_GT(candidates_in_masks, 100);
+
+  SequenceReconstructionOptions patches;
+  patches.tracker.max_features = 0;  // no cap: what the masks leave is kept whole
+  SequenceReconstructionOptions descriptors;
+  descriptors.image_set.emplace();
+  descriptors.image_set->max_features = 0;
+  for (SequenceReconstructionOptions options : {patches, descriptors}) {
+    SCOPED_TRACE(options.image_set ? "descriptors" : "patches");
+    const SequenceTracking plain = TrackFrames(sequence, *detector, options);
+    EXPECT_EQ(plain.masked_features, 0);
+    options.feature_masks = masks;
+    const SequenceTracking masked = TrackFrames(sequence, *detector, options);
+    EXPECT_EQ(masked.masked_features, candidates_in_masks);
+    for (int f = 0; f < 3; ++f) {
+      std::vector<cv::Point2f> expected, kept;
+      for (const frontend::Feature& feature : plain.tracks.features[f]) {
+        if (!masks->Drops(f, feature.x, feature.y)) expected.push_back(feature.Position());
+      }
+      for (const frontend::Feature& feature : masked.tracks.features[f]) {
+        EXPECT_FALSE(masks->Drops(f, feature.x, feature.y)) << feature.x << " " << feature.y;
+        kept.push_back(feature.Position());
+      }
+      EXPECT_EQ(kept, expected) << "frame " << f;
+      EXPECT_LT(kept.size(), plain.tracks.features[f].size());
+    }
+    EXPECT_FALSE(masked.tracks.tracks.empty());
+  }
+  // Masks of other frames are refused.
+  SequenceReconstructionOptions wrong = patches;
+  wrong.feature_masks = std::make_shared<const frontend::FeatureMasks>(
+      std::vector<cv::Mat>(2, object[0]), frontend::FeatureMaskOptions());
+  EXPECT_THROW(TrackFrames(sequence, *detector, wrong), Error);
 }
 
 }  // namespace

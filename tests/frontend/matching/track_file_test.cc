@@ -61,6 +61,7 @@ TrackFile MakeFile(bool with_descriptors) {
     }
   }
   file.track_building = {41, 2, 5, 3};
+  file.masked_features = 7;
   if (with_descriptors) {
     ImageSetMatchingSummary summary;
     summary.num_frames = 3;
@@ -80,6 +81,7 @@ bool SameBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0
 
 void ExpectSame(const TrackFile& a, const TrackFile& b) {
   EXPECT_EQ(a.key, b.key);
+  EXPECT_EQ(a.masked_features, b.masked_features);
   EXPECT_EQ(a.tracks.detector_name, b.tracks.detector_name);
   EXPECT_EQ(a.tracks.image_size, b.tracks.image_size);
   EXPECT_EQ(a.tracks.frame_names, b.tracks.frame_names);
@@ -179,8 +181,8 @@ TEST(TrackFile, SaysWhatIsWrong) {
   EXPECT_NE(DecodeError("P6\n640 480\n255\n").find("t.bin: not a comic track file"),
             std::string::npos);
   std::string other_version = bytes;
-  other_version[12] = 2;  // the version follows the magic and the byte-order marker
-  EXPECT_NE(DecodeError(other_version).find("format version 2, this build reads version 1"),
+  other_version[12] = 3;  // the version follows the magic and the byte-order marker
+  EXPECT_NE(DecodeError(other_version).find("format version 3, this build reads version 2"),
             std::string::npos);
   std::string swapped = bytes;
   std::swap(swapped[8], swapped[11]);

@@ -1,5 +1,6 @@
 // RunReconstruction, the run behind comic_sfm and comic.reconstruct: in memory or into a folder,
-// all or nothing, a failure as a result with its report and tracks, progress through callbacks.
+// all or nothing, a failure as a result with its report and tracks, progress through callbacks;
+// masks of moving objects leave no point on them.
 #include "sfm/run/reconstruction_run.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/image/mask_folder.h"
 #include "tests/test_support.h"
 
 namespace comic::sfm {
@@ -156,6 +158,43 @@ TEST(RunReconstruction, AFailedRunIsAResultWithItsReportAndTracks) {
   EXPECT_TRUE(io::PathExists(dir.File("out/tracks.db")));
   EXPECT_FALSE(io::PathExists(dir.File("out/points3D.txt")));
   EXPECT_EQ(run.report_json["diagnosis"]["message"], run.diagnosis.message);
+}
+
+// DAVIS car-shadow with its masks of the car (issue 47): every 3-D point of every model is
+// observed only outside the masks, and the report counts the features the masks removed.
+TEST(RunReconstruction, MasksLeaveNoPointObservedOnTheMovingObject) {
+  COMIC_REQUIRE_SHARED_DATA();
+  const std::string davis = test::SharedDataDir() + "/davis2016_car-shadow";
+  ReconstructionRunOptions options;
+  options.frames = davis + "/JPEGImages/480p/car-shadow";
+  options.masks = davis + "/Annotations/480p/car-shadow";
+  const ReconstructionRunResult result = RunReconstruction(options);
+  ASSERT_EQ(result.runs.size(), 1u);
+  const DetectorRun& run = result.runs.front();
+  ASSERT_TRUE(run.success()) << run.diagnosis.message;
+  EXPECT_GT(run.report_json["masked_features"].get<int64_t>(), 1000);
+  const io::MaskFolder masks = io::MaskFolder::Open(options.masks);
+  const RunInputs& inputs = result.inputs;
+  std::vector<const Reconstruction*> models = {&run.run.mapping.reconstruction};
+  for (const IncrementalModel& model : run.run.mapping.other_models) {
+    models.push_back(&model.reconstruction);
+  }
+  size_t observations = 0;
+  for (const Reconstruction* model : models) {
+    for (const auto& [point3D_id, point] : model->points3D()) {
+      for (const TrackElement& element : point.track) {
+        const int frame = static_cast<int>(element.image_id) - 1;
+        const cv::Mat mask = masks.Read(inputs.source_indices.at(frame), {});
+        const Eigen::Vector2d xy = model->image(element.image_id).points2D[element.point2D_idx].xy;
+        const int x = static_cast<int>(std::lround(xy.x()));
+        const int y = static_cast<int>(std::lround(xy.y()));
+        ASSERT_TRUE(x >= 0 && y >= 0 && x < mask.cols && y < mask.rows);
+        EXPECT_EQ(mask.at<uint8_t>(y, x), 0) << "point " << point3D_id << " in frame " << frame;
+        ++observations;
+      }
+    }
+  }
+  EXPECT_GT(observations, 1000u);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/feature_masks.h"
 #include "frontend/matching/track_file.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
@@ -80,6 +81,28 @@ TEST(TrackCacheKey, FollowsTheFramesTheDetectorAndTheTrackerNotTheMapper) {
   image_set.image_set.emplace();
   EXPECT_NE(KeyOf(frames, detector, image_set), key);
   EXPECT_NE(KeyOf(frames, detector, options, 1), key);  // other frames
+  // Masks of moving objects decide which features exist (issue 47): their pixels and their
+  // convention are in the key.
+  const cv::Size size = io::ImageSequence::Open(frames).FrameSize();
+  std::vector<cv::Mat> object(3, cv::Mat(size, CV_8UC1, cv::Scalar(0)));
+  object[1] = cv::Mat(size, CV_8UC1, cv::Scalar(0));
+  object[1](cv::Rect(10, 10, 40, 30)).setTo(255);
+  SequenceReconstructionOptions masked = options;
+  masked.feature_masks =
+      std::make_shared<const frontend::FeatureMasks>(object, frontend::FeatureMaskOptions());
+  const uint64_t masked_key = KeyOf(frames, detector, masked);
+  EXPECT_NE(masked_key, key);
+  SequenceReconstructionOptions colmap_convention = options;
+  frontend::FeatureMaskOptions keeps_nonzero;
+  keeps_nonzero.drop_nonzero = false;
+  colmap_convention.feature_masks =
+      std::make_shared<const frontend::FeatureMasks>(object, keeps_nonzero);
+  EXPECT_NE(KeyOf(frames, detector, colmap_convention), masked_key);
+  object[1](cv::Rect(10, 10, 41, 30)).setTo(255);  // one more column
+  SequenceReconstructionOptions moved = options;
+  moved.feature_masks =
+      std::make_shared<const frontend::FeatureMasks>(object, frontend::FeatureMaskOptions());
+  EXPECT_NE(KeyOf(frames, detector, moved), masked_key);
 
   // The same names with other bytes: another key.
   const std::string first = frames + "/" + io::ListFiles(frames).front();
