@@ -62,9 +62,7 @@ const char* PoseSourceName(PoseSource source) {
   return "unknown";
 }
 
-size_t IncrementalModel::NumObservedFrames() const {
-  return registered_frames.size() - interpolated_frames.size();
-}
+size_t IncrementalModel::NumObservedFrames() const { return registered_frames.size(); }
 
 IncrementalPipelineOptions::IncrementalPipelineOptions() {
   // A local window starts close to its optimum and the global adjustments follow: on KITTI, 10
@@ -345,7 +343,8 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
 }
 
 // Poses for the frames in the models' gaps (sfm/pose_gap_filling.h), the largest model first; a
-// frame another model registered is left to that model.
+// frame another model registered, or interpolated, is left to that model. Frames posed by
+// rotation join the model's registered frames; interpolated ones stay beside it.
 void FillGaps(const frontend::FeatureTracks& tracks, const IncrementalPipelineOptions& options,
               std::vector<GrownModel*>* models) {
   std::vector<char> fillable(tracks.NumFrames(), 1);
@@ -360,13 +359,12 @@ void FillGaps(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
         FillPoseGaps(tracks, fillable, gap_options, &model.reconstruction);
     model.rotation_only_frames = filled.rotation_only_frames;
     model.interpolated_frames = filled.interpolated_frames;
-    for (const std::vector<int>* frames :
-         {&filled.rotation_only_frames, &filled.interpolated_frames}) {
-      for (int frame : *frames) {
-        fillable[frame] = 0;
-        model.registered_frames.push_back(frame);
-      }
+    model.interpolated_poses = filled.interpolated_poses;
+    for (int frame : filled.rotation_only_frames) {
+      fillable[frame] = 0;
+      model.registered_frames.push_back(frame);
     }
+    for (int frame : filled.interpolated_frames) fillable[frame] = 0;
     std::sort(model.registered_frames.begin(), model.registered_frames.end());
   }
 }
@@ -388,6 +386,7 @@ void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
   result->registered_frames = model.registered_frames;
   result->rotation_only_frames = model.rotation_only_frames;
   result->interpolated_frames = model.interpolated_frames;
+  result->interpolated_poses = model.interpolated_poses;
   result->initial_frame1 = model.initial_frame1;
   result->initial_frame2 = model.initial_frame2;
   result->initial_pair_num_points = largest.initial_pair_num_points;
@@ -407,8 +406,7 @@ void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
   result->unregistered_ranges = ExplainUnregisteredFrames(
       tracks, result->reconstruction, result->other_models, largest.best_failed_pose_inliers,
       options.mapper.absolute_pose, no_initial_pair_left);
-  const double observed =
-      static_cast<double>(result->registered_frames.size() - result->interpolated_frames.size());
+  const double observed = static_cast<double>(result->registered_frames.size());
   result->status =
       observed >= options.success_min_registered_fraction * static_cast<double>(tracks.NumFrames())
           ? ReconstructionStatus::kSuccess

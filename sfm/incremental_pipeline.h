@@ -29,6 +29,7 @@
 #include "sfm/keyframe_selection.h"
 #include "sfm/loop_closure.h"
 #include "sfm/reconstruction.h"
+#include "sfm/rigid3d.h"
 
 namespace comic::sfm {
 
@@ -112,12 +113,13 @@ struct IncrementalPipelineOptions {
   int seam_max_frame_gap = 30;
   // Frames without a pose after the models are grown (sfm/pose_gap_filling.h): a frame the
   // camera reached by turning (or barely moving) from a registered neighbour gets its rotation
-  // against the map; a frame between two registered frames of a model at most
-  // max_interpolated_gap frames apart gets an interpolated pose. Both are flagged.
+  // against the map (registered, flagged); a frame between two registered frames of a model at
+  // most max_interpolated_gap frames apart gets an interpolated pose, kept beside the model and
+  // never registered. For video only: the frames must be in the order they were taken
+  // (sfm/run/run_options.h turns it off for image sets).
   bool fill_pose_gaps = true;
   int max_interpolated_gap = 10;
-  // kSuccess needs at least this fraction of the frames in the largest model (frames with
-  // interpolated poses do not count).
+  // kSuccess needs at least this fraction of the frames registered in the largest model.
   double success_min_registered_fraction = 0.95;
   // The plausible range of a self-calibrated camera (sfm/intrinsics_plausibility.h): outside it
   // the camera is reset to its prior, held fixed and the model adjusted again.
@@ -171,7 +173,7 @@ using FrameMatcher = std::function<std::vector<std::pair<int, int>>(int frame1, 
 enum class PoseSource {
   kRegistered,    // initial pair, PnP, or a merged model's
   kRotationOnly,  // its rotation against the map; the centre of a registered neighbour
-  kInterpolated,  // interpolated between registered frames of the model: a guess, flagged
+  kInterpolated,  // interpolated between registered frames of the model: a guess, not registered
 };
 // "registered", "rotation_only", "interpolated".
 const char* PoseSourceName(PoseSource source);
@@ -179,14 +181,18 @@ const char* PoseSourceName(PoseSource source);
 // One model of the run.
 struct IncrementalModel {
   Reconstruction reconstruction;
-  std::vector<int> registered_frames;  // every frame with a pose in the model, ascending
-  // Of those, the frames posed by sfm/pose_gap_filling.h (ascending).
+  // Every frame registered in the model (a pose from observations), ascending.
+  std::vector<int> registered_frames;
+  // Of those, the frames posed by their rotation against the map (sfm/pose_gap_filling.h).
   std::vector<int> rotation_only_frames;
+  // Frames not registered whose pose was interpolated between registered frames of this model
+  // (ascending; a guess, kept out of the reconstruction), and those poses.
   std::vector<int> interpolated_frames;
+  std::vector<Rigid3d> interpolated_poses;
   int initial_frame1 = -1;
   int initial_frame2 = -1;
   int num_merged_models = 0;  // earlier models merged into it
-  // Frames registered from observations (registered_frames without the interpolated ones).
+  // Frames registered from observations: registered_frames (interpolated frames are not in it).
   size_t NumObservedFrames() const;
 };
 
@@ -218,10 +224,15 @@ struct IncrementalReconstruction {
   ReconstructionStatus status = ReconstructionStatus::kTooFewFrames;
   // The largest model (most frames registered from observations; ties by the earlier start).
   Reconstruction reconstruction;
-  std::vector<int> registered_frames;     // ascending, frames with a pose in the largest model
-  std::vector<int> unregistered_frames;   // ascending, the others
+  // Ascending: the frames registered in the largest model (poses from observations), and the
+  // others (the interpolated ones among them).
+  std::vector<int> registered_frames;
+  std::vector<int> unregistered_frames;
   std::vector<int> rotation_only_frames;  // of registered_frames, see IncrementalModel
+  // Of unregistered_frames, those with a pose interpolated in the largest model, and the poses
+  // (see IncrementalModel).
   std::vector<int> interpolated_frames;
+  std::vector<Rigid3d> interpolated_poses;
   int initial_frame1 = -1;
   int initial_frame2 = -1;
   // Every other model, largest first.

@@ -74,9 +74,9 @@ class GapFiller {
     return posed;
   }
 
-  // Interpolates runs of fillable frames between two posed frames close enough.
-  std::vector<int> Interpolate(const std::vector<char>& fillable) {
-    std::vector<int> interpolated;
+  // Interpolates runs of fillable frames between two posed frames close enough; the poses are
+  // returned, not set in the model (pose_gap_filling.h).
+  void Interpolate(const std::vector<char>& fillable, PoseGapFilling* result) {
     const int num_frames = static_cast<int>(posed_.size());
     int previous = -1;
     for (int frame = 0; frame < num_frames; ++frame) {
@@ -87,14 +87,13 @@ class GapFiller {
         for (int f = previous + 1; f < frame; ++f) all_fillable = all_fillable && fillable[f];
         if (all_fillable) {
           for (int f = previous + 1; f < frame; ++f) {
-            SetPose(f, InterpolatePose(previous, frame, f));
-            interpolated.push_back(f);
+            result->interpolated_frames.push_back(f);
+            result->interpolated_poses.push_back(InterpolatePose(previous, frame, f));
           }
         }
       }
       previous = frame;
     }
-    return interpolated;
   }
 
  private:
@@ -182,7 +181,7 @@ PoseGapFilling FillPoseGaps(const frontend::FeatureTracks& tracks,
   GapFiller filler(tracks, options, model);
   PoseGapFilling result;
   result.rotation_only_frames = filler.PoseByRotation(fillable);
-  result.interpolated_frames = filler.Interpolate(fillable);
+  filler.Interpolate(fillable, &result);
   return result;
 }
 

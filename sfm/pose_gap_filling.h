@@ -6,10 +6,13 @@
 //    point's direction from n's centre) or an observation in n (n's ray); RANSAC over ray pairs,
 //    Kabsch (sfm/rotation_only_path.h). Chained: a frame posed so serves its own neighbours.
 //  - interpolation: a frame between two posed frames of the model at most max_interpolated_gap
-//    frames apart gets the pose interpolated by frame index (slerp, linear centre); a guess,
-//    flagged as such.
-// Neither adds observations or points; the posed frames are registered in the model (so they are
-// written with it) and listed, so that reports can tell them from registered frames.
+//    frames apart gets the pose interpolated by frame index (slerp, linear centre); a guess.
+// Neither adds observations or points. The frames posed by rotation are registered in the model
+// (their rotation is estimated from their own observations) and listed. The interpolated ones are
+// not: their poses are returned beside the model, never registered in it, so that no model
+// written (COLMAP's images.txt has no flag for a guess) and no count of registered frames holds
+// a pose nothing observed (issue 47). Interpolation is meant for video, where frames close in
+// index are close in time.
 //
 //   const PoseGapFilling filled = FillPoseGaps(tracks, fillable, options, &model);
 #pragma once
@@ -18,6 +21,7 @@
 
 #include "frontend/matching/track.h"
 #include "sfm/reconstruction.h"
+#include "sfm/rigid3d.h"
 
 namespace comic::sfm {
 
@@ -38,13 +42,14 @@ struct PoseGapFillingOptions {
 };
 
 struct PoseGapFilling {
-  std::vector<int> rotation_only_frames;  // ascending
-  std::vector<int> interpolated_frames;   // ascending
+  std::vector<int> rotation_only_frames;    // ascending, registered in the model
+  std::vector<int> interpolated_frames;     // ascending, not registered in the model
+  std::vector<Rigid3d> interpolated_poses;  // cam_from_world of each interpolated frame
 };
 
 // Poses the frames of `model` (image i + 1 is frame i of `tracks`) that are unregistered and
-// `fillable` (one flag per frame). Throws comic::Error for a model that does not hold the
-// tracks' frames.
+// `fillable` (one flag per frame): by rotation, registered in `model`; interpolated, returned.
+// Throws comic::Error for a model that does not hold the tracks' frames.
 PoseGapFilling FillPoseGaps(const frontend::FeatureTracks& tracks,
                             const std::vector<char>& fillable, const PoseGapFillingOptions& options,
                             Reconstruction* model);

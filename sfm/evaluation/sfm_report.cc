@@ -92,10 +92,10 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   }
   report.rotation_only_frames = mapping.rotation_only_frames;
   report.interpolated_frames = mapping.interpolated_frames;
+  report.interpolated_poses = mapping.interpolated_poses;
   if (report.num_frames > 0) {
-    report.registered_fraction =
-        static_cast<double>(mapping.registered_frames.size() - mapping.interpolated_frames.size()) /
-        static_cast<double>(report.num_frames);
+    report.registered_fraction = static_cast<double>(mapping.registered_frames.size()) /
+                                 static_cast<double>(report.num_frames);
   }
   report.unregistered_ranges = mapping.unregistered_ranges;
   report.num_models_started = mapping.num_models;
@@ -170,12 +170,26 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
   json["detector"] = report.detector;
   json["status"] = report.status;
   json["frames"] = report.num_frames;
+  // Registered: a pose from observations (rotation-only ones included, counted apart). Interpolated
+  // poses are guesses: never counted as registered, listed with their poses, not in any model.
   json["registered_frames"] = report.stats.num_registered;
+  json["rotation_only_frames"] = report.rotation_only_frames.size();
+  json["interpolated_frames"] = report.interpolated_frames.size();
   json["registered_fraction"] = report.registered_fraction;
   json["registered_frame_indices"] = report.registered_frames;
   json["unregistered_frame_indices"] = report.unregistered_frames;
   json["pose_sources"] = {{"rotation_only", report.rotation_only_frames},
                           {"interpolated", report.interpolated_frames}};
+  json["interpolated_poses"] = nlohmann::json::array();
+  for (size_t i = 0; i < report.interpolated_frames.size(); ++i) {
+    const Rigid3d& pose = report.interpolated_poses[i];
+    const Eigen::Quaterniond& q = pose.rotation;
+    json["interpolated_poses"].push_back(
+        {{"frame", report.interpolated_frames[i]},
+         {"cam_from_world_qvec", {q.w(), q.x(), q.y(), q.z()}},
+         {"cam_from_world_tvec",
+          {pose.translation.x(), pose.translation.y(), pose.translation.z()}}});
+  }
   json["unregistered_ranges"] = nlohmann::json::array();
   for (const UnregisteredRange& range : report.unregistered_ranges) {
     json["unregistered_ranges"].push_back({{"first", range.first_frame},

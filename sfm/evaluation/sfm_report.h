@@ -21,11 +21,11 @@ namespace comic::sfm {
 // One model of a run (sparse/<index>; 0 is the largest).
 struct SfmModelReport {
   int index = 0;
-  size_t num_registered = 0;     // frames with a pose
+  size_t num_registered = 0;     // frames registered (poses from observations)
   size_t num_rotation_only = 0;  // of those, posed by their rotation against the map
-  size_t num_interpolated = 0;   // of those, interpolated
+  size_t num_interpolated = 0;   // frames not registered, with a pose interpolated in this model
   size_t num_points = 0;
-  int first_frame = -1;  // the first and last frames with a pose
+  int first_frame = -1;  // the first and last registered frames
   int last_frame = -1;
   std::vector<int> registered_frames;
   int initial_frame1 = -1;
@@ -45,10 +45,12 @@ struct SfmRunReport {
   int initial_frame2 = -1;
   // Every model, the largest first (models[0] is the one `stats` describes).
   std::vector<SfmModelReport> models;
-  // Frames of the largest model posed without PnP (sfm/pose_gap_filling.h).
+  // Frames of the largest model posed without PnP (sfm/pose_gap_filling.h): registered by their
+  // rotation against the map, and not registered but interpolated (a guess; with their poses).
   std::vector<int> rotation_only_frames;
   std::vector<int> interpolated_frames;
-  // Frames with a pose from observations in the largest model over all frames (kSuccess at
+  std::vector<Rigid3d> interpolated_poses;
+  // Frames registered in the largest model over all frames (kSuccess at
   // >= success_min_registered_fraction).
   double registered_fraction = 0.0;
   // The frames missing from the largest model, with the stage and check that failed.

@@ -64,11 +64,15 @@ std::string AdjustmentProgressLine(const std::string& detector,
 std::string DetectorSummaryLine(const DetectorRun& run) {
   const SfmRunReport& report = run.report;
   std::ostringstream line;
+  // Interpolated poses are guesses: not in the count, not in the models (issue 47).
   line << "[" << report.detector << "] " << report.status << ": " << report.stats.num_registered
        << "/" << report.num_frames << " frames registered";
-  if (!report.rotation_only_frames.empty() || !report.interpolated_frames.empty()) {
-    line << " (" << report.rotation_only_frames.size() << " by rotation only, "
-         << report.interpolated_frames.size() << " interpolated)";
+  if (!report.rotation_only_frames.empty()) {
+    line << " (" << report.rotation_only_frames.size() << " by rotation only)";
+  }
+  if (!report.interpolated_frames.empty()) {
+    line << ", " << report.interpolated_frames.size()
+         << " more interpolated (not registered, report.json only)";
   }
   if (report.models.size() > 1) {
     line << " in the largest of " << report.models.size() << " models (";

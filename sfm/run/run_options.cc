@@ -128,6 +128,10 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
   options.mapper.max_working_image_size = run.max_working_size;
   options.mapper.keyframes_only = run.keyframes && !unordered;
   options.mapper.close_loops = run.loop_closure && !unordered;
+  // Guessed poses (interpolation between neighbours, rotation only) need frames close in time:
+  // video only, whatever matched it. On an unordered set 36 of 63 "registered" frames were once
+  // poses interpolated between neighbours in file order (issue 47).
+  options.mapper.fill_pose_gaps = video;
   options.mapper.loop_closure.max_move_per_path = run.loop_closure_max_move;
   // `threads` is not passed to the bundle adjustments: Ceres sums the residual blocks of its
   // threads in a scheduling-dependent order (docs/sfm.md, determinism), and no output may depend

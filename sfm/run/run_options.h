@@ -149,7 +149,8 @@ struct ReconstructionRunOptions {
 // image set (`image_set`, RunInputs). `video`: the frames are in time order (a video, or a
 // folder of its frames), whatever matched them: the mapper may then lean on that order (the
 // initial pair near in time, keyframes, loop closure, poses through gaps); an unordered image
-// set matched by descriptors gets none of it. Check()ed.
+// set matched by descriptors gets none of it, and no image set (exhaustive pairing, patches or
+// descriptors) gets poses through gaps (issue 47). Check()ed.
 SequenceReconstructionOptions MakeSequenceReconstructionOptions(
     const ReconstructionRunOptions& options, const frontend::TrackerOptions& tracker,
     bool refine_intrinsics,

@@ -469,6 +469,61 @@ TEST(IncrementalPipeline, APanInTheMiddleOfAWalkLeavesNoFrameWithoutAPose) {
   EXPECT_LT(evaluation->mean_rotation_error_deg, 1.0);
 }
 
+// Frames 9 and 10 of a hand-held clip lose every observation (as if blurred): nothing registers
+// them, and they get poses interpolated between frames 8 and 11. A guess is not a registration
+// (issue 47): they are neither in registered_frames nor in the reconstruction nor in the models
+// written, the status counts 18 of 20 frames (partial below 95 %), and their poses are returned
+// beside the model. Without gap filling nothing is guessed and the same frames are registered.
+TEST(IncrementalPipeline, InterpolatedFramesAreNeitherRegisteredNorCounted) {
+  SyntheticSceneOptions scene_options;
+  scene_options.motion = SyntheticMotion::kHandHeld;
+  scene_options.num_frames = 20;
+  scene_options.num_points = 600;
+  SyntheticScene scene = MakeSyntheticScene(scene_options);
+  std::vector<frontend::Track> kept;
+  for (frontend::Track track : scene.tracks.tracks) {
+    std::vector<frontend::TrackObservation> observations;
+    for (const frontend::TrackObservation& observation : track.observations) {
+      if (observation.frame != 9 && observation.frame != 10) observations.push_back(observation);
+    }
+    track.observations = observations;
+    if (track.observations.size() >= 2) kept.push_back(track);
+  }
+  scene.tracks.tracks = kept;
+  const IncrementalReconstruction result =
+      ReconstructIncrementally(scene.tracks, scene.camera, IncrementalPipelineOptions());
+  ASSERT_EQ(result.NumModels(), 1u);
+  std::vector<int> observed = Range(0, 8);
+  for (int frame : Range(11, 19)) observed.push_back(frame);
+  EXPECT_EQ(result.registered_frames, observed);
+  EXPECT_EQ(result.interpolated_frames, (std::vector<int>{9, 10}));
+  EXPECT_EQ(result.unregistered_frames, (std::vector<int>{9, 10}));
+  EXPECT_EQ(result.reconstruction.NumRegisteredImages(), 18u);
+  EXPECT_FALSE(result.reconstruction.image(IncrementalMapper::ImageIdOfFrame(9)).registered);
+  EXPECT_EQ(result.status, ReconstructionStatus::kPartial);  // 18/20 < 95 %
+  // The guess: a third of the way from frame 8's centre to frame 11's.
+  ASSERT_EQ(result.interpolated_poses.size(), 2u);
+  const auto center = [&](int frame) {
+    return ProjectionCenter(
+        result.reconstruction.image(IncrementalMapper::ImageIdOfFrame(frame)).cam_from_world);
+  };
+  EXPECT_LT((ProjectionCenter(result.interpolated_poses[0]) - (2.0 * center(8) + center(11)) / 3.0)
+                .norm(),
+            1e-9);
+  // Not in the models written.
+  const test::ScopedTempDir folder;
+  WriteModelSet(result, folder.path(), ModelSetWriteOptions());
+  EXPECT_EQ(io::ReadColmapBinaryModel(folder.File("sparse/0")).images.size(), 18u);
+
+  IncrementalPipelineOptions no_gap_filling;
+  no_gap_filling.fill_pose_gaps = false;
+  const IncrementalReconstruction unfilled =
+      ReconstructIncrementally(scene.tracks, scene.camera, no_gap_filling);
+  EXPECT_EQ(unfilled.registered_frames, observed);
+  EXPECT_TRUE(unfilled.interpolated_frames.empty());
+  EXPECT_TRUE(unfilled.interpolated_poses.empty());
+}
+
 // Dense video (a slow walk along the wall, 5 cm a frame, ~3 px of image motion): with keyframes
 // only, every frame still gets a pose, as accurate as without them, while the adjustments hold
 // only the keyframes.

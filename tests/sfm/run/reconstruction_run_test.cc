@@ -1,6 +1,6 @@
 // RunReconstruction, the run behind comic_sfm and comic.reconstruct: in memory or into a folder,
 // all or nothing, a failure as a result with its report and tracks, progress through callbacks;
-// masks of moving objects leave no point on them.
+// masks of moving objects leave no point on them; guessed poses only for video, never counted.
 #include "sfm/run/reconstruction_run.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/image/mask_folder.h"
@@ -195,6 +196,53 @@ TEST(RunReconstruction, MasksLeaveNoPointObservedOnTheMovingObject) {
     }
   }
   EXPECT_GT(observations, 1000u);
+}
+
+// Seven example frames, the fourth replaced by a grey one (no features: nothing registers it).
+// As a video matched over a window, the tracks cross it and it gets a pose interpolated between
+// its neighbours: a guess, neither registered nor counted nor in the written model (issue 47).
+// As an image set (descriptors, every pair) nothing is guessed at all.
+TEST(RunReconstruction, GuessedPosesOnlyForVideoAndNeverCounted) {
+  ScopedTempDir dir;
+  io::EnsureWritableDirectory(dir.File("frames"));
+  const std::vector<std::string> names = io::ListFiles(ExampleDir() + "/image_l");
+  for (int i = 0; i < 7; ++i) {
+    const std::string target = dir.File("frames/" + names[i]);
+    if (i == 3) {
+      const cv::Size size = io::ImageSequence::Open(ExampleDir() + "/image_l").FrameSize();
+      io::WriteImageAtomically(target, cv::Mat(size, CV_8UC1, cv::Scalar(128)));
+    } else {
+      std::filesystem::copy_file(ExampleDir() + "/image_l/" + names[i], target);
+    }
+  }
+  ReconstructionRunOptions video;
+  video.frames = dir.File("frames");
+  video.camera.intrinsics = ExampleDir() + "/calib.txt";
+  video.matching = "window:3";
+  video.output = dir.File("video");
+  const ReconstructionRunResult filled = RunReconstruction(video);
+  const DetectorRun& run = filled.runs.front();
+  ASSERT_TRUE(run.success()) << run.diagnosis.message;
+  const IncrementalReconstruction& mapping = run.run.mapping;
+  EXPECT_EQ(mapping.interpolated_frames, std::vector<int>{3});
+  EXPECT_EQ(mapping.registered_frames, (std::vector<int>{0, 1, 2, 4, 5, 6}));
+  EXPECT_EQ(run.report_json["registered_frames"], 6);
+  EXPECT_EQ(run.report_json["interpolated_frames"], 1);
+  EXPECT_EQ(run.report_json["interpolated_poses"].size(), 1u);
+  EXPECT_EQ(run.report_json["interpolated_poses"][0]["frame"], 3);
+  EXPECT_EQ(run.report_json["status"], "partial");  // 6/7 < 95 %
+  EXPECT_EQ(io::ReadColmapTextModel(dir.File("video")).images.size(), 6u);
+
+  ReconstructionRunOptions image_set = video;
+  image_set.matching = "exhaustive";
+  image_set.matcher = "descriptors";
+  image_set.output = dir.File("image_set");
+  const ReconstructionRunResult unfilled = RunReconstruction(image_set);
+  ASSERT_TRUE(unfilled.runs.front().success());
+  EXPECT_TRUE(unfilled.runs.front().run.mapping.interpolated_frames.empty());
+  EXPECT_TRUE(unfilled.runs.front().run.mapping.rotation_only_frames.empty());
+  EXPECT_EQ(unfilled.runs.front().report_json["interpolated_frames"], 0);
+  EXPECT_EQ(unfilled.runs.front().run.mapping.unregistered_frames, std::vector<int>{3});
 }
 
 }  // namespace

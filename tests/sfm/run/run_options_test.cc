@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/matching/pairing.h"
 #include "io/core/error.h"
 
 namespace comic::sfm {
@@ -119,6 +120,39 @@ TEST(ReconstructionRunOptions, LoopClosureOptionsReachTheMapper) {
       MakeSequenceReconstructionOptions(options, tracker, false);
   EXPECT_TRUE(made.mapper.close_loops);
   EXPECT_EQ(made.mapper.loop_closure.max_move_per_path, 0.25);
+}
+
+// Guessed poses (interpolation, rotation only) are for video only (issue 47), whatever matched it
+// (a video matched by descriptors is still a video); an image set, by its pairing (exhaustive, or
+// the window auto chooses for a large set: frontend::IsVideo false), gets none.
+TEST(ReconstructionRunOptions, PoseGapsAreFilledForVideoOnly) {
+  const ReconstructionRunOptions options;
+  const frontend::TrackerOptions tracker = DefaultRunTrackerOptions();
+  const frontend::ImageSetMatchingOptions descriptors;
+  EXPECT_TRUE(MakeSequenceReconstructionOptions(options, tracker, false, std::nullopt,
+                                                /*video=*/true)
+                  .mapper.fill_pose_gaps);
+  EXPECT_TRUE(MakeSequenceReconstructionOptions(options, tracker, false, descriptors,
+                                                /*video=*/true)
+                  .mapper.fill_pose_gaps);
+  EXPECT_FALSE(MakeSequenceReconstructionOptions(options, tracker, false, std::nullopt,
+                                                 /*video=*/false)
+                   .mapper.fill_pose_gaps);
+  EXPECT_FALSE(MakeSequenceReconstructionOptions(options, tracker, false, descriptors,
+                                                 /*video=*/false)
+                   .mapper.fill_pose_gaps);
+
+  frontend::PairingChoice pairing;
+  pairing.requested = frontend::ParsePairing("auto");
+  pairing.chosen = frontend::ParsePairing("sequential");
+  EXPECT_TRUE(frontend::IsVideo(pairing));
+  pairing.chosen = frontend::ParsePairing("exhaustive");
+  EXPECT_FALSE(frontend::IsVideo(pairing));
+  pairing.chosen = frontend::ParsePairing("window:20");  // auto's window for a large image set
+  EXPECT_FALSE(frontend::IsVideo(pairing));
+  pairing.requested = frontend::ParsePairing("window:5");  // the user's: ordered frames
+  pairing.chosen = pairing.requested;
+  EXPECT_TRUE(frontend::IsVideo(pairing));
 }
 
 }  // namespace
