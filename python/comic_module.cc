@@ -783,6 +783,15 @@ void AddColmapDatabaseOptions(sfm::ColmapDatabaseOptions* c, OptionTable* table)
                  {"colmap_threads", Field(&c->colmap_threads)}});
 }
 
+// A flag that turns a field off (--mask-keeps-nonzero: mask_drops_nonzero = false); the keyword
+// is the flag's name, as every other.
+Setter Negated(bool* field) {
+  return [field](py::handle value) {
+    if (!py::isinstance<py::bool_>(value)) throw py::type_error("expects a bool");
+    *field = !py::cast<bool>(value);
+  };
+}
+
 // --write-frames: True for the default folder (`implicit`), a path, or False / "" for none.
 Setter WriteFrames(std::string* field, const char* implicit) {
   return [field, implicit](py::handle value) {
@@ -828,7 +837,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"threads", Field(&o->threads)},
                        {"cache", Field(&o->cache)},
                        {"masks", Field(&o->masks)},
-                       {"mask_drops_nonzero", Field(&o->mask_drops_nonzero)},
+                       {"mask_keeps_nonzero", Negated(&o->mask_drops_nonzero)},
                        {"regions", Field(&o->regions)},
                        {"boundary_band", Field(&o->boundary_band)},
                        {"plot_plane", Field(&o->plot_plane)},

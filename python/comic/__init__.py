@@ -387,9 +387,8 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
                   OpenCV .yml/.xml, COLMAP cameras.txt), camera_model, fixed_intrinsics,
                   refine_focal, refine_principal_point, refine_distortion, ignore_gt_intrinsics.
       truth:      gt (KITTI poses.txt, Middlebury *_par.txt, Strecha folder), gt_format,
-                  gt_partial, masks, mask_drops_nonzero (default True: non-zero mask pixels
-                  remove features; False: zero ones, COLMAP's convention), regions,
-                  boundary_band.
+                  gt_partial, masks (non-zero mask pixels remove features), mask_keeps_nonzero
+                  (True: zero ones do, COLMAP's convention), regions, boundary_band.
       frames:     resize_height, first, last, stride, max_pixels, allow_truncated.
       tracking:   matching ("auto", "sequential", "exhaustive", "window:K"), matcher
                   ("patches", "descriptors", "auto"), max_features,

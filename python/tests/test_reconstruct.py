@@ -6,6 +6,7 @@ with the apps' messages, never crashing."""
 import json
 import os
 import re
+import shutil
 import sqlite3
 import subprocess
 
@@ -176,6 +177,23 @@ def test_every_flag_is_a_keyword():
     assert set(comic.RECONSTRUCT_OPTIONS) == long_options("comic_sfm")
     # export_colmap takes the database as its second argument.
     assert set(comic.EXPORT_COLMAP_OPTIONS) | {"colmap_db"} == long_options("comic_export_colmap")
+
+
+def test_mask_convention_is_the_flags_keyword(tmp_path):
+    """--mask-keeps-nonzero is mask_keeps_nonzero=True (COLMAP's convention): with the example
+    frames themselves as masks (non-zero nearly everywhere) DAVIS's default drops nearly every
+    feature, COLMAP's nearly none."""
+    masks = tmp_path / "masks"
+    masks.mkdir()
+    for name in sorted(os.listdir(FRAMES))[:3]:
+        shutil.copy(os.path.join(FRAMES, name), masks / name)
+    dropped = comic.reconstruct(FRAMES, last=2, masks=masks)
+    kept = comic.reconstruct(FRAMES, last=2, masks=masks, mask_keeps_nonzero=True)
+    assert dropped.report["options"]["mask_drops_nonzero"] is True
+    assert kept.report["options"]["mask_drops_nonzero"] is False
+    assert dropped.report["masked_features"] > 10 * kept.report["masked_features"]
+    with pytest.raises(TypeError, match="mask_keeps_nonzero"):
+        comic.reconstruct(FRAMES, last=2, masks=masks, mask_keeps_nonzero=1)
 
 
 def write_calibrations(folder):
