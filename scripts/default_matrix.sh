@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Runs comic_sfm with the given flags on every clip of ../shared/data that the README's users
 # meet (video, ordered and unordered photo sets) and prints one table row per clip: registered
-# frames in the largest model, models, interpolated frames, status, ATE against the truth where
-# the clip has it, wall and CPU seconds. Used for the default-choice tables of docs/matching.md.
+# frames in the largest model, models, interpolated frames, status, ATE and mean rotation error
+# against the truth where the clip has it, wall and CPU seconds, CPU seconds per frame. Used for the default-choice tables of docs/matching.md.
 #
 #   scripts/default_matrix.sh OUT_DIR [comic_sfm flags...]     e.g. out/matrix/harris
 #   COMIC_MATRIX_CLIPS="bag25 kitti06" scripts/default_matrix.sh out/m --detector comic
@@ -14,7 +14,7 @@ out=${1:?usage: default_matrix.sh OUT_DIR [comic_sfm flags...]}
 shift
 data=../shared/data
 bin=${COMIC_BUILD_DIR:-build}/bin/comic_sfm
-clips=${COMIC_MATRIX_CLIPS:-"bag25 bag50 bag196 car1 kitti06 lego herzjesu davis"}
+clips=${COMIC_MATRIX_CLIPS:-"bag25 bag50 bag196 car1 kitti06 lego herzjesu davis davis_masks temple dino48 dino363"}
 mkdir -p "$out"
 
 run_clip() {
@@ -34,7 +34,7 @@ name, report, timing, start, end = sys.argv[1:]
 try:
     r = json.load(open(report))
 except Exception:
-    print(f"| {name} | no report | | | | | |")
+    print(f"| {name} | no report | | | | | | | |")
     sys.exit(0)
 user, system = (float(x) for x in open(timing).read().split()[-2:])
 models = r.get("models", [])
@@ -50,15 +50,18 @@ def find(d, key):
     return None
 ate = find(r, "ate_rmse") if ate is None else ate
 ate_s = f"{ate:.4g}" if isinstance(ate, (int, float)) else "-"
+rot = find(r, "mean_rotation_error_deg")
+rot_s = f"{rot:.3g}" if isinstance(rot, (int, float)) else "-"
 n = r.get("frames")
 interp = len((r.get("pose_sources") or {}).get("interpolated", []))
 print(f"| {name} | {r.get('registered_frames')}/{n} | {len(models)} | {interp} | "
-      f"{r.get('status')} | {ate_s} | {float(end) - float(start):.0f} | {user + system:.0f} |")
+      f"{r.get('status')} | {ate_s} | {rot_s} | {float(end) - float(start):.0f} | "
+      f"{user + system:.0f} | {(user + system) / max(n or 1, 1):.2f} |")
 PY
 }
 
-echo "| clip | registered (largest) | models | interpolated | status | ATE | wall s | CPU s |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| clip | registered (largest) | models | interpolated | status | ATE | rotation error ° | wall s | CPU s | CPU s/frame |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for clip in $clips; do
   case $clip in
     bag25) run_clip bag25 $data/vot_bag --last 24 "$@" ;;
@@ -72,6 +75,12 @@ for clip in $clips; do
     herzjesu) run_clip herzjesu $data/strecha_Herz-Jesu-P8/images \
       --gt $data/strecha_Herz-Jesu-P8/gt_dense_cameras "$@" ;;
     davis) run_clip davis $data/davis2016_car-shadow/JPEGImages/480p/car-shadow "$@" ;;
+    davis_masks) run_clip davis_masks $data/davis2016_car-shadow/JPEGImages/480p/car-shadow \
+      --masks $data/davis2016_car-shadow/Annotations/480p/car-shadow "$@" ;;
+    temple) run_clip temple $data/middlebury_mview_templeSparseRing \
+      --gt $data/middlebury_mview_templeSparseRing/templeSR_par.txt "$@" ;;
+    dino48) run_clip dino48 $data/middlebury_mview_dino_ring48 \
+      --gt $data/middlebury_mview_dino_ring48/dino_ring48_par.txt "$@" ;;
     dino363) run_clip dino363 $data/middlebury_mview_dino_full363/images \
       --gt $data/middlebury_mview_dino_full363/dino_full363_par.txt "$@" ;;
     *) echo "unknown clip $clip" >&2 ;;

@@ -25,6 +25,8 @@ const char* ReconstructionStatusName(ReconstructionStatus status) {
       return "no_initial_pair";
     case ReconstructionStatus::kTooFewPoints:
       return "too_few_points";
+    case ReconstructionStatus::kSuspect:
+      return "suspect";
   }
   return "unknown";
 }
@@ -42,12 +44,15 @@ std::string ReconstructionStatusMessage(ReconstructionStatus status) {
              "rotation, planar scene, or too few tracked features)";
     case ReconstructionStatus::kTooFewPoints:
       return "too few points: the initial pair triangulated too few 3-D points";
+    case ReconstructionStatus::kSuspect:
+      return "suspect model: its own frame pairs, estimated one by one, contradict its cameras";
   }
   return "unknown status";
 }
 
 bool HasModel(ReconstructionStatus status) {
-  return status == ReconstructionStatus::kSuccess || status == ReconstructionStatus::kPartial;
+  return status == ReconstructionStatus::kSuccess || status == ReconstructionStatus::kPartial ||
+         status == ReconstructionStatus::kSuspect;
 }
 
 const char* PoseSourceName(PoseSource source) {
@@ -89,6 +94,7 @@ IncrementalPipelineOptions::IncrementalPipelineOptions() {
 void IncrementalPipelineOptions::Check() const {
   mapper.Check();
   local_ba.Check();
+  self_check_options.Check();
   global_ba.Check();
   COMIC_CHECK(local_ba_num_images >= 2, kInvalidArgument,
               "pipeline local_ba_num_images must be >= 2, got " << local_ba_num_images);
@@ -411,6 +417,11 @@ void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
       observed >= options.success_min_registered_fraction * static_cast<double>(tracks.NumFrames())
           ? ReconstructionStatus::kSuccess
           : ReconstructionStatus::kPartial;
+  if (options.self_check) {
+    result->self_check =
+        CheckModelAgainstItsPairs(result->reconstruction, tracks, options.self_check_options);
+    if (result->self_check.suspect) result->status = ReconstructionStatus::kSuspect;
+  }
 }
 
 // Every model back in the input's pixels (the work ran at `scale` of them).

@@ -25,6 +25,7 @@
 #include "sfm/camera.h"
 #include "sfm/focal_observability.h"
 #include "sfm/incremental_mapper.h"
+#include "sfm/model_self_check.h"
 #include "sfm/intrinsics_plausibility.h"
 #include "sfm/keyframe_selection.h"
 #include "sfm/loop_closure.h"
@@ -41,13 +42,16 @@ enum class ReconstructionStatus {
   kTooFewFrames,   // fewer than two frames
   kNoInitialPair,  // no frame pair with enough matches and parallax (e.g. pure rotation)
   kTooFewPoints,   // the initial pair triangulated too few points
+  // A model, but its own frame pairs contradict it (sfm/model_self_check.h): not called success
+  // whatever it registered. The models are written all the same.
+  kSuspect,
 };
 
 // "success", "partial", "too_few_frames", "no_initial_pair", "too_few_points".
 const char* ReconstructionStatusName(ReconstructionStatus status);
 // A sentence for users, e.g. for a status without a model in an app's error line.
 std::string ReconstructionStatusMessage(ReconstructionStatus status);
-// kSuccess or kPartial: there is at least one model.
+// kSuccess, kPartial or kSuspect: there is at least one model.
 bool HasModel(ReconstructionStatus status);
 
 struct IncrementalPipelineOptions {
@@ -121,6 +125,10 @@ struct IncrementalPipelineOptions {
   int max_interpolated_gap = 10;
   // kSuccess needs at least this fraction of the frames registered in the largest model.
   double success_min_registered_fraction = 0.95;
+  // The largest model is checked against its own frame pairs (sfm/model_self_check.h) and
+  // called kSuspect when they contradict it.
+  bool self_check = true;
+  ModelSelfCheckOptions self_check_options;
   // The plausible range of a self-calibrated camera (sfm/intrinsics_plausibility.h): outside it
   // the camera is reset to its prior, held fixed and the model adjusted again.
   IntrinsicsPlausibilityOptions plausible_intrinsics;
@@ -239,6 +247,8 @@ struct IncrementalReconstruction {
   std::vector<IncrementalModel> other_models;
   // The frames missing from the largest model, in ranges with the reason.
   std::vector<UnregisteredRange> unregistered_ranges;
+  // The largest model against its own frame pairs (with options.self_check); suspect: kSuspect.
+  ModelSelfCheck self_check;
   // What the first initial pair search saw: why kNoInitialPair, and how close it came
   // (sfm/reconstruction_diagnosis.h words it).
   IncrementalMapper::InitialPairSearch initial_pair_search;

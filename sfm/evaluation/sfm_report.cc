@@ -93,6 +93,7 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.rotation_only_frames = mapping.rotation_only_frames;
   report.interpolated_frames = mapping.interpolated_frames;
   report.interpolated_poses = mapping.interpolated_poses;
+  report.self_check = mapping.self_check;
   if (report.num_frames > 0) {
     report.registered_fraction = static_cast<double>(mapping.registered_frames.size()) /
                                  static_cast<double>(report.num_frames);
@@ -190,6 +191,14 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
          {"cam_from_world_tvec",
           {pose.translation.x(), pose.translation.y(), pose.translation.z()}}});
   }
+  const ModelSelfCheck& check = report.self_check;
+  json["self_check"] = {{"pairs_checked", check.pairs_checked},
+                        {"pairs_disagreeing", check.pairs_disagreeing},
+                        {"median_error_ratio", check.median_error_ratio},
+                        {"median_rotation_difference_deg", check.median_rotation_difference_deg},
+                        {"max_rotation_difference_deg", check.max_rotation_difference_deg},
+                        {"suspect", check.suspect},
+                        {"reason", check.reason}};
   json["unregistered_ranges"] = nlohmann::json::array();
   for (const UnregisteredRange& range : report.unregistered_ranges) {
     json["unregistered_ranges"].push_back({{"first", range.first_frame},

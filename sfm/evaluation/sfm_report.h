@@ -13,6 +13,7 @@
 
 #include "io/report/report_table.h"
 #include "sfm/evaluation/reconstruction_stats.h"
+#include "sfm/model_self_check.h"
 #include "sfm/sequence_reconstruction.h"
 #include "sfm/trajectory_evaluation.h"
 
@@ -50,6 +51,8 @@ struct SfmRunReport {
   std::vector<int> rotation_only_frames;
   std::vector<int> interpolated_frames;
   std::vector<Rigid3d> interpolated_poses;
+  // The largest model against its own frame pairs (sfm/model_self_check.h).
+  ModelSelfCheck self_check;
   // Frames registered in the largest model over all frames (kSuccess at
   // >= success_min_registered_fraction).
   double registered_fraction = 0.0;

@@ -166,6 +166,12 @@ std::string FailureLine(const ReconstructionRunOptions& options,
   const std::string report =
       options.output.empty() ? std::string()
                              : " (report: " + io::JoinPaths(options.output, "report.json") + ")";
+  if (run.success() && run.report.self_check.suspect) {
+    // A model its own frame pairs contradict is written but never passed off as a result.
+    return "suspect model: " + run.report.self_check.reason +
+           " (every model is written; compare it with ground truth or try the other --matcher)" +
+           report;
+  }
   if (run.success()) {
     if (run.RegistersAtLeast(options.min_registered)) return "";
     // --min-registered: a partial model too small for the caller; its models are written.

@@ -91,6 +91,7 @@ std::string DetectorSummaryLine(const DetectorRun& run) {
          << report.trajectory->mean_rotation_error_deg << " deg";
   }
   line << ", " << report.wall_time_s << " s";
+  if (report.self_check.suspect) line << "; suspect: " << report.self_check.reason;
   const IncrementalReconstruction& mapping = run.run.mapping;
   if (mapping.reconstruction.NumRegisteredImages() > 0 &&
       !mapping.reconstruction.cameras().empty()) {
