@@ -54,10 +54,12 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                    "ground-truth cameras: KITTI poses.txt (calib.txt beside it gives the "
                    "intrinsics; matched by frame index), Middlebury *_par.txt, a folder of "
                    "Strecha *.camera files, a COLMAP model (folder of cameras/images .bin or "
-                   ".txt) or a NeRF transforms.json (matched by image name)",
+                   ".txt) or a NeRF transforms.json (matched by image name), a TUM trajectory "
+                   "or EuRoC's groundtruth data.csv (matched by time stamp when the frames are "
+                   "named by theirs, else by frame index)",
                    &o->gt);
   parser.AddOption("gt-format", "F",
-                   "format of --gt: auto, kitti, middlebury, strecha, colmap or nerf",
+                   "format of --gt: auto, kitti, middlebury, strecha, colmap, nerf, tum or euroc",
                    &o->gt_format);
   parser.AddFlag("gt-partial",
                  "accept --gt that covers only some frames and evaluate on those (otherwise "
@@ -177,6 +179,11 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
       "video input: write each frame once as DIR/frame_000000.png ..., the names the model and "
       "--colmap-db use, so that COLMAP's image tools find them (alone: images/ in --output)",
       sfm::kFramesInOutput, &o->write_frames);
+  parser.AddFlag("undistort",
+                 "also write the largest model's images undistorted with PINHOLE cameras in "
+                 "--output/dense/ (images/, sparse/, stereo/: the layout of COLMAP's "
+                 "image_undistorter, for colmap patch_match_stereo and other MVS tools)",
+                 &o->undistort);
   parser.AddFlag("compare-colmap",
                  "also run COLMAP's mapper on the same tracks and write the side-by-side table "
                  "--output/colmap_compare.md (.csv, .json); COLMAP's files go to --output/colmap/",

@@ -846,6 +846,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"ply_format", Field(&o->ply_format)},
                        {"compare_colmap", Field(&o->compare_colmap)},
                        {"compare_colmap_sift", Field(&o->compare_colmap_sift)},
+                       {"undistort", Field(&o->undistort)},
                        {"write_frames", WriteFrames(&o->write_frames, sfm::kFramesInOutput)},
                        {"quiet", Field(quiet)}};
   AddRunSequenceOptions(&o->sequence, &table);

@@ -13,6 +13,7 @@
 #include "io/datasets/kitti_odometry.h"
 #include "io/datasets/nerf_transforms.h"
 #include "io/datasets/number_field.h"
+#include "io/datasets/timestamped_trajectory.h"
 
 namespace comic::io {
 namespace {
@@ -130,23 +131,31 @@ const char* GroundTruthFormatName(GroundTruthFormat format) {
       return "colmap";
     case GroundTruthFormat::kNerf:
       return "nerf";
+    case GroundTruthFormat::kTum:
+      return "tum";
+    case GroundTruthFormat::kEuroc:
+      return "euroc";
   }
   return "unknown";
 }
 
 const char* GroundTruthLengthUnit(GroundTruthFormat format) {
-  return format == GroundTruthFormat::kKitti || format == GroundTruthFormat::kStrecha ? "m" : "";
+  return format == GroundTruthFormat::kKitti || format == GroundTruthFormat::kStrecha ||
+                 format == GroundTruthFormat::kTum || format == GroundTruthFormat::kEuroc
+             ? "m"
+             : "";
 }
 
 GroundTruthFormat ParseGroundTruthFormat(const std::string& name) {
   for (GroundTruthFormat format :
        {GroundTruthFormat::kAuto, GroundTruthFormat::kKitti, GroundTruthFormat::kMiddlebury,
-        GroundTruthFormat::kStrecha, GroundTruthFormat::kColmap, GroundTruthFormat::kNerf}) {
+        GroundTruthFormat::kStrecha, GroundTruthFormat::kColmap, GroundTruthFormat::kNerf,
+        GroundTruthFormat::kTum, GroundTruthFormat::kEuroc}) {
     if (name == GroundTruthFormatName(format)) return format;
   }
   throw Error(ErrorKind::kInvalidArgument,
               "unknown ground-truth format '" + name +
-                  "' (expected auto, kitti, middlebury, strecha, colmap or nerf)");
+                  "' (expected auto, kitti, middlebury, strecha, colmap, nerf, tum or euroc)");
 }
 
 GroundTruthFormat DetectGroundTruthFormat(const std::string& path) {
@@ -167,6 +176,9 @@ GroundTruthFormat DetectGroundTruthFormat(const std::string& path) {
        {"cameras.bin", "images.bin", "points3D.bin", "cameras.txt", "images.txt", "points3D.txt"}) {
     if (FileName(path) == name) return GroundTruthFormat::kColmap;
   }
+  const std::string text = ReadFileToString(path);
+  if (LooksLikeEurocGroundTruth(text)) return GroundTruthFormat::kEuroc;
+  if (LooksLikeTumTrajectory(text)) return GroundTruthFormat::kTum;
   const std::vector<TextLine> lines = NonBlankLines(path, false);
   COMIC_CHECK(!lines.empty(), kInvalidData, path << ": empty ground-truth file");
   double value = 0.0;
@@ -174,10 +186,12 @@ GroundTruthFormat DetectGroundTruthFormat(const std::string& path) {
     return GroundTruthFormat::kMiddlebury;
   }
   if (lines[0].fields.size() == 12) return GroundTruthFormat::kKitti;
-  throw Error(ErrorKind::kInvalidData,
-              path +
-                  ": not a known ground-truth format (KITTI poses.txt, Middlebury *_par.txt, "
-                  "Strecha *.camera, a COLMAP model, a NeRF transforms.json)");
+  throw Error(
+      ErrorKind::kInvalidData,
+      path +
+          ": not a known ground-truth format (KITTI poses.txt, Middlebury *_par.txt, "
+          "Strecha *.camera, a COLMAP model, a NeRF transforms.json, a TUM trajectory, EuRoC's "
+          "groundtruth data.csv)");
 }
 
 GroundTruthCameras ReadMiddleburyParFile(const std::string& path) {
@@ -367,6 +381,10 @@ GroundTruthCameras ReadGroundTruthCameras(const std::string& path, GroundTruthFo
       return ReadColmapGroundTruth(path);
     case GroundTruthFormat::kNerf:
       return ReadNerfTransforms(path);
+    case GroundTruthFormat::kTum:
+      return ReadTumTrajectory(path);
+    case GroundTruthFormat::kEuroc:
+      return ReadEurocGroundTruth(path);
     case GroundTruthFormat::kAuto:
       break;
   }

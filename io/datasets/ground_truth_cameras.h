@@ -17,6 +17,10 @@
 //                only (--intrinsics reads its cameras.txt).
 //   kNerf        a NeRF-style transforms.json (io/datasets/nerf_transforms.h: Blender camera axes
 //                turned into OpenCV's).
+//   kTum         a TUM RGB-D trajectory, "timestamp tx ty tz qx qy qz qw" per line (what evo and
+//                comic_sfm's trajectory_tum.txt hold), and
+//   kEuroc       EuRoC MAV's groundtruth/data.csv (io/datasets/timestamped_trajectory.h): poses by
+//                time stamp, matched to frames named by theirs, else by index as KITTI's.
 //
 // Pixel convention of all intrinsics here: OpenCV's (top-left pixel centre at (0, 0)), which is
 // what these data sets' calibrations use.
@@ -25,20 +29,22 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace comic::io {
 
-enum class GroundTruthFormat { kAuto, kKitti, kMiddlebury, kStrecha, kColmap, kNerf };
+enum class GroundTruthFormat { kAuto, kKitti, kMiddlebury, kStrecha, kColmap, kNerf, kTum, kEuroc };
 
-// "auto", "kitti", "middlebury", "strecha", "colmap", "nerf"; Parse throws
+// "auto", "kitti", "middlebury", "strecha", "colmap", "nerf", "tum", "euroc"; Parse throws
 // comic::Error(kInvalidArgument) listing the valid names.
 const char* GroundTruthFormatName(GroundTruthFormat format);
 GroundTruthFormat ParseGroundTruthFormat(const std::string& name);
 
-// The length unit of a format's camera positions: "m" for KITTI (the vehicle's odometry) and
-// Strecha (surveyed metres); "" where the format does not say (Middlebury's multi-view sets).
+// The length unit of a format's camera positions: "m" for KITTI (the vehicle's odometry), Strecha
+// (surveyed metres), TUM and EuRoC (motion capture, laser tracker); "" where the format does not
+// say (Middlebury's multi-view sets).
 const char* GroundTruthLengthUnit(GroundTruthFormat format);
 
 struct GroundTruthCamera {
@@ -47,6 +53,9 @@ struct GroundTruthCamera {
   std::string image_name;
   // Position in the file (KITTI: the source frame index).
   int index = -1;
+  // The pose's time stamp in the file's unit (TUM: seconds, EuRoC: nanoseconds); NaN for formats
+  // without time stamps.
+  double timestamp = std::numeric_limits<double>::quiet_NaN();
   Eigen::Matrix3d cam_from_world_rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d cam_from_world_translation = Eigen::Vector3d::Zero();
   // Intrinsics K when the file gives them (OpenCV pixel convention).
@@ -63,11 +72,16 @@ struct GroundTruthCamera {
 struct GroundTruthCameras {
   GroundTruthFormat format = GroundTruthFormat::kAuto;  // the format actually read
   std::vector<GroundTruthCamera> cameras;               // in file order
+  // Time-stamped formats: how far apart a frame's and a pose's time stamps may be and still match
+  // (the file's unit); 0 otherwise.
+  double timestamp_tolerance = 0.0;
 };
 
 // Detects the format of `path`: a folder holding *.camera files or a *.camera file -> kStrecha;
 // a folder holding cameras.bin and images.bin, or cameras.txt and images.txt, or one of those
-// files -> kColmap; a *.json file -> kNerf; a file whose first non-blank line is a single count
+// files -> kColmap; a *.json file -> kNerf; EuRoC's "#timestamp, p_RS_R_x ..." header or a first
+// line of 8 or more comma-separated numbers -> kEuroc; a first line (after '#' comments) of 8
+// numbers -> kTum; a file whose first non-blank line is a single count
 // -> kMiddlebury; a file of lines of 12 numbers -> kKitti. Throws comic::Error: kNotFound for a
 // missing path, kInvalidData when none fits.
 GroundTruthFormat DetectGroundTruthFormat(const std::string& path);

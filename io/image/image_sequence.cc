@@ -1,5 +1,6 @@
 #include "io/image/image_sequence.h"
 
+#include <cmath>
 #include <cstdio>
 #include <opencv2/videoio.hpp>
 #include <sstream>
@@ -116,6 +117,8 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
                       options.resize_height);
       CheckPixelBudget(path, declared, options.max_pixels);
     }
+    const double fps = capture.get(cv::CAP_PROP_FPS);
+    if (std::isfinite(fps) && fps > 0.0 && fps < 1e6) sequence.fps_ = fps;
     // Count frames by grabbing: CAP_PROP_FRAME_COUNT is an estimate for many containers.
     int count = 0;
     bool corrupt = false;

@@ -67,6 +67,9 @@ class ImageSequence {
   // Apps print it as one line.
   const std::string& warning() const { return warning_; }
   bool IsVideo() const { return is_video_; }
+  // A video's frame rate as its container declares it (frames per second); 0 when unknown or for
+  // a folder of images.
+  double Fps() const { return fps_; }
   size_t NumFrames() const { return source_indices_.size(); }
   // Size of every frame after resizing (that of the first frame; others must match).
   cv::Size FrameSize() const { return frame_size_; }
@@ -100,6 +103,7 @@ class ImageSequence {
   std::string warning_;
   ImageSequenceOptions options_;
   bool is_video_ = false;
+  double fps_ = 0.0;
   std::string folder_;               // folder holding the image files
   std::vector<std::string> names_;   // selected frame names
   std::vector<int> source_indices_;  // selected source indices

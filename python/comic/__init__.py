@@ -386,7 +386,7 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
       camera:     intrinsics (fx fy cx cy [k1 k2 p1 p2], 3x3 K, 3x4 P such as KITTI's calib.txt,
                   OpenCV .yml/.xml, COLMAP cameras.txt), camera_model, fixed_intrinsics,
                   refine_focal, refine_principal_point, refine_distortion, ignore_gt_intrinsics.
-      truth:      gt (KITTI poses.txt, Middlebury *_par.txt, Strecha folder), gt_format,
+      truth:      gt (KITTI poses.txt, Middlebury *_par.txt, Strecha folder, TUM, EuRoC), gt_format,
                   gt_partial, masks (non-zero mask pixels remove features), mask_keeps_nonzero
                   (True: zero ones do, COLMAP's convention), regions, boundary_band.
       frames:     resize_height, first, last, stride, max_pixels, allow_truncated.
@@ -401,7 +401,7 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
                   nothing written, unlike comic_sfm's out/sfm), model_format, ply_format,
                   plot_plane, colmap_db, overwrite, window, max_error, min_inliers,
                   colmap_threads, compare_colmap, write_frames (True: images/ in output, or a
-                  folder).
+                  folder), undistort (dense/ for MVS: undistorted images, PINHOLE model).
       quiet:      default True (a library call is silent); False prints comic_sfm's lines.
 
     `callback(event)` is called after each registered frame with a dict (detector, frame,

@@ -1,9 +1,11 @@
 #include "sfm/evaluation/ground_truth.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
 #include "io/core/error.h"
+#include "io/datasets/number_field.h"
 
 namespace comic::sfm {
 namespace {
@@ -19,6 +21,39 @@ std::string Stem(const std::string& name) {
   const std::string base = BaseName(name);
   const size_t dot = base.find_last_of('.');
   return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
+}
+
+// Time-stamped ground truth (TUM, EuRoC) and frames named by their time stamps (TUM's
+// rgb/1305031102.175304.png, EuRoC's 1403636579763555584.png): per frame, the camera nearest in
+// time within the file's tolerance, or null. Empty when a frame's name is not a number: then line
+// i is frame i, as KITTI's.
+std::vector<const io::GroundTruthCamera*> MatchByTimestamp(
+    const io::GroundTruthCameras& truth, const std::vector<std::string>& frame_names) {
+  if (truth.timestamp_tolerance <= 0.0) return {};
+  std::vector<double> frame_times(frame_names.size());
+  for (size_t i = 0; i < frame_names.size(); ++i) {
+    if (!io::ParseNumberField(Stem(frame_names[i]), &frame_times[i])) return {};
+  }
+  std::vector<const io::GroundTruthCamera*> by_time;
+  for (const io::GroundTruthCamera& camera : truth.cameras) by_time.push_back(&camera);
+  std::sort(by_time.begin(), by_time.end(),
+            [](const auto* a, const auto* b) { return a->timestamp < b->timestamp; });
+  std::vector<const io::GroundTruthCamera*> matched(frame_names.size(), nullptr);
+  for (size_t i = 0; i < frame_names.size(); ++i) {
+    const auto after =
+        std::lower_bound(by_time.begin(), by_time.end(), frame_times[i],
+                         [](const auto* camera, double time) { return camera->timestamp < time; });
+    double best = truth.timestamp_tolerance;
+    for (auto it : {after, after == by_time.begin() ? after : after - 1}) {
+      if (it == by_time.end()) continue;
+      const double difference = std::abs((*it)->timestamp - frame_times[i]);
+      if (difference <= best) {
+        best = difference;
+        matched[i] = *it;
+      }
+    }
+  }
+  return matched;
 }
 
 }  // namespace
@@ -65,12 +100,16 @@ FrameGroundTruth MatchGroundTruthToFrames(const io::GroundTruthCameras& truth,
       by_index[camera.index] = &camera;
     }
   }
+  const std::vector<const io::GroundTruthCamera*> by_timestamp =
+      MatchByTimestamp(truth, frame_names);
   FrameGroundTruth result;
   result.cams_from_world.resize(frame_names.size());
   const io::GroundTruthCamera* first = nullptr;
   for (size_t i = 0; i < frame_names.size(); ++i) {
     const io::GroundTruthCamera* camera = nullptr;
-    if (by_name) {
+    if (!by_timestamp.empty()) {
+      camera = by_timestamp[i];
+    } else if (by_name) {
       const auto it = by_image_name.find(frame_names[i]);
       if (it != by_image_name.end()) {
         camera = it->second;
@@ -92,8 +131,9 @@ FrameGroundTruth MatchGroundTruthToFrames(const io::GroundTruthCameras& truth,
   }
   COMIC_CHECK(result.num_matched > 0, kInvalidData,
               "ground truth: no camera matches a frame ("
-                  << (by_name ? "by image name, e.g. '" + truth.cameras[0].image_name + "'"
-                              : std::string("by frame index"))
+                  << (!by_timestamp.empty() ? std::string("by time stamp")
+                      : by_name ? "by image name, e.g. '" + truth.cameras[0].image_name + "'"
+                                : std::string("by frame index"))
                   << ")");
   if (first->has_intrinsics) {
     COMIC_CHECK((first->width == 0 && first->height == 0) ||

@@ -36,7 +36,9 @@ struct FrameGroundTruth {
 Camera CameraFromK(const Eigen::Matrix3d& K, int width, int height);
 
 // Matches ground-truth cameras to the frames of a run: by image name when the format names
-// images (Middlebury, Strecha), else by source frame index (KITTI: line i = source frame i).
+// images (Middlebury, Strecha), by the nearest time stamp within the file's tolerance when it
+// has time stamps (TUM, EuRoC) and every frame is named by its own ("1305031102.175304.png"),
+// else by source frame index (KITTI: line i = source frame i).
 // `source_size` is the size of the frames as stored, `frame_size` as used (resized); the
 // intrinsics are scaled to it. Throws comic::Error(kInvalidData) when no frame matches, or the
 // file states an image size different from `source_size`.

@@ -1,6 +1,7 @@
 #include "sfm/run/colmap_outputs.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "frontend/matching/image_set_matching.h"
@@ -91,13 +92,13 @@ ColmapExportSummary WriteTracksDatabase(const DetectorRun& run,
 
 ColmapDatabaseOutput WriteRunColmapDatabase(const DetectorRun& run,
                                             const ReconstructionRunOptions& options,
-                                            const RunInputs& inputs,
-                                            const std::string& image_path) {
+                                            const RunInputs& inputs, const std::string& image_path,
+                                            const std::string& database_path) {
   ColmapDatabaseOutput output;
   output.path = options.colmap.colmap_db;
   output.summary = ExportTracksToColmapDatabase(
       DatabaseTracks(run, options, inputs), KnownCamera(inputs, FileSize(run, inputs)),
-      RunExportOptions(options, inputs), output.path, options.colmap.overwrite);
+      RunExportOptions(options, inputs), database_path, options.colmap.overwrite);
   ColmapMapperOptions mapper = RecommendedColmapMapperOptions(output.summary);
   mapper.num_threads = options.colmap.colmap_threads;
   // Into colmap/sparse beside the database: never over our own sparse/0 (issue 29).
@@ -177,6 +178,19 @@ ColmapPipelineOutput RunColmapPipelineBeside(const DetectorRun& run,
   return output;
 }
 
+bool DatabaseInsideOutput(const ReconstructionRunOptions& options) {
+  if (options.output.empty() || options.colmap.colmap_db.empty()) return false;
+  const auto normal = [](const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+    const std::filesystem::path resolved = std::filesystem::weakly_canonical(absolute, ec);
+    return ec ? absolute.lexically_normal() : resolved;
+  };
+  const std::filesystem::path relative =
+      normal(options.colmap.colmap_db).lexically_relative(normal(options.output));
+  return !relative.empty() && *relative.begin() != "..";
+}
+
 void CheckColmapOutputs(const ReconstructionRunOptions& options) {
   if (options.compare_colmap_sift) {
     COMIC_CHECK(io::IsDirectory(options.frames), kInvalidArgument,
@@ -199,7 +213,14 @@ void CheckColmapOutputs(const ReconstructionRunOptions& options) {
               "--compare-colmap needs FRAMES to be a folder of images (for a video use "
               "--colmap-db, which writes the frames, and run COLMAP on it)");
   if (!options.colmap.colmap_db.empty()) {
-    CheckColmapDatabaseOutput(options.colmap.colmap_db, options.colmap.overwrite);
+    const std::string folder = io::ParentPath(options.colmap.colmap_db);
+    if (DatabaseInsideOutput(options) && !folder.empty() && !io::PathExists(folder)) {
+      // Inside a new --output (out/x/tracks.db with a first -o out/x): written into the staging
+      // folder, its folder created there. Elsewhere a missing folder stays an error.
+      io::CheckCreatableFolder(folder);
+    } else {
+      CheckColmapDatabaseOutput(options.colmap.colmap_db, options.colmap.overwrite);
+    }
   }
   if (options.compare_colmap) {
     COMIC_CHECK(IsColmapAvailable(), kNotFound,

@@ -50,11 +50,17 @@ ColmapExportSummary WriteTracksDatabase(const DetectorRun& run,
                                         const ReconstructionRunOptions& options,
                                         const RunInputs& inputs, const std::string& path);
 
+// --colmap-db lies inside --output (compared by name: --output may not exist yet).
+bool DatabaseInsideOutput(const ReconstructionRunOptions& options);
+
 // --colmap-db: `run`'s tracks as options.colmap.colmap_db (refused if it exists unless
-// --overwrite). `image_path` holds the frames as files: FRAMES, or a video's written frames.
+// --overwrite), written at `database_path` (the same file, or its place in --output's staging
+// folder when it lies inside --output). `image_path` holds the frames as files: FRAMES, or a
+// video's written frames.
 ColmapDatabaseOutput WriteRunColmapDatabase(const DetectorRun& run,
                                             const ReconstructionRunOptions& options,
-                                            const RunInputs& inputs, const std::string& image_path);
+                                            const RunInputs& inputs, const std::string& image_path,
+                                            const std::string& database_path);
 
 // --compare-colmap: COLMAP's mapper on `run`'s tracks, in `out`/colmap/, and the table in `out`.
 // Throws comic::Error(kExternal) if COLMAP fails.

@@ -96,6 +96,19 @@ bool IsSameOrInsideFolder(const std::string& path, const std::string& folder) {
   return true;
 }
 
+// Where --colmap-db is written: inside --output, at its place in the staging folder (it moves
+// into place with the other outputs, and --output may not exist yet; its folder is created
+// there); elsewhere where it was asked for.
+std::string DatabaseWritePath(const ReconstructionRunOptions& options,
+                              const RunOutputFolders& folders) {
+  if (!folders.writes() || !DatabaseInsideOutput(options)) return options.colmap.colmap_db;
+  const std::filesystem::path relative =
+      NormalPath(options.colmap.colmap_db).lexically_relative(NormalPath(options.output));
+  const std::string path = io::JoinPaths(folders.out().path(), relative.generic_string());
+  io::EnsureWritableDirectory(io::ParentPath(path));
+  return path;
+}
+
 // --write-frames is for a video; a folder's images are COLMAP's already.
 void CheckFramesOption(const ReconstructionRunOptions& options, const RunInputs& inputs) {
   COMIC_CHECK(options.write_frames.empty() || inputs.sequence->IsVideo(), kInvalidArgument,
@@ -150,7 +163,8 @@ void HandToColmap(const ReconstructionRunOptions& options, const RunOutputFolder
   if (!options.colmap.colmap_db.empty()) {
     const std::string image_path =
         result->inputs.sequence->IsVideo() ? folders.frames_target() : options.frames;
-    result->colmap_database = WriteRunColmapDatabase(run, options, result->inputs, image_path);
+    result->colmap_database = WriteRunColmapDatabase(run, options, result->inputs, image_path,
+                                                     DatabaseWritePath(options, folders));
   }
   if (options.compare_colmap) {
     result->colmap_comparison = CompareRunWithColmap(run, options, result->inputs, folders.out());

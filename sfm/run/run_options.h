@@ -54,7 +54,7 @@ struct ReconstructionRunOptions {
   // ---- the camera and the truth
   CameraChoice camera;             // --intrinsics, --camera-model, --fixed-intrinsics, ...
   std::string gt;                  // --gt PATH: ground-truth cameras
-  std::string gt_format = "auto";  // --gt-format auto|kitti|middlebury|strecha|colmap|nerf
+  std::string gt_format = "auto";  // --gt-format auto|kitti|...|nerf|tum|euroc
   bool gt_partial = false;         // --gt-partial
 
   // ---- tracking
@@ -130,6 +130,9 @@ struct ReconstructionRunOptions {
   // tracking held), and a script that takes exit 0 for "the clip is reconstructed" would be wrong;
   // between half and 95 % the run is `partial` but the model is the clip's main part.
   double min_registered = 0.5;
+  // --undistort: the largest model's images undistorted with PINHOLE cameras in dense/, the
+  // layout of COLMAP's image_undistorter (sfm/run/undistorted_output.h), for dense MVS.
+  bool undistort = false;
   // --write-frames: where a video's frames are written as PNGs (empty: not written, unless
   // --colmap-db needs them; kFramesInOutput: images/ in --output).
   std::string write_frames;

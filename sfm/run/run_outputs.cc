@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <map>
 
 #include "io/colmap/colmap_binary_model.h"
 #include "io/colmap/colmap_text_model.h"
@@ -14,8 +16,12 @@
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/colmap/model_set_writer.h"
 #include "sfm/run/colmap_outputs.h"
+#include "sfm/run/nerfstudio_transforms.h"
 #include "sfm/run/run_page.h"
 #include "sfm/run/run_report.h"
+#include "sfm/run/tum_trajectory.h"
+#include "sfm/run/undistorted_output.h"
+#include "sfm/working_resolution.h"
 
 namespace comic::sfm {
 
@@ -58,6 +64,79 @@ void WriteTrajectoryPlot(const DetectorRun& run, const ReconstructionRunOptions&
                     "comic_sfm --detector " + run.detector + "  " + options.frames));
 }
 
+// The absolute path, ".." and the symbolic links of its existing part resolved.
+std::filesystem::path ResolvedPath(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::path resolved =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec);
+  return ec ? std::filesystem::absolute(path).lexically_normal() : resolved;
+}
+
+// Where each frame's image file is once the run has committed: a folder's own files, a video's
+// frames in the folder they are written to (--write-frames, or images/ in --output; without
+// either they are not written, and --write-frames puts them where the paths point).
+std::string FrameFileAfterCommit(const ReconstructionRunOptions& options, const RunInputs& inputs,
+                                 size_t frame) {
+  const io::ImageSequence& sequence = *inputs.sequence;
+  if (!sequence.IsVideo()) return sequence.FramePath(frame);
+  const std::string frames = options.write_frames.empty() || options.write_frames == kFramesInOutput
+                                 ? io::JoinPaths(options.output, "images")
+                                 : options.write_frames;
+  return io::JoinPaths(frames, sequence.FrameNames()[frame]);
+}
+
+// transforms.json (nerfstudio) of the largest model: the image paths relative to where the file
+// will be after the commit (`folder` is its staging copy), so the output folder can be moved
+// with its input beside it.
+void WriteNerfstudioTransforms(const DetectorRun& run, const ReconstructionRunOptions& options,
+                               const RunInputs& inputs, const std::string& folder) {
+  const std::filesystem::path final_folder =
+      ResolvedPath(options.compare ? io::JoinPaths(options.output, run.detector) : options.output);
+  std::map<std::string, size_t> frame_of_name;
+  const std::vector<std::string>& names = inputs.sequence->FrameNames();
+  for (size_t i = 0; i < names.size(); ++i) frame_of_name[names[i]] = i;
+  const auto file_path = [&](const Image& image) {
+    const auto frame = frame_of_name.find(image.name);
+    if (frame == frame_of_name.end()) return image.name;
+    return ResolvedPath(FrameFileAfterCommit(options, inputs, frame->second))
+        .lexically_relative(final_folder)
+        .generic_string();
+  };
+  io::WriteFileAtomically(
+      io::JoinPaths(folder, "transforms.json"),
+      io::JsonText(NerfstudioTransforms(run.run.mapping.reconstruction, run.run.input_size.width,
+                                        run.run.input_size.height, file_path),
+                   2));
+}
+
+// trajectory_tum.txt: the largest model's camera path for evo and the SLAM tools.
+void WriteTumTrajectory(const DetectorRun& run, const RunInputs& inputs,
+                        const std::string& folder) {
+  io::WriteFileAtomically(
+      io::JoinPaths(folder, "trajectory_tum.txt"),
+      TumTrajectoryText(run.run.mapping.reconstruction, inputs.sequence->FrameNames(),
+                        inputs.source_indices, inputs.sequence->Fps()));
+}
+
+// --undistort: dense/ (COLMAP's image_undistorter layout) from the largest model in the input's
+// pixels; a folder's images are read at their stored size, a video's frames as decoded.
+void WriteUndistortedImages(const DetectorRun& run, const RunInputs& inputs,
+                            const std::string& folder) {
+  const io::ImageSequence& sequence = *inputs.sequence;
+  std::map<std::string, size_t> frame_of_name;
+  for (size_t i = 0; i < sequence.NumFrames(); ++i) frame_of_name[sequence.FrameNames()[i]] = i;
+  const auto read_image = [&](const Image& image) {
+    const size_t frame = frame_of_name.at(image.name);
+    const cv::Mat color = sequence.IsVideo() ? sequence.ReadFrame(frame).color
+                                             : io::LoadImage(sequence.FramePath(frame)).color;
+    return io::ResizeToHeight(color, run.run.input_size.height);
+  };
+  const Reconstruction& model = run.run.mapping.reconstruction;
+  const std::optional<Reconstruction> resized =
+      ResizedReconstruction(model, run.run.input_size.width, run.run.input_size.height);
+  WriteUndistortedWorkspace(resized ? *resized : model, read_image, io::JoinPaths(folder, "dense"));
+}
+
 // No model: the tracks as a COLMAP database (`colmap mapper` or its GUI can be tried on them;
 // docs/footage.md), and the rotation-only path when there is one.
 void WriteWhatWasFound(const DetectorRun& run, const ReconstructionRunOptions& options,
@@ -76,7 +155,12 @@ std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
   std::vector<std::string> files;
   if (run.success()) {
     files = ModelSetFiles(run.run.mapping, ModelWriteOptions(run, options));
-    files.insert(files.end(), {"points.ply", "trajectory.png"});
+    files.insert(files.end(),
+                 {"points.ply", "trajectory.png", "transforms.json", "trajectory_tum.txt"});
+    if (options.undistort) {
+      for (const std::string& file : UndistortedWorkspaceFiles(run.run.mapping.reconstruction))
+        files.push_back("dense/" + file);
+    }
   } else if (run.keeps_tracks) {
     files.push_back("tracks.db");
     if (run.rotation_only && run.rotation_only->num_registered >= 2) {
@@ -95,6 +179,9 @@ void WriteDetectorOutputs(const DetectorRun& run, const ReconstructionRunOptions
     WriteModel(run, options, folder);
     WritePointCloud(run, options, folder);
     WriteTrajectoryPlot(run, options, inputs, folder);
+    WriteNerfstudioTransforms(run, options, inputs, folder);
+    WriteTumTrajectory(run, inputs, folder);
+    if (options.undistort) WriteUndistortedImages(run, inputs, folder);
   } else if (run.keeps_tracks) {
     WriteWhatWasFound(run, options, inputs, folder);
   }

@@ -1,9 +1,11 @@
 // The files a run writes. A detector's folder (--output, or --output/<detector>/ with --compare):
 // with a model, the COLMAP model as text (cameras.txt, images.txt, points3D.txt) and binary
 // (sparse/0/*.bin, where COLMAP's mapper puts its first model) by --model-format, points.ply,
-// trajectory.png and report.json; without one, report.json with the diagnosis, tracks.db (the
-// tracks, a COLMAP database) and, when the camera only turned, rotation_only/ (a COLMAP text model
-// of the cameras alone). --compare adds compare.md, compare.csv and compare.json.
+// trajectory.png, the largest model for the next tools (transforms.json for nerfstudio and the
+// splatting trainers, trajectory_tum.txt for evo) and report.json; without one, report.json with
+// the diagnosis, tracks.db (the tracks, a COLMAP database) and, when the camera only turned,
+// rotation_only/ (a COLMAP text model of the cameras alone). --compare adds compare.md, compare.csv
+// and compare.json.
 //
 // A writer added here is one line in WriteDetectorOutputs (and one name in DetectorOutputFiles).
 #pragma once

@@ -3,6 +3,8 @@
 // tracks and writes the side-by-side table.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "io/colmap/colmap_database.h"
 #include "io/core/file_utils.h"
 #include "tests/test_support.h"
@@ -95,6 +97,26 @@ TEST(ComicSfmColmap, WritesTheDatabaseAndComparesWithColmap) {
                                 dir.File("out") + " --compare-colmap");
   EXPECT_EQ(again.exit_code, 1) << again.output;
   EXPECT_NE(again.output.find("earlier --compare-colmap"), std::string::npos) << again.output;
+}
+
+// A database inside a new --output: written with the outputs (the folder did not exist, and the
+// check used to refuse the database's missing folder before the run).
+TEST(ComicSfmColmap, DatabaseInsideANewOutputFolder) {
+  ScopedTempDir dir;
+  const std::string out = dir.File("out/x");
+  const auto result = RunCommand(AppPath("comic_sfm") + " " + Example() + " --output " + out +
+                                 " --colmap-db " + out + "/tracks.db");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  comic::io::ColmapDatabase database = comic::io::ColmapDatabase::Open(out + "/tracks.db");
+  EXPECT_EQ(database.NumImages(), 12u);
+  EXPECT_TRUE(comic::io::IsRegularFile(out + "/sparse/0/images.bin"));
+  // Nothing of the staging folder is left beside it.
+  size_t entries = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.File("out"))) {
+    EXPECT_EQ(entry.path().filename(), "x");
+    ++entries;
+  }
+  EXPECT_EQ(entries, 1u);
 }
 
 }  // namespace

@@ -67,6 +67,7 @@ TEST(ComicSfm, HelpDocumentsEveryOption) {
                              "--plot-plane",
                              "--model-format",
                              "--ply-format",
+                             "--undistort",
                              "--quiet"}) {
     EXPECT_NE(result.output.find(option), std::string::npos) << option;
   }
@@ -210,7 +211,8 @@ TEST(ComicSfm, ModelAndPlyFormatsAreChosenByFlags) {
       nlohmann::json::parse(comic::io::ReadFileToString(dir.File("bin/report.json")));
   EXPECT_EQ(report["outputs"],
             nlohmann::json({"sparse/0/cameras.bin", "sparse/0/images.bin", "sparse/0/points3D.bin",
-                            "points.ply", "trajectory.png", "report.html"}));
+                            "points.ply", "trajectory.png", "transforms.json", "trajectory_tum.txt",
+                            "report.html"}));
   // The PLYs hold the same points, the binary one to float precision.
   const auto ascii_cloud = comic::io::ReadPly(dir.File("txt/points.ply"));
   const auto binary_cloud = comic::io::ReadPly(dir.File("bin/points.ply"));

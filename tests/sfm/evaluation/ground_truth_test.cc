@@ -54,6 +54,38 @@ TEST(GroundTruth, MatchesByIndexWithoutNames) {
   EXPECT_DOUBLE_EQ(matched.camera->fx, 800);
 }
 
+// TUM-style: poses at 1305031102.10, .11, .12, .13 s; frames named by their time stamps match
+// the nearest pose within 20 ms, frames named otherwise line i to frame i.
+io::GroundTruthCameras MakeTimestampedTruth() {
+  io::GroundTruthCameras truth = MakeTruth(false);
+  truth.timestamp_tolerance = 0.02;
+  for (io::GroundTruthCamera& camera : truth.cameras) {
+    camera.has_intrinsics = false;
+    camera.timestamp = 1305031102.10 + 0.01 * camera.index;
+  }
+  return truth;
+}
+
+TEST(GroundTruth, MatchesByTimestampWhenTheFramesAreNamedByTheirs) {
+  const FrameGroundTruth matched = MatchGroundTruthToFrames(
+      MakeTimestampedTruth(), {"rgb/1305031102.131.png", "1305031102.104.png", "1305031102.2.png"},
+      {0, 1, 2}, cv::Size(640, 480), cv::Size(640, 480));
+  EXPECT_EQ(matched.num_matched, 2);
+  EXPECT_DOUBLE_EQ(matched.cams_from_world[0]->translation.x(), 3.0);
+  EXPECT_DOUBLE_EQ(matched.cams_from_world[1]->translation.x(), 0.0);
+  EXPECT_FALSE(matched.cams_from_world[2].has_value());  // 70 ms from the last pose
+  EXPECT_FALSE(matched.camera.has_value());
+}
+
+TEST(GroundTruth, TimestampedTruthFallsBackToTheIndex) {
+  const FrameGroundTruth matched =
+      MatchGroundTruthToFrames(MakeTimestampedTruth(), {"frame_000001.png", "frame_x.png"}, {1, 2},
+                               cv::Size(640, 480), cv::Size(640, 480));
+  EXPECT_EQ(matched.num_matched, 2);
+  EXPECT_DOUBLE_EQ(matched.cams_from_world[0]->translation.x(), 1.0);
+  EXPECT_DOUBLE_EQ(matched.cams_from_world[1]->translation.x(), 2.0);
+}
+
 TEST(GroundTruth, RejectsMismatches) {
   EXPECT_THROW(MatchGroundTruthToFrames(MakeTruth(true), {"nothing.png"}, {0}, cv::Size(640, 480),
                                         cv::Size(640, 480)),

@@ -114,7 +114,7 @@ TEST(RunReconstruction, WritesEveryOutputAndCommitsAtTheEnd) {
     EXPECT_TRUE(io::PathExists(io::JoinPaths(options.output, name))) << name;
   }
   EXPECT_FALSE(io::PathExists(io::JoinPaths(options.output, "sparse")));
-  EXPECT_EQ(result.runs.front().report_json["outputs"].size(), 6u);
+  EXPECT_EQ(result.runs.front().report_json["outputs"].size(), 8u);
   EXPECT_EQ(result.runs.front().report_json["outputs"].back(), "report.html");
 }
 
