@@ -15,8 +15,8 @@ namespace comic::sfm {
 void ModelSelfCheckOptions::Check() const {
   COMIC_CHECK(min_shared_tracks >= 8, kInvalidArgument,
               "self-check min_shared_tracks must be >= 8, got " << min_shared_tracks);
-  COMIC_CHECK(min_triangulation_angle_deg >= 0, kInvalidArgument,
-              "self-check min_triangulation_angle_deg must be >= 0");
+  COMIC_CHECK(min_parallax_deg >= 0, kInvalidArgument,
+              "self-check min_parallax_deg must be >= 0");
   COMIC_CHECK(max_error_ratio >= 1, kInvalidArgument,
               "self-check max_error_ratio must be >= 1, got " << max_error_ratio);
   COMIC_CHECK(min_error_px > 0, kInvalidArgument, "self-check min_error_px must be > 0");
@@ -120,7 +120,7 @@ std::vector<std::vector<int>> PartnerCandidates(const std::unordered_map<uint64_
     if (count < options.min_shared_tracks) continue;
     const int frame1 = static_cast<int>(key >> 32);
     const int frame2 = static_cast<int>(key & 0xffffffffu);
-    if (ModelParallaxDeg(model, depths, frame1, frame2) < options.min_triangulation_angle_deg) {
+    if (ModelParallaxDeg(model, depths, frame1, frame2) < options.min_parallax_deg) {
       continue;
     }
     by_frame[frame1].emplace_back(frame2, count);
@@ -198,9 +198,10 @@ PairVerdict CheckPair(const Reconstruction& model, const frontend::FeatureTracks
       model.camera(image1.camera_id), model.camera(image2.camera_id), points1, points2,
       options.two_view);
   PairVerdict verdict;
+  // A homography-like pair (little parallax, or a plane) still tests the model's rotation: with
+  // x2 ~ R x1, x2' [t]x R x1 vanishes for every t, so only a wrong R leaves a distance.
   verdict.kept =
-      geometry.configuration == TwoViewConfiguration::kCalibrated &&
-      geometry.median_triangulation_angle_deg >= options.min_triangulation_angle_deg &&
+      geometry.configuration != TwoViewConfiguration::kDegenerate &&
       geometry.num_inliers >= options.min_inlier_ratio * static_cast<double>(points1.size());
   if (verdict.kept) {
     const Rigid3d model_cam2_from_cam1 = image2.cam_from_world * image1.cam_from_world.Inverse();

@@ -23,11 +23,11 @@ namespace comic::sfm {
 struct ModelSelfCheckOptions {
   // A pair is estimated when its frames share at least this many tracks.
   int min_shared_tracks = 40;
-  // ... and kept when its own estimate is a general relative pose (not a homography) whose
-  // inliers see the scene from directions at least this far apart (median, degrees): below it
-  // the rotation of an essential matrix is ill-conditioned and says little.
-  double min_triangulation_angle_deg = 1.0;
-  // ... and at least this fraction of the shared tracks are inliers of that pose: a pair whose
+  // ... and when the model puts the two cameras at least this far apart, seen from the nearer
+  // one's median depth (degrees): the pair's own relative pose is then estimated (an essential
+  // matrix; a homography-like pair still tests the rotation) ...
+  double min_parallax_deg = 1.0;
+  // ... and kept when at least this fraction of the shared tracks are inliers of that pose: a pair whose
   // correspondences mostly disagree with each other (tracks chained through other frames) has no
   // coherent evidence of its own.
   double min_inlier_ratio = 0.5;
@@ -58,7 +58,7 @@ struct ModelSelfCheckOptions {
 };
 
 struct ModelSelfCheck {
-  int pairs_checked = 0;      // kept: general relative pose with enough parallax
+  int pairs_checked = 0;      // kept: a pose with enough of the shared tracks as inliers
   int pairs_disagreeing = 0;  // of those, the model's epipolar geometry fits too badly
   // Over the kept pairs: the model's median distance over the pair's own, and the angle between
   // the model's relative rotation and the pair's own.
