@@ -96,6 +96,15 @@ bool IsSameOrInsideFolder(const std::string& path, const std::string& folder) {
   return true;
 }
 
+// The files and folders a run reads, by the option that names them.
+std::vector<io::NamedPath> RunInputPaths(const ReconstructionRunOptions& options) {
+  return {{"FRAMES", options.frames},
+          {"--gt", options.gt},
+          {"--intrinsics", options.camera.intrinsics},
+          {"--regions", options.regions},
+          {"--masks", options.masks}};
+}
+
 // --write-frames is for a video; a folder's images are COLMAP's already.
 void CheckFramesOption(const ReconstructionRunOptions& options, const RunInputs& inputs) {
   COMIC_CHECK(options.write_frames.empty() || inputs.sequence->IsVideo(), kInvalidArgument,
@@ -190,11 +199,8 @@ void CheckRunOptions(const ReconstructionRunOptions& options) {
        {"--colmap-db", options.colmap.colmap_db},
        {"--write-frames", options.write_frames == kFramesInOutput ? "" : options.write_frames},
        {"--cache", options.cache}},
-      {{"FRAMES", options.frames},
-       {"--gt", options.gt},
-       {"--intrinsics", options.camera.intrinsics},
-       {"--regions", options.regions},
-       {"--masks", options.masks}});
+      RunInputPaths(options));
+  io::CheckWrittenPathsAvoidInputs(RunWrittenPaths(options), RunInputPaths(options));
   CheckColmapOutputs(options);
   // --output is replaced as a whole when a run commits: a cache in it would be lost (or, being
   // --output itself, would lose the outputs).

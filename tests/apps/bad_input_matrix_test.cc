@@ -189,6 +189,21 @@ const std::vector<Case> kCases = {
   // Issue 29: every frame's header against the budget and the first frame's size, before work.
   {"comic_sfm", "{d}/huge_second --output {d}/out", 1, {"huge.png", "30000x30000", "--max-pixels"}},
   {"comic_sfm", "{d}/onlyfifo --output {d}/out", 2, {"onlyfifo", "no images", "'x.png' (a FIFO)"}},
+  // A COLMAP project as --output: every input at a path the run writes stays as it was.
+  {"comic_sfm", "{e} --gt {d}/proj/sparse/0 --output {d}/proj", 2,
+   {"proj/sparse/0: the input --gt would be replaced", "--output writes {d}/proj/sparse"}},
+  {"comic_sfm", "{e} --intrinsics {d}/proj/cameras.txt --output {d}/proj", 2,
+   {"proj/cameras.txt: the input --intrinsics would be replaced", "{d}/proj/cameras.txt"}},
+  {"comic_sfm", "{d}/proj/sparse --output {d}/proj", 2,
+   {"proj/sparse: the input FRAMES would be replaced", "--output writes {d}/proj/sparse"}},
+  {"comic_sfm", "{e} --gt {d}/proj/images/../sparse/0/images.txt --output {d}/proj/", 2,
+   {"the input --gt would be replaced", "--output writes {d}/proj/sparse"}},
+  {"comic_sfm", "{e} --regions {d}/proj/report.json --output {d}/proj", 2,
+   {"the input --regions would be replaced", "{d}/proj/report.json"}},
+  {"comic_sfm", "{e} --masks {d}/proj/sparse/0 --output {d}/proj", 2,
+   {"the input --masks would be replaced"}},
+  {"comic_sfm", "{e} --gt {d}/proj/harris/report.json --output {d}/proj --compare --detectors harris",
+   2, {"the input --gt would be replaced", "--output writes {d}/proj/harris"}},
   // comic_track_eval
   {"comic_track_eval", "{d}/missing --output {d}/out", 1, {"missing", "no such file"}},
   {"comic_track_eval", "{d}/truncated.avi --output {d}/out", 1, {"truncated.avi", "stops decoding"}},
@@ -263,6 +278,12 @@ const std::vector<Case> kCases = {
   // Issue 29: a journal left beside a database that is gone would be replayed into ours.
   {"comic_export_colmap", "{e} --colmap-db {d}/gone.db", 1,
    {"gone.db-journal", "a journal is left beside", "gone.db"}},
+  {"comic_export_colmap", "{d}/truncated.avi --colmap-db {d}/proj/a.db --intrinsics "
+   "{d}/proj/images/calib.txt", 2,
+   {"calib.txt: the input --intrinsics would be replaced", "--colmap-db writes {d}/proj/images"}},
+  {"comic_export_colmap", "{d}/truncated.avi --colmap-db {d}/a.db --write-frames={d}/proj "
+   "--intrinsics {d}/proj/cameras.txt", 2,
+   {"the input --intrinsics would be replaced", "--write-frames writes {d}/proj"}},
   // comic_inspect
   {"comic_inspect", "{d}/missing", 1, {"missing", "no such file"}},
   {"comic_inspect", "{d}/garbage.mp4", 1, {"garbage.mp4", "cannot open as a video"}},
@@ -411,6 +432,23 @@ void MakeIssue29Fixture(const std::string& dir) {
   WriteBytes(dir + "/gone.db-journal", std::string(600, 'j'));
 }
 
+// A COLMAP project (proj/sparse/0, proj/images) holding inputs where a run given --output proj
+// writes: a model, a calibration, a report, a --compare detector's folder.
+void MakeProjectFixture(const std::string& dir) {
+  const std::string proj = dir + "/proj";
+  fs::create_directories(proj + "/sparse/0");
+  fs::create_directories(proj + "/images");
+  fs::create_directories(proj + "/harris");
+  for (const char* name : {"cameras.txt", "images.txt", "points3D.txt"}) {
+    WriteBytes(proj + "/sparse/0/" + name, std::string("# ground truth ") + name + "\n");
+  }
+  fs::copy_file(ExampleDir() + "/image_l/000000.png", proj + "/images/000000.png");
+  WriteBytes(proj + "/cameras.txt", "# calibration\n1 PINHOLE 1226 370 700 700 613 185\n");
+  WriteBytes(proj + "/images/calib.txt", "700 700 613 185\n");
+  WriteBytes(proj + "/report.json", "{\"an\": \"input\"}\n");
+  WriteBytes(proj + "/harris/report.json", "{\"an\": \"input\"}\n");
+}
+
 // The fixture: every bad input the rows refer to, in one folder.
 void MakeFixture(const std::string& dir) {
   const std::string good = ExampleDir() + "/image_l/000000.png";
@@ -465,6 +503,7 @@ void MakeFixture(const std::string& dir) {
   WriteBytes(dir + "/truncated.avi", bytes.substr(0, bytes.size() * 6 / 10));
   fs::remove(video);
   MakeIssue29Fixture(dir);
+  MakeProjectFixture(dir);
 }
 
 uint64_t Fnv1a(const std::string& bytes) {
