@@ -3,6 +3,9 @@
 #include <cctype>
 #include <fstream>
 
+#include "io/core/file_utils.h"
+#include "io/core/input_file.h"
+
 namespace comic::io {
 namespace {
 
@@ -188,6 +191,8 @@ std::optional<ImageHeader> ParseImageHeader(const std::string& data) {
 }
 
 std::optional<ImageHeader> ReadImageHeader(const std::string& path) {
+  if (IsDirectory(path)) return std::nullopt;  // the decoder's reader says what is wrong
+  CheckInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
   Bytes bytes(&in);
