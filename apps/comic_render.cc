@@ -27,6 +27,9 @@ namespace {
 namespace io = comic::io;
 namespace render = comic::render;
 
+// Pairs are spread over the frames, at most one per frame of the longest scene.
+constexpr int kMaxStereoPairs = 100000;
+
 // Each entry of --photos: an image file, or a folder whose images are all taken (sorted).
 std::vector<std::string> ExpandPhotos(const std::string& list) {
   std::vector<std::string> photos;
@@ -126,8 +129,8 @@ int Run(int argc, char** argv) {
   }
   options.Check();
   build.Check();
-  COMIC_CHECK(stereo_pairs >= 0, kInvalidArgument,
-              "--stereo-pairs must be >= 0, got " << stereo_pairs);
+  COMIC_CHECK(stereo_pairs >= 0 && stereo_pairs <= kMaxStereoPairs, kInvalidArgument,
+              "--stereo-pairs must be in [0, " << kMaxStereoPairs << "], got " << stereo_pairs);
   stereo.boundary.depth_ratio = options.boundary.depth_ratio;
   stereo.Check();
   std::vector<io::NamedPath> inputs = {{"SCENE", scene_file}, {"--nerf", nerf}};
