@@ -191,7 +191,8 @@ std::optional<ImageHeader> ParseImageHeader(const std::string& data) {
 }
 
 std::optional<ImageHeader> ReadImageHeader(const std::string& path) {
-  if (IsDirectory(path)) return std::nullopt;  // the decoder's reader says what is wrong
+  // Missing or a folder: the decoder's reader says what is wrong.
+  if (!PathExists(path) || IsDirectory(path)) return std::nullopt;
   CheckInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
