@@ -352,6 +352,10 @@ const std::vector<Case> kCases = {
    {"\"width\": expected a whole number within int's range, got 4294967297"}},
   {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --stereo-pairs "
    "2147483647 --output {d}/out", 2, {"--stereo-pairs must be in [0, 100000], got 2147483647"}},
+  {"comic_render", "{d}/scene_big.json --photos {d}/good.png --output {d}/out", 1,
+   {"scene_big.json", "16384x16384 = 268435456 pixels per frame", "--max-pixels 268435456"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --max-pixels 0 "
+   "--output {d}/out", 2, {"--max-pixels"}},
   {"comic_render", "{d}/scene_deep.json --photos {d}/good.png --output {d}/out", 1,
    {"scene_deep.json", "nested deeper than 64 levels"}},
   // A scene reads files beside it only, never any file a path names (and quotes in an error).
@@ -511,6 +515,9 @@ void MakeSceneFixture(const std::string& dir) {
         [](nlohmann::json* s) { (*s)["elements"][1]["segments"] = 1000000000; });
   write("scene_gap.json", [](nlohmann::json* s) { (*s)["elements"][2]["gap"] = -5; });
   write("scene_spacing.json", [](nlohmann::json* s) { (*s)["elements"][3]["spacing"] = 1e-6; });
+  write("scene_big.json", [](nlohmann::json* s) {
+    (*s)["camera"] = {{"width", 16384}, {"height", 16384}};
+  });
   write("scene_width.json", [](nlohmann::json* s) { (*s)["camera"]["width"] = 4294967297ull; });
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   WriteBytes(dir + "/scene_deep.json", "{\"description\": " + deep + "}");
