@@ -14,6 +14,7 @@
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
+#include "io/core/pixel_budget.h"
 #include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/image/image_io.h"
@@ -26,6 +27,19 @@ namespace {
 
 namespace io = comic::io;
 namespace render = comic::render;
+
+// Pairs are spread over the frames, at most one per frame of the longest scene.
+constexpr int kMaxStereoPairs = 100000;
+
+// The camera's pixels per frame against --max-pixels, in the scene's words.
+void CheckCameraPixels(const std::string& scene_file, const render::Lens& lens,
+                       int64_t max_pixels) {
+  const int64_t pixels = static_cast<int64_t>(lens.width) * lens.height;
+  COMIC_CHECK(pixels <= max_pixels, kInvalidData,
+              scene_file << ": \"camera\": " << lens.width << "x" << lens.height << " = " << pixels
+                         << " pixels per frame exceeds the budget of " << max_pixels
+                         << "; raise it with --max-pixels " << pixels);
+}
 
 // Each entry of --photos: an image file, or a folder whose images are all taken (sorted).
 std::vector<std::string> ExpandPhotos(const std::string& list) {
@@ -52,6 +66,7 @@ int Run(int argc, char** argv) {
   bool quiet = false;
   bool no_truth_images = false;
   int stereo_pairs = 0;
+  int max_pixels = static_cast<int>(io::kDefaultMaxPixels);
   std::string nerf;
   double nerf_lift = 1.0;
   render::StereoPairOptions stereo;
@@ -68,6 +83,9 @@ int Run(int argc, char** argv) {
                    "comma-separated photographs (or folders of them) to cut textures from",
                    &photos);
   parser.AddOption("seed", "N", "draws positions, sizes, textures, shake and noise", &seed);
+  parser.AddOption("max-pixels", "N",
+                   "refuse a scene whose camera has more pixels than N per frame (width x height)",
+                   &max_pixels);
   parser.AddOption("frames", "N", "frames to render (0: the scene file's)", &build.num_frames);
   comic::apps::AddOutputFolderFlag(parser, &out_dir);
   parser.AddOption("supersampling", "N", "samples per pixel along each axis (1-8)",
@@ -126,8 +144,9 @@ int Run(int argc, char** argv) {
   }
   options.Check();
   build.Check();
-  COMIC_CHECK(stereo_pairs >= 0, kInvalidArgument,
-              "--stereo-pairs must be >= 0, got " << stereo_pairs);
+  io::CheckMaxPixels(max_pixels);
+  COMIC_CHECK(stereo_pairs >= 0 && stereo_pairs <= kMaxStereoPairs, kInvalidArgument,
+              "--stereo-pairs must be in [0, " << kMaxStereoPairs << "], got " << stereo_pairs);
   stereo.boundary.depth_ratio = options.boundary.depth_ratio;
   stereo.Check();
   std::vector<io::NamedPath> inputs = {{"SCENE", scene_file}, {"--nerf", nerf}};
@@ -139,6 +158,7 @@ int Run(int argc, char** argv) {
 
   const render::BuiltScene built =
       render::BuildScene(scene_file, ExpandPhotos(photos), static_cast<uint64_t>(seed), build);
+  CheckCameraPixels(scene_file, built.lens, max_pixels);
   io::StagedFolder out(out_dir);
   comic::apps::ProgressLine progress("comic_render: " + built.name, quiet);
   const auto update = [&](int done, int total) { progress.Update(done, total); };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
@@ -38,6 +39,16 @@ std::shared_ptr<GroundTrack> ParseTrack(const JsonFields& fields) {
   }
   if (fields.Bool("loop", false)) track->Close();
   return track;
+}
+
+// A scene names files beside it: a relative path without "..", so a scene from elsewhere cannot
+// read (and quote in an error) any file the user can read.
+bool IsInsideSceneFolder(const std::string& file) {
+  if (file.empty() || file[0] == '/') return false;
+  for (const auto& part : std::filesystem::path(file)) {
+    if (part == "..") return false;
+  }
+  return true;
 }
 
 // KITTI's world is camera 0's frame (x right, y down, z forward); the scene's has y up and the
@@ -122,9 +133,13 @@ CameraPath CameraPath::FromJson(const nlohmann::json& json, const std::string& w
     path.speed_ = fields.RequiredNumber("degrees_per_frame");
   } else if (path.type_ == "poses") {
     fields.CheckKnown({"type", "shake", "height", "pitch_deg", "file"});
-    std::string file = fields.RequiredString("file");
-    if (!file.empty() && file[0] != '/') file = io::JoinPaths(base_dir, file);
-    path.poses_ = ReadPosesFile(file, path.height_, num_frames);
+    const std::string file = fields.RequiredString("file");
+    if (!IsInsideSceneFolder(file)) {
+      fields.Fail("file",
+                  "must be a path inside the scene's folder (relative, without \"..\"), got \"" +
+                      file + "\"");
+    }
+    path.poses_ = ReadPosesFile(io::JoinPaths(base_dir, file), path.height_, num_frames);
   } else {
     fields.Fail("type", "unknown path \"" + path.type_ + "\" (drive, walk, orbit, pan or poses)");
   }

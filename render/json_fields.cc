@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
 
 #include "io/core/error.h"
 
@@ -37,7 +40,40 @@ int JsonFields::Integer(const std::string& key, int fallback) const {
   if (!object_.contains(key)) return fallback;
   const nlohmann::json& value = object_.at(key);
   if (!value.is_number_integer()) Fail(key, "expected a whole number");
+  // Read wide: 4294967297 as an int would wrap to 1.
+  const bool fits = value.is_number_unsigned()
+                        ? value.get<uint64_t>() <= std::numeric_limits<int>::max()
+                        : value.get<int64_t>() >= std::numeric_limits<int>::min() &&
+                              value.get<int64_t>() <= std::numeric_limits<int>::max();
+  if (!fits) Fail(key, "expected a whole number within int's range, got " + value.dump());
   return value.get<int>();
+}
+
+double JsonFields::BoundedNumber(const std::string& key, double fallback, double min,
+                                 double max) const {
+  const double value = Number(key, fallback);
+  if (!(value >= min && value <= max)) FailOutside(key, min, max, value);
+  return value;
+}
+
+int JsonFields::BoundedInteger(const std::string& key, int fallback, int min, int max) const {
+  const int value = Integer(key, fallback);
+  if (value < min || value > max) FailOutside(key, min, max, value);
+  return value;
+}
+
+Range JsonFields::BoundedRange(const std::string& key, Range fallback, double min,
+                               double max) const {
+  const Range range = NumberRange(key, fallback);
+  if (!(range.low >= min)) FailOutside(key, min, max, range.low);
+  if (!(range.high <= max)) FailOutside(key, min, max, range.high);
+  return range;
+}
+
+void JsonFields::FailOutside(const std::string& key, double min, double max, double value) const {
+  std::ostringstream message;
+  message << "must be in [" << min << ", " << max << "], got " << value;
+  Fail(key, message.str());
 }
 
 bool JsonFields::Bool(const std::string& key, bool fallback) const {

@@ -36,6 +36,11 @@ class JsonFields {
   std::string RequiredString(const std::string& key) const;
   // A number (a fixed value) or [low, high] with low <= high.
   Range NumberRange(const std::string& key, Range fallback) const;
+  // As Number, Integer and NumberRange, and within [min, max] (every value of a range): what
+  // bounds the work a scene asks for; the message names the key, the limits and the value.
+  double BoundedNumber(const std::string& key, double fallback, double min, double max) const;
+  int BoundedInteger(const std::string& key, int fallback, int min, int max) const;
+  Range BoundedRange(const std::string& key, Range fallback, double min, double max) const;
   Eigen::Vector2d Vector2(const std::string& key, const Eigen::Vector2d& fallback) const;
   Eigen::Vector3d Vector3(const std::string& key, const Eigen::Vector3d& fallback) const;
   std::vector<int> Integers(const std::string& key) const;  // empty when missing
@@ -47,6 +52,8 @@ class JsonFields {
   [[noreturn]] void Fail(const std::string& key, const std::string& message) const;
 
  private:
+  [[noreturn]] void FailOutside(const std::string& key, double min, double max, double value) const;
+
   const nlohmann::json& object_;
   std::string where_;
 };

@@ -103,11 +103,10 @@ void AddFacades(Scene* scene, const TexturePicker& picker, Random& random, const
                 "photos", "tint", "texels_per_metre"});
   const AlongTrack along = ParseAlong(f, track);
   const double offset = f.Number("offset", 9.0);
-  const Range length = f.NumberRange("length", {8.0, 25.0});
+  const Range length = f.BoundedRange("length", {8.0, 25.0}, 0.5, 10000.0);
   const Range height = f.NumberRange("height", {6.0, 16.0});
-  const Range gap = f.NumberRange("gap", {0.0, 6.0});
+  const Range gap = f.BoundedRange("gap", {0.0, 6.0}, 0.0, 1000.0);
   const Range depth = f.NumberRange("depth", {6.0, 12.0});
-  if (!(length.low > 0)) f.Fail("length", "must be > 0");
   const ElementStyle style = ParseStyle(f, {1.0f, 1.0f, 1.0f});
   for (int side : ParseSides(f)) {
     for (double a = along.first; a < along.last;) {
@@ -129,8 +128,7 @@ void AddAlongTrack(Scene* scene, const TexturePicker& picker, Random& random, co
                 "texels_per_metre"});
   const AlongTrack along = ParseAlong(f, track);
   const Range offset = f.NumberRange("offset", {5.0, 5.0});
-  const Range spacing = f.NumberRange("spacing", {10.0, 20.0});
-  if (!(spacing.low > 0)) f.Fail("spacing", "must be > 0");
+  const Range spacing = f.BoundedRange("spacing", {10.0, 20.0}, 0.1, 10000.0);
   const bool tree = type == "trees";
   const ElementStyle style =
       ParseStyle(f, tree ? cv::Vec3f(0.55f, 0.95f, 0.6f) : cv::Vec3f(1.0f, 1.0f, 1.0f));
@@ -149,7 +147,7 @@ void AddAlongTrack(Scene* scene, const TexturePicker& picker, Random& random, co
         const double length = Draw(random, f.NumberRange("length", {4.0, 12.0}));
         const Eigen::Vector2d to = at + length * along.track->DirectionAt(a);
         AddFence(scene, picker, random, at, to, Draw(random, f.NumberRange("height", {1.0, 1.5})),
-                 f.Number("slat_spacing", 0.15), style);
+                 f.BoundedNumber("slat_spacing", 0.15, 0.01, 100.0), style);
       } else {  // boxes
         const Range size = f.NumberRange("size", {0.5, 2.0});
         AddBox(scene, picker, random, at, Draw(random, size), Draw(random, size),
@@ -200,7 +198,7 @@ void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const 
             f.Number("height", 5.0), f.Bool("sign", false), style);
   } else if (type == "fence") {
     AddFence(scene, picker, random, f.Vector2("from", {0, 0}), f.Vector2("to", {5, 0}),
-             f.Number("height", 1.2), f.Number("slat_spacing", 0.15), style);
+             f.Number("height", 1.2), f.BoundedNumber("slat_spacing", 0.15, 0.01, 100.0), style);
   } else if (type == "wall") {
     AddWall(scene, picker, random, f.Vector2("from", {0, 0}), f.Vector2("to", {10, 0}),
             f.Number("bottom", 0.0), f.Number("top", 5.0), "wall", f.Bool("foreground", false),
@@ -210,7 +208,8 @@ void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const 
     if (!area.is_array() || area.size() != 4)
       f.Fail("area", "expected [x_min, z_min, x_max, z_max]");
     const Range size = f.NumberRange("size", {0.5, 2.0});
-    for (int k = 0; k < f.Integer("count", 10); ++k) {
+    const int count = f.BoundedInteger("count", 10, 0, 100000);
+    for (int k = 0; k < count; ++k) {
       const Eigen::Vector2d at(random.Uniform(area[0].get<double>(), area[2].get<double>()),
                                random.Uniform(area[1].get<double>(), area[3].get<double>()));
       AddBox(scene, picker, random, at, Draw(random, size), Draw(random, size), Draw(random, size),
@@ -219,10 +218,11 @@ void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const 
   } else if (type == "background") {
     AddBackgroundRing(scene, picker, random, f.Vector2("center", scene_center),
                       f.Number("radius", 300.0), f.Number("height", 80.0),
-                      f.Integer("segments", 24), style);
+                      f.BoundedInteger("segments", 24, 3, 4096), style);
   } else if (type == "ground") {
-    AddGround(scene, picker, random, f.Vector2("center", scene_center), f.Number("extent", 600.0),
-              f.Number("tile", 8.0), style);
+    AddGround(scene, picker, random, f.Vector2("center", scene_center),
+              f.BoundedNumber("extent", 600.0, 1.0, 100000.0),
+              f.BoundedNumber("tile", 8.0, 0.1, 1000.0), style);
   } else {
     f.Fail("type",
            "unknown element \"" + type +
@@ -277,8 +277,9 @@ BuiltScene BuildSceneFromJson(const nlohmann::json& spec, const std::string& whe
               where << ": no photographs given to cut textures from");
   BuiltScene built;
   built.name = f.String("name", "scene");
-  built.num_frames = options.num_frames > 0 ? options.num_frames : f.Integer("frames", 100);
-  if (built.num_frames < 1) f.Fail("frames", "must be >= 1");
+  f.String("description", "");  // free text, but text
+  built.num_frames =
+      options.num_frames > 0 ? options.num_frames : f.BoundedInteger("frames", 100, 1, 100000);
   built.lens = ParseLens(
       JsonFields(f.Has("camera") ? f.At("camera") : nlohmann::json::object(), where + ": camera"));
   built.path = CameraPath::FromJson(f.At("path"), where + ": path", base_dir, built.num_frames,
@@ -322,12 +323,47 @@ BuiltScene BuildSceneFromJson(const nlohmann::json& spec, const std::string& whe
   return built;
 }
 
+namespace {
+
+// A scene is a few levels deep; a parser and a JSON value's destructor recurse per level.
+constexpr int kMaxSceneNesting = 64;
+
+// The deepest nesting of arrays and objects in JSON `text`, strings skipped.
+int JsonNestingDepth(const std::string& text) {
+  int depth = 0;
+  int deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
+
 BuiltScene BuildScene(const std::string& scene_file, const std::vector<std::string>& photos,
                       uint64_t seed, const SceneBuildOptions& options) {
   COMIC_CHECK(io::PathExists(scene_file), kNotFound, scene_file << ": no such scene file");
+  const std::string text = io::ReadFileToString(scene_file);
+  COMIC_CHECK(JsonNestingDepth(text) <= kMaxSceneNesting, kInvalidData,
+              scene_file << ": arrays and objects nested deeper than " << kMaxSceneNesting
+                         << " levels; refusing to parse it");
   nlohmann::json spec;
   try {
-    spec = nlohmann::json::parse(io::ReadFileToString(scene_file));
+    spec = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw Error(ErrorKind::kInvalidData, scene_file + ": not valid JSON: " + e.what());
   }

@@ -124,9 +124,9 @@ void IncrementalPipelineOptions::Check() const {
   plausible_intrinsics.Check();
   keyframes.Check();
   loop_closure.Check();
-  COMIC_CHECK(
-      global_ba_max_images >= 0, kInvalidArgument,
-      "pipeline global_ba_max_images must be >= 0 (0: every frame), got " << global_ba_max_images);
+  COMIC_CHECK(global_ba_max_images == 0 || global_ba_max_images >= 2, kInvalidArgument,
+              "pipeline global_ba_max_images must be 0 (every frame) or >= 2, got "
+                  << global_ba_max_images);
   COMIC_CHECK(max_working_image_size >= 0, kInvalidArgument,
               "pipeline max_working_image_size must be >= 0 (0: any size)");
 }

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <new>
 #include <opencv2/core.hpp>
 #include <sstream>
 
@@ -236,6 +237,11 @@ int RunMain(const std::string& program, const std::function<int()>& body) {
   } catch (const cv::Exception& e) {
     std::cerr << program << ": error: OpenCV: " << io::PrintableOneLine(e.err) << " (" << e.func
               << ")\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << program
+              << ": error: out of memory; free memory or work smaller (--max-pixels, "
+                 "--resize-height, fewer frames)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << program << ": error: " << io::PrintableOneLine(e.what()) << "\n";

@@ -5,6 +5,7 @@
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/input_file.h"
 
 namespace comic::io {
 
@@ -17,8 +18,7 @@ void ContentHash::Add(const void* data, size_t size) {
 }
 
 void ContentHash::AddFile(const std::string& path) {
-  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
-  COMIC_CHECK(!IsDirectory(path), kInvalidArgument, path << ": is a folder, expected a file");
+  CheckInputFile(path);
   std::ifstream in(path, std::ios::binary);
   COMIC_CHECK(in.good(), kIo, path << ": cannot open for reading");
   // Blocks, so that a video of gigabytes is hashed without holding it.

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "io/core/error.h"
+#include "io/core/input_file.h"
 #include "io/core/interrupt_cleanup.h"
 #include "io/core/library_messages.h"
 #include "io/core/natural_sort.h"
@@ -152,8 +153,7 @@ void CheckWritableFile(const std::string& path, bool overwrite) {
 }
 
 std::string ReadFileToString(const std::string& path) {
-  COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
-  COMIC_CHECK(!IsDirectory(path), kInvalidArgument, path << ": is a folder, expected a file");
+  CheckInputFile(path);
   std::ifstream in(path, std::ios::binary);
   COMIC_CHECK(in.good(), kIo, path << ": cannot open for reading");
   std::ostringstream buffer;

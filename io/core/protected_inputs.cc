@@ -71,4 +71,24 @@ void CheckOutputFolderAvoidsInputs(const NamedPath& output_folder,
   }
 }
 
+void CheckWrittenPathsAvoidInputs(const std::vector<NamedPath>& written,
+                                  const std::vector<NamedPath>& inputs) {
+  for (const NamedPath& output : written) {
+    for (const NamedPath& input : inputs) {
+      if (output.path.empty() || input.path.empty()) continue;
+      if (IsSameOrInside(input.path, output.path)) {
+        throw Error(ErrorKind::kInvalidArgument,
+                    input.path + ": the input " + input.name +
+                        " would be replaced: " + output.name + " writes " + output.path +
+                        "; refusing (choose another " + output.name + ")");
+      }
+      if (IsSameOrInside(output.path, input.path)) {
+        throw Error(ErrorKind::kInvalidArgument,
+                    output.path + ": " + output.name + " writes it inside the input " + input.name +
+                        " " + input.path + "; refusing to write among the inputs");
+      }
+    }
+  }
+}
+
 }  // namespace comic::io

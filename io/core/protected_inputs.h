@@ -36,4 +36,13 @@ void CheckOutputsAvoidInputs(const std::vector<NamedPath>& outputs,
 void CheckOutputFolderAvoidsInputs(const NamedPath& output_folder,
                                    const std::vector<NamedPath>& inputs);
 
+// For a run that writes chosen files and folders into an output folder (comic_sfm's models,
+// reports, tracks.db): throws comic::Error(kInvalidArgument), naming the input and the written
+// path, if an input is one of `written` (a file, or a folder whose files the run may replace),
+// lies inside one, or holds one. An input elsewhere in the output folder (a COLMAP project's
+// images/ as FRAMES with --output the project) is not touched and passes. `written` name the
+// option that writes them ("--output"); empty paths are skipped.
+void CheckWrittenPathsAvoidInputs(const std::vector<NamedPath>& written,
+                                  const std::vector<NamedPath>& inputs);
+
 }  // namespace comic::io

@@ -9,6 +9,7 @@
 
 #include "io/colmap/colmap_binary_model.h"
 #include "io/core/error.h"
+#include "io/core/input_file.h"
 #include "io/datasets/ground_truth_cameras.h"
 #include "io/datasets/number_field.h"
 #include "io/datasets/opencv_storage_text.h"
@@ -33,6 +34,7 @@ bool EndsWith(const std::string& text, const std::string& suffix) {
 }
 
 std::string ReadText(const std::string& path) {
+  CheckInputFile(path);
   std::ifstream file(path, std::ios::binary);
   COMIC_CHECK(file.good(), kNotFound, path << ": cannot open intrinsics file");
   std::ostringstream text;
@@ -190,7 +192,7 @@ CameraCalibration ReadColmapCameras(
   for (int i = 0; i < num_params; ++i) {
     double value = 0;
     COMIC_CHECK(ParseNumberField(fields[4 + i], &value), kInvalidData,
-                where << ": parameter '" << fields[4 + i] << "' is not a number");
+                where << ": parameter " << QuotedField(fields[4 + i]) << " is not a number");
     calibration.params.push_back(value);
   }
   const int pp = (model == "PINHOLE" || model == "OPENCV") ? 2 : 1;  // fx fy, or one f
@@ -199,6 +201,24 @@ CameraCalibration ReadColmapCameras(
   calibration.params[pp] -= kColmapPixelOffset;
   calibration.params[pp + 1] -= kColmapPixelOffset;
   return calibration;
+}
+
+// K from 4 numbers (fx fy cx cy), 9 (K, row by row) or 12 and more (a 3x4 projection matrix P =
+// K [R | t], as KITTI's calib.txt holds): the values already read, so a stream is read once.
+Eigen::Matrix3d IntrinsicsMatrix(const std::vector<double>& values) {
+  Eigen::Matrix3d k = Eigen::Matrix3d::Identity();
+  if (values.size() == 4) {
+    k(0, 0) = values[0];
+    k(1, 1) = values[1];
+    k(0, 2) = values[2];
+    k(1, 2) = values[3];
+    return k;
+  }
+  const int row_length = values.size() == 9 ? 3 : 4;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) k(r, c) = values[row_length * r + c];
+  }
+  return k;
 }
 
 }  // namespace
@@ -233,7 +253,7 @@ CameraCalibration ReadCameraCalibrationFile(const std::string& path) {
       if (field.back() == ':') continue;
       double value = 0;
       COMIC_CHECK(ParseNumberField(field, &value), kInvalidData,
-                  path << ":" << line_number << ": '" << field << "' is not a number");
+                  path << ":" << line_number << ": " << QuotedField(field) << " is not a number");
       values.push_back(value);
     }
   }
@@ -252,7 +272,13 @@ CameraCalibration ReadCameraCalibrationFile(const std::string& path) {
               path << ": expected intrinsics as 4 numbers (fx fy cx cy), 5, 6 or 8 (fx fy cx cy k1 "
                       "[k2 [p1 p2]]), 9 (K) or 12 (a 3x4 projection matrix), got "
                    << values.size());
-  const Eigen::Matrix3d k = ReadIntrinsicsFile(path);
+  const Eigen::Matrix3d k = IntrinsicsMatrix(values);
+  COMIC_CHECK(k(0, 0) > 0 && k(1, 1) > 0 && k(1, 0) == 0 && k(2, 0) == 0 && k(2, 1) == 0 &&
+                  std::abs(k(2, 2) - 1.0) < 1e-12,
+              kInvalidData,
+              path << ":" << lines.front().first
+                   << ": intrinsics must be upper triangular with positive focal lengths and "
+                      "K(2,2) = 1");
   COMIC_CHECK(std::abs(k(0, 1)) < 1e-9 * std::abs(k(0, 0)), kInvalidData,
               path << ": intrinsics with skew are not supported (K(0,1) = " << k(0, 1) << ")");
   calibration.format = values.size() == 4 ? "numbers" : values.size() == 9 ? "K" : "P";

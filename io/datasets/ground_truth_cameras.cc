@@ -10,6 +10,7 @@
 #include "io/colmap/colmap_text_model.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/input_file.h"
 #include "io/datasets/kitti_odometry.h"
 #include "io/datasets/nerf_transforms.h"
 #include "io/datasets/number_field.h"
@@ -47,7 +48,7 @@ std::vector<TextLine> NonBlankLines(const std::string& path, bool strip_label) {
 double Number(const std::string& path, int line, const std::string& text) {
   double value = 0.0;
   COMIC_CHECK(ParseNumberField(text, &value), kInvalidData,
-              path << ":" << line << ": '" << text << "' is not a number");
+              path << ":" << line << ": " << QuotedField(text) << " is not a number");
   return value;
 }
 
@@ -170,6 +171,10 @@ GroundTruthFormat DetectGroundTruthFormat(const std::string& path) {
                     ": folder holds neither a COLMAP model (cameras.bin, images.bin or "
                     "cameras.txt, images.txt) nor *.camera files (ground-truth cameras)");
   }
+  CheckInputFile(path);
+  COMIC_CHECK(IsRegularFile(path), kInvalidData,
+              path << ": ground truth must be a regular file, not a stream (its format is detected "
+                      "from its text, then it is read)");
   if (EndsWith(path, ".camera")) return GroundTruthFormat::kStrecha;
   if (EndsWith(path, ".json")) return GroundTruthFormat::kNerf;
   for (const char* name :

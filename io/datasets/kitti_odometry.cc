@@ -34,7 +34,7 @@ cv::Matx34d ParseMatrix34(const std::string& path, int line_number, const std::s
   while (in >> field) {
     double value = 0.0;
     COMIC_CHECK(ParseNumberField(field, &value), kInvalidData,
-                path << ":" << line_number << ": '" << field << "' is not a number");
+                path << ":" << line_number << ": " << QuotedField(field) << " is not a number");
     values.push_back(value);
   }
   COMIC_CHECK(

@@ -19,4 +19,9 @@ bool ParseNumberField(std::string_view field, double* value) {
   return end == copy.c_str() + copy.size() && errno == 0 && std::isfinite(*value);
 }
 
+std::string QuotedField(std::string_view field) {
+  if (field.size() <= kQuotedFieldLength) return "'" + std::string(field) + "'";
+  return "'" + std::string(field.substr(0, kQuotedFieldLength)) + "...'";
+}
+
 }  // namespace comic::io

@@ -8,6 +8,7 @@
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/datasets/number_field.h"
 
 namespace comic::io {
 namespace {
@@ -99,7 +100,7 @@ RegionAnnotations ReadRegionFile(const std::string& path, RegionFileFormat forma
   for (size_t k = 0; k < lines.size(); ++k) {
     std::string bad_field;
     COMIC_CHECK(ParseNumbers(lines[k], &numbers, &bad_field), kInvalidData,
-                path << ":" << k + 1 << ": '" << bad_field << "' is not a number");
+                path << ":" << k + 1 << ": " << QuotedField(bad_field) << " is not a number");
     if (annotations.format == RegionFileFormat::kAuto && !numbers.empty() && !AnyNan(numbers) &&
         !(numbers.size() == 1 && numbers[0] == 0.0)) {
       COMIC_CHECK(numbers.size() == 4 || numbers.size() >= 6, kInvalidData,

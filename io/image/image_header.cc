@@ -3,6 +3,9 @@
 #include <cctype>
 #include <fstream>
 
+#include "io/core/file_utils.h"
+#include "io/core/input_file.h"
+
 namespace comic::io {
 namespace {
 
@@ -188,6 +191,9 @@ std::optional<ImageHeader> ParseImageHeader(const std::string& data) {
 }
 
 std::optional<ImageHeader> ReadImageHeader(const std::string& path) {
+  // Missing or a folder: the decoder's reader says what is wrong.
+  if (!PathExists(path) || IsDirectory(path)) return std::nullopt;
+  CheckInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
   Bytes bytes(&in);

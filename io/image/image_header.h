@@ -21,7 +21,8 @@ struct ImageHeader {
 
 // The declared size of the image at `path`, recognised by its signature (not its extension).
 // std::nullopt when the file cannot be read, has another format, or its header is cut short or
-// malformed (the decoder then reports it). Reads a few bytes, never the pixel data.
+// malformed (the decoder then reports it). Reads a few bytes, never the pixel data. Throws
+// comic::Error(kInvalidData) for a FIFO, socket or device, before opening it (io::CheckInputFile).
 std::optional<ImageHeader> ReadImageHeader(const std::string& path);
 
 // The same from bytes in memory (the start of a file).

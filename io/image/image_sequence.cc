@@ -7,6 +7,7 @@
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
+#include "io/core/input_file.h"
 #include "io/core/library_messages.h"
 #include "io/image/image_io.h"
 
@@ -94,6 +95,11 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
     sequence.names_.push_back(FileName(path));
   } else {
     sequence.is_video_ = true;
+    CheckInputFile(path);
+    // Counted by decoding, then decoded again: a stream cannot be read twice.
+    COMIC_CHECK(IsRegularFile(path), kInvalidData,
+                path << ": a video must be a regular file (it is read twice: its frames counted, "
+                        "then decoded), not a stream");
     SilenceLibraryLogging();
     cv::VideoCapture capture;
     // FFmpeg prints what it finds wrong ("moov atom not found", "overread 8"): captured per call,

@@ -97,6 +97,12 @@ def _name(value, what):
     return value
 
 
+def _path(value, what):
+    if not isinstance(value, (str, _os.PathLike)):
+        raise TypeError("%s must be a str or os.PathLike, got %s" % (what, type(value).__name__))
+    return _os.fspath(value)
+
+
 def _pack(columns, dtype):
     array = _np.empty(len(columns[dtype.names[0]]), dtype=dtype)
     for name in dtype.names:
@@ -120,7 +126,7 @@ def imread(path, resize_height=0, color=False, max_pixels=MAX_PIXELS):
     pixels after resizing is refused from its header, before it is decoded. Raises RuntimeError
     naming the file."""
     return _call(
-        "imread", _core.imread, str(path), resize_height, bool(color), max_pixels
+        "imread", _core.imread, _path(path, "imread: path"), resize_height, bool(color), max_pixels
     )
 
 

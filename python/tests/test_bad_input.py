@@ -152,6 +152,27 @@ def test_export_never_writes_over_its_inputs(tmp_path):
     assert (frames / "000000.png").read_bytes() == before
 
 
+def test_reconstruct_never_writes_over_its_inputs(tmp_path):
+    # A COLMAP project as the output: its calibration and model are inputs at paths a run writes.
+    (tmp_path / "sparse" / "0").mkdir(parents=True)
+    (tmp_path / "sparse" / "0" / "cameras.txt").write_text("# ground truth\n")
+    calib = tmp_path / "cameras.txt"
+    calib.write_text("# calibration\n1 PINHOLE 1226 370 700 700 613 185\n")
+    before = calib.read_bytes()
+    with pytest.raises(ValueError, match="the input --intrinsics would be replaced"):
+        comic.reconstruct(EXAMPLE + "/image_l", intrinsics=str(calib), output=str(tmp_path))
+    with pytest.raises(ValueError, match="the input --gt would be replaced"):
+        comic.reconstruct(EXAMPLE + "/image_l", gt=str(tmp_path / "sparse" / "0"),
+                          output=str(tmp_path))
+    assert calib.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cameras.txt", "sparse"]
+
+
+def test_imread_of_none_is_a_type_error():
+    with pytest.raises(TypeError, match="imread: path must be a str or os.PathLike, got NoneType"):
+        comic.imread(None)
+
+
 def test_messages_are_one_printable_line():
     with pytest.raises(RuntimeError) as info:
         comic.imread("/nonexistent/stra\u00dfe\n.png")

@@ -33,6 +33,16 @@ std::string ImageNamePrefix(const std::string& frames, const std::string& image_
   return prefix == "." ? "" : prefix + "/";
 }
 
+// The database and a video's written frames, against every input.
+void CheckExportWritesNoInput(const ColmapExportRunOptions& options,
+                              const ColmapExportRunResult& placed) {
+  const bool beside = options.write_frames.empty() || options.write_frames == kFramesBesideDatabase;
+  io::CheckWrittenPathsAvoidInputs(
+      {{"--colmap-db", options.colmap.colmap_db},
+       {beside ? "--colmap-db" : "--write-frames", placed.video ? placed.frames_folder : ""}},
+      {{"FRAMES", options.frames}, {"--intrinsics", options.camera.intrinsics}});
+}
+
 // Where things go, from the options and the file system, before any work: the frames' folder
 // for COLMAP, --image-path, --sparse. Throws comic::Error naming the flag or the file.
 void PlaceOutputs(const ColmapExportRunOptions& options, ColmapExportRunResult* result) {
@@ -68,6 +78,7 @@ void PlaceOutputs(const ColmapExportRunOptions& options, ColmapExportRunResult* 
   COMIC_CHECK(io::IsDirectory(result->image_path) || result->image_path == result->frames_folder,
               kNotFound, result->image_path << ": --image-path is not a folder");
   result->sparse = options.sparse.empty() ? ColmapMapperOutputBeside(database) : options.sparse;
+  CheckExportWritesNoInput(options, *result);
 }
 
 io::ImageSequence OpenFrames(const ColmapExportRunOptions& options, bool video) {

@@ -11,6 +11,7 @@
 #include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/image/frame_export.h"
+#include "io/image/image_io.h"
 #include "sfm/run/run_outputs.h"
 
 namespace comic::sfm {
@@ -109,12 +110,34 @@ std::string DatabaseWritePath(const ReconstructionRunOptions& options,
   return path;
 }
 
+// The files and folders a run reads, by the option that names them.
+std::vector<io::NamedPath> RunInputPaths(const ReconstructionRunOptions& options) {
+  return {{"FRAMES", options.frames},
+          {"--gt", options.gt},
+          {"--intrinsics", options.camera.intrinsics},
+          {"--regions", options.regions},
+          {"--masks", options.masks}};
+}
+
 // --write-frames is for a video; a folder's images are COLMAP's already.
 void CheckFramesOption(const ReconstructionRunOptions& options, const RunInputs& inputs) {
   COMIC_CHECK(options.write_frames.empty() || inputs.sequence->IsVideo(), kInvalidArgument,
               "--write-frames: " << options.frames
                                  << " is a folder of images already (COLMAP reads them there); "
                                     "--write-frames is for a video");
+}
+
+// A frame stored lower or narrower than the smallest --resize-height holds no detector's window
+// (and no picture for the report page): refused naming the first frame, before any work.
+void CheckFrameSize(const RunInputs& inputs) {
+  const io::ImageSequence& sequence = *inputs.sequence;
+  const cv::Size size = sequence.SourceFrameSize();
+  COMIC_CHECK(size.width >= io::kMinResizeHeight && size.height >= io::kMinResizeHeight,
+              kInvalidData,
+              (sequence.IsVideo() ? sequence.path() : sequence.FramePath(0))
+                  << ": frames of " << size.width << "x" << size.height
+                  << " pixels (as stored) are too small to reconstruct (at least "
+                  << io::kMinResizeHeight << "x" << io::kMinResizeHeight << ")");
 }
 
 // Each detector in turn: its run, then its outputs.
@@ -210,11 +233,8 @@ void CheckRunOptions(const ReconstructionRunOptions& options) {
        {"--colmap-db", options.colmap.colmap_db},
        {"--write-frames", options.write_frames == kFramesInOutput ? "" : options.write_frames},
        {"--cache", options.cache}},
-      {{"FRAMES", options.frames},
-       {"--gt", options.gt},
-       {"--intrinsics", options.camera.intrinsics},
-       {"--regions", options.regions},
-       {"--masks", options.masks}});
+      RunInputPaths(options));
+  io::CheckWrittenPathsAvoidInputs(RunWrittenPaths(options), RunInputPaths(options));
   CheckColmapOutputs(options);
   // --output is replaced as a whole when a run commits: a cache in it would be lost (or, being
   // --output itself, would lose the outputs).
@@ -236,6 +256,7 @@ ReconstructionRunResult RunReconstruction(const ReconstructionRunOptions& option
   ReconstructionRunResult result;
   result.inputs = ResolveRunInputs(options);
   CheckFramesOption(options, result.inputs);
+  CheckFrameSize(result.inputs);
   // A frame name no COLMAP model can hold fails now, not after the reconstruction (issue 29).
   for (const std::string& name : result.inputs.sequence->FrameNames()) {
     io::CheckColmapImageName(name, options.frames);

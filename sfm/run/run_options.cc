@@ -56,8 +56,10 @@ void ReconstructionRunOptions::Check() const {
               "--local-ba-images must be >= 2, got " << local_ba_images);
   COMIC_CHECK(global_ba_growth > 1.0, kInvalidArgument,
               "--global-ba-growth must be > 1, got " << global_ba_growth);
-  COMIC_CHECK(global_ba_max_images >= 0, kInvalidArgument,
-              "--global-ba-max-images must be >= 0 (0: every frame), got " << global_ba_max_images);
+  COMIC_CHECK(global_ba_max_images == 0 || global_ba_max_images >= 2, kInvalidArgument,
+              "--global-ba-max-images must be 0 (every frame) or >= 2 (a window holds at least 2 "
+              "images), got "
+                  << global_ba_max_images);
   COMIC_CHECK(loop_closure_max_move > 0.0, kInvalidArgument,
               "--loop-closure-max-move must be > 0 (a fraction of the path), got "
                   << loop_closure_max_move);

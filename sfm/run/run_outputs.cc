@@ -172,6 +172,58 @@ std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
   return files;
 }
 
+namespace {
+
+// What a detector's folder may receive, whatever the run's outcome.
+const char* const kDetectorFolderEntries[] = {
+    "cameras.txt",     "images.txt",         "points3D.txt", "sparse",    "points.ply",
+    "trajectory.png",  "report.html",        "report.json",  "tracks.db", "rotation_only",
+    "transforms.json", "trajectory_tum.txt", "dense"};
+
+void AddWritten(const std::string& option, const std::string& folder,
+                const std::vector<std::string>& names, std::vector<io::NamedPath>* written) {
+  for (const std::string& name : names) written->push_back({option, io::JoinPaths(folder, name)});
+}
+
+// --output's files: one detector's in it, or --compare's folders and tables.
+void AddOutputFolderPaths(const ReconstructionRunOptions& options,
+                          std::vector<io::NamedPath>* written) {
+  const std::string& out = options.output;
+  if (options.compare) {
+    AddWritten("--output", out, options.DetectorList(), written);
+    AddWritten("--output", out, {"compare.md", "compare.csv", "compare.json", "report.html"},
+               written);
+  } else {
+    AddWritten("--output", out,
+               {std::begin(kDetectorFolderEntries), std::end(kDetectorFolderEntries)}, written);
+  }
+  if (options.compare_colmap) {
+    AddWritten("--output", out,
+               {"colmap", "colmap_compare.md", "colmap_compare.csv", "colmap_compare.json"},
+               written);
+  }
+  if (options.compare_colmap_sift) {
+    AddWritten("--output", out,
+               {"colmap_sift", "colmap_sift_compare.md", "colmap_sift_compare.json"}, written);
+  }
+}
+
+}  // namespace
+
+std::vector<io::NamedPath> RunWrittenPaths(const ReconstructionRunOptions& options) {
+  std::vector<io::NamedPath> written;
+  if (!options.output.empty()) AddOutputFolderPaths(options, &written);
+  written.push_back({"--colmap-db", options.colmap.colmap_db});
+  const bool video = io::PathExists(options.frames) && !io::IsDirectory(options.frames);
+  if (options.write_frames == kFramesInOutput ||
+      (video && options.write_frames.empty() && !options.colmap.colmap_db.empty())) {
+    AddWritten("--output", options.output, {"images"}, &written);
+  } else {
+    written.push_back({"--write-frames", options.write_frames});
+  }
+  return written;
+}
+
 void WriteDetectorOutputs(const DetectorRun& run, const ReconstructionRunOptions& options,
                           const RunInputs& inputs, const std::string& folder) {
   io::EnsureWritableDirectory(folder);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "io/core/protected_inputs.h"
 #include "io/report/report_table.h"
 #include "sfm/evaluation/trajectory_plot.h"
 #include "sfm/run/detector_run.h"
@@ -25,6 +26,12 @@ namespace comic::sfm {
 // The files WriteDetectorOutputs writes for `run`, relative to its folder, in report.json's order.
 std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
                                              const ReconstructionRunOptions& options);
+
+// Every file and folder a run of `options` may write, before any work, each named by the option
+// that writes it (--output, --colmap-db, --write-frames): what DetectorOutputFiles can list for
+// any outcome (every model's sparse/ tree, a failed run's files), --compare's and the COLMAP
+// comparisons' files and folders, a video's frames.
+std::vector<io::NamedPath> RunWrittenPaths(const ReconstructionRunOptions& options);
 
 // Writes every output of `run` into `folder` (created if needed). Throws comic::Error(kIo).
 void WriteDetectorOutputs(const DetectorRun& run, const ReconstructionRunOptions& options,

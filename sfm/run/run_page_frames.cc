@@ -1,6 +1,7 @@
 #include "sfm/run/run_page_frames.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <set>
@@ -27,12 +28,18 @@ std::vector<int> Spread(int first, int last, int count) {
   return frames;
 }
 
+// `image` scaled by `scale`, at least one pixel each way (a very wide frame would round to none).
+cv::Mat Scaled(const cv::Mat& image, double scale) {
+  const cv::Size size(std::max(1, static_cast<int>(std::lround(image.cols * scale))),
+                      std::max(1, static_cast<int>(std::lround(image.rows * scale))));
+  cv::Mat scaled;
+  cv::resize(image, scaled, size, 0, 0, cv::INTER_AREA);
+  return scaled;
+}
+
 cv::Mat ShrinkToWidth(const cv::Mat& image, int width) {
   if (image.cols <= width) return image;
-  cv::Mat small;
-  const double scale = static_cast<double>(width) / image.cols;
-  cv::resize(image, small, cv::Size(), scale, scale, cv::INTER_AREA);
-  return small;
+  return Scaled(image, static_cast<double>(width) / image.cols);
 }
 
 // The frame with the tracks through it, in the size the tracks live in.
@@ -114,9 +121,11 @@ RunFramePictures RunFramePicturesOf(const DetectorRun& run, const RunInputs& inp
                                  Caption(inputs, frame, registered[frame]), tone});
     }
     if (thumbnailed.count(frame)) {
-      cv::Mat thumbnail;
-      const double scale = static_cast<double>(options.thumbnail_height) / image.color.rows;
-      cv::resize(image.color, thumbnail, cv::Size(), scale, scale, cv::INTER_AREA);
+      // The thumbnail's height, or at most 8 times that wide.
+      const double scale =
+          std::min(static_cast<double>(options.thumbnail_height) / image.color.rows,
+                   8.0 * options.thumbnail_height / image.color.cols);
+      const cv::Mat thumbnail = Scaled(image.color, scale);
       pictures.thumbnails.push_back({io::ImageDataUri(thumbnail, options.jpeg_quality),
                                      Caption(inputs, frame, registered[frame]), tone});
     }

@@ -11,7 +11,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -29,6 +31,9 @@ using comic::test::AppPath;
 using comic::test::CountLines;
 using comic::test::ExampleDir;
 using comic::test::ScopedTempDir;
+
+// Seconds a row may take: the slowest rows run a short reconstruction.
+constexpr int kRowTimeoutSeconds = 120;
 
 // {d} = the fixture folder, {e} = the bundled example's frames, {x} = the bundled example.
 struct Case {
@@ -142,6 +147,10 @@ const std::vector<Case> kCases = {
   {"comic_sfm", "{e} --output {d}/out --first 100", 2, {"selects none"}},
   {"comic_sfm", "{e} --output {d}/out --max-pixels 1000", 1, {"000000.png", "--max-pixels"}},
   {"comic_sfm", "{e} --output {d}/out --plot-plane bogus", 2, {"--plot-plane", "bogus"}},
+  {"comic_sfm", "{d}/thin --output {d}/out", 1,
+   {"thin/000000.png", "2000x1 pixels (as stored) are too small to reconstruct"}},
+  {"comic_sfm", "{e} --output {d}/out --global-ba-max-images 1", 2,
+   {"--global-ba-max-images", ">= 2", "got 1"}},
   {"comic_sfm", "{e} --output {d}/out --colmap-threads 100000", 2, {"--colmap-threads"}},
   {"comic_sfm", "{e} --output {d}/out --write-frames", 2,
    {"--write-frames", "folder of images already"}},
@@ -189,6 +198,36 @@ const std::vector<Case> kCases = {
   // Issue 29: every frame's header against the budget and the first frame's size, before work.
   {"comic_sfm", "{d}/huge_second --output {d}/out", 1, {"huge.png", "30000x30000", "--max-pixels"}},
   {"comic_sfm", "{d}/onlyfifo --output {d}/out", 2, {"onlyfifo", "no images", "'x.png' (a FIFO)"}},
+  // A COLMAP project as --output: every input at a path the run writes stays as it was.
+  {"comic_sfm", "{e} --gt {d}/proj/sparse/0 --output {d}/proj", 2,
+   {"proj/sparse/0: the input --gt would be replaced", "--output writes {d}/proj/sparse"}},
+  {"comic_sfm", "{e} --intrinsics {d}/proj/cameras.txt --output {d}/proj", 2,
+   {"proj/cameras.txt: the input --intrinsics would be replaced", "{d}/proj/cameras.txt"}},
+  {"comic_sfm", "{d}/proj/sparse --output {d}/proj", 2,
+   {"proj/sparse: the input FRAMES would be replaced", "--output writes {d}/proj/sparse"}},
+  {"comic_sfm", "{e} --gt {d}/proj/images/../sparse/0/images.txt --output {d}/proj/", 2,
+   {"the input --gt would be replaced", "--output writes {d}/proj/sparse"}},
+  {"comic_sfm", "{e} --regions {d}/proj/report.json --output {d}/proj", 2,
+   {"the input --regions would be replaced", "{d}/proj/report.json"}},
+  {"comic_sfm", "{e} --masks {d}/proj/sparse/0 --output {d}/proj", 2,
+   {"the input --masks would be replaced"}},
+  {"comic_sfm", "{e} --gt {d}/proj/harris/report.json --output {d}/proj --compare --detectors harris",
+   2, {"the input --gt would be replaced", "--output writes {d}/proj/harris"}},
+  // FIFOs block open() until a writer comes: refused from stat, at once, as every input.
+  {"comic_detect", "{d}/fifo.png", 1, {"fifo.png", "not a regular file (a FIFO)"}},
+  {"comic_sfm", "{e} --intrinsics {d}/fifo.txt --output {d}/out", 1,
+   {"fifo.txt", "not a regular file (a FIFO)"}},
+  {"comic_sfm", "{e} --gt {d}/fifo.txt --output {d}/out", 1,
+   {"fifo.txt", "not a regular file (a FIFO)"}},
+  {"comic_sfm", "{e} --regions {d}/fifo.txt --output {d}/out", 1,
+   {"fifo.txt", "not a regular file (a FIFO)"}},
+  {"comic_sfm", "{d}/fifo.mp4 --output {d}/out", 1, {"fifo.mp4", "not a regular file (a FIFO)"}},
+  {"comic_export_colmap", "{e} --colmap-db {d}/a.db --intrinsics {d}/fifo.txt", 1,
+   {"fifo.txt", "not a regular file (a FIFO)"}},
+  {"comic_render", "{d}/fifo.json --photos {d}/good.png --output {d}/out", 1,
+   {"fifo.json", "not a regular file (a FIFO)"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/fifo.png --output {d}/out",
+   1, {"fifo.png", "not a regular file (a FIFO)"}},
   // comic_track_eval
   {"comic_track_eval", "{d}/missing --output {d}/out", 1, {"missing", "no such file"}},
   {"comic_track_eval", "{d}/truncated.avi --output {d}/out", 1, {"truncated.avi", "stops decoding"}},
@@ -263,6 +302,12 @@ const std::vector<Case> kCases = {
   // Issue 29: a journal left beside a database that is gone would be replayed into ours.
   {"comic_export_colmap", "{e} --colmap-db {d}/gone.db", 1,
    {"gone.db-journal", "a journal is left beside", "gone.db"}},
+  {"comic_export_colmap", "{d}/truncated.avi --colmap-db {d}/proj/a.db --intrinsics "
+   "{d}/proj/images/calib.txt", 2,
+   {"calib.txt: the input --intrinsics would be replaced", "--colmap-db writes {d}/proj/images"}},
+  {"comic_export_colmap", "{d}/truncated.avi --colmap-db {d}/a.db --write-frames={d}/proj "
+   "--intrinsics {d}/proj/cameras.txt", 2,
+   {"the input --intrinsics would be replaced", "--write-frames writes {d}/proj"}},
   // comic_inspect
   {"comic_inspect", "{d}/missing", 1, {"missing", "no such file"}},
   {"comic_inspect", "{d}/garbage.mp4", 1, {"garbage.mp4", "cannot open as a video"}},
@@ -294,6 +339,28 @@ const std::vector<Case> kCases = {
    "--output {d}/out", 2, {"depth format", "exr"}},
   {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --shutter 3 "
    "--output {d}/out", 2, {"shutter"}},
+  // A scene's values bound the work before any, in the scene's words (key, limits, value).
+  {"comic_render", "{d}/scene_tile.json --photos {d}/good.png --output {d}/out", 2,
+   {"scene_tile.json", "\"tile\": must be in [0.1, 1000], got 0"}},
+  {"comic_render", "{d}/scene_segments.json --photos {d}/good.png --output {d}/out", 2,
+   {"\"segments\": must be in [3, 4096], got 1e+09"}},
+  {"comic_render", "{d}/scene_gap.json --photos {d}/good.png --output {d}/out", 2,
+   {"\"gap\": must be in [0, 1000], got -5"}},
+  {"comic_render", "{d}/scene_spacing.json --photos {d}/good.png --output {d}/out", 2,
+   {"\"spacing\": must be in [0.1, 10000], got 1e-06"}},
+  {"comic_render", "{d}/scene_width.json --photos {d}/good.png --output {d}/out", 2,
+   {"\"width\": expected a whole number within int's range, got 4294967297"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --stereo-pairs "
+   "2147483647 --output {d}/out", 2, {"--stereo-pairs must be in [0, 100000], got 2147483647"}},
+  {"comic_render", "{d}/scene_big.json --photos {d}/good.png --output {d}/out", 1,
+   {"scene_big.json", "16384x16384 = 268435456 pixels per frame", "--max-pixels 268435456"}},
+  {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/good.png --max-pixels 0 "
+   "--output {d}/out", 2, {"--max-pixels"}},
+  {"comic_render", "{d}/scene_deep.json --photos {d}/good.png --output {d}/out", 1,
+   {"scene_deep.json", "nested deeper than 64 levels"}},
+  // A scene reads files beside it only, never any file a path names (and quotes in an error).
+  {"comic_render", "{d}/scene_poses.json --photos {d}/good.png --output {d}/out", 2,
+   {"\"file\"", "inside the scene's folder", "../../../../etc/passwd"}},
   // comic_render: outputs never among the inputs, nor inputs where the render writes
   {"comic_render", "{x}/../../../scenes/test_street.json --photos {d}/frames --output {d}/frames",
    2, {"--output is the input --photos"}},
@@ -331,6 +398,8 @@ const std::vector<Case> kCases = {
   {"comic_bench", "{d}/good.png --resize-height 2", 2, {"--resize-height", "got 2"}},
 };
 // clang-format on
+
+std::string SceneDir() { return comic::test::SourceDir() + "/scenes"; }
 
 std::string Substitute(std::string text, const std::string& dir) {
   const std::vector<std::pair<std::string, std::string>> keys = {
@@ -411,6 +480,49 @@ void MakeIssue29Fixture(const std::string& dir) {
   WriteBytes(dir + "/gone.db-journal", std::string(600, 'j'));
 }
 
+// A COLMAP project (proj/sparse/0, proj/images) holding inputs where a run given --output proj
+// writes: a model, a calibration, a report, a --compare detector's folder.
+void MakeProjectFixture(const std::string& dir) {
+  const std::string proj = dir + "/proj";
+  fs::create_directories(proj + "/sparse/0");
+  fs::create_directories(proj + "/images");
+  fs::create_directories(proj + "/harris");
+  for (const char* name : {"cameras.txt", "images.txt", "points3D.txt"}) {
+    WriteBytes(proj + "/sparse/0/" + name, std::string("# ground truth ") + name + "\n");
+  }
+  fs::copy_file(ExampleDir() + "/image_l/000000.png", proj + "/images/000000.png");
+  WriteBytes(proj + "/cameras.txt", "# calibration\n1 PINHOLE 1226 370 700 700 613 185\n");
+  WriteBytes(proj + "/images/calib.txt", "700 700 613 185\n");
+  WriteBytes(proj + "/report.json", "{\"an\": \"input\"}\n");
+  WriteBytes(proj + "/harris/report.json", "{\"an\": \"input\"}\n");
+}
+
+// Scenes that asked for unbounded work, crashed the renderer or named a file outside their folder:
+// test_street.json with one value changed.
+void MakeSceneFixture(const std::string& dir) {
+  const nlohmann::json street = nlohmann::json::parse(ReadBytes(SceneDir() + "/test_street.json"));
+  const auto write = [&](const std::string& name,
+                         const std::function<void(nlohmann::json*)>& edit) {
+    nlohmann::json scene = street;
+    edit(&scene);
+    WriteBytes(dir + "/" + name, scene.dump());
+  };
+  write("scene_poses.json", [](nlohmann::json* s) {
+    (*s)["path"] = {{"type", "poses"}, {"file", "../../../../etc/passwd"}};
+  });
+  write("scene_tile.json", [](nlohmann::json* s) { (*s)["elements"][0]["tile"] = 0; });
+  write("scene_segments.json",
+        [](nlohmann::json* s) { (*s)["elements"][1]["segments"] = 1000000000; });
+  write("scene_gap.json", [](nlohmann::json* s) { (*s)["elements"][2]["gap"] = -5; });
+  write("scene_spacing.json", [](nlohmann::json* s) { (*s)["elements"][3]["spacing"] = 1e-6; });
+  write("scene_big.json", [](nlohmann::json* s) {
+    (*s)["camera"] = {{"width", 16384}, {"height", 16384}};
+  });
+  write("scene_width.json", [](nlohmann::json* s) { (*s)["camera"]["width"] = 4294967297ull; });
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  WriteBytes(dir + "/scene_deep.json", "{\"description\": " + deep + "}");
+}
+
 // The fixture: every bad input the rows refer to, in one folder.
 void MakeFixture(const std::string& dir) {
   const std::string good = ExampleDir() + "/image_l/000000.png";
@@ -465,6 +577,15 @@ void MakeFixture(const std::string& dir) {
   WriteBytes(dir + "/truncated.avi", bytes.substr(0, bytes.size() * 6 / 10));
   fs::remove(video);
   MakeIssue29Fixture(dir);
+  MakeProjectFixture(dir);
+  MakeSceneFixture(dir);
+  fs::create_directories(dir + "/thin");
+  for (const char* name : {"/thin/000000.png", "/thin/000001.png"}) {
+    cv::imwrite(dir + name, cv::Mat(1, 2000, CV_8UC1, cv::Scalar(128)));
+  }
+  for (const char* name : {"fifo.png", "fifo.txt", "fifo.mp4", "fifo.json"}) {
+    ASSERT_EQ(::mkfifo((dir + "/" + name).c_str(), 0644), 0);
+  }
 }
 
 uint64_t Fnv1a(const std::string& bytes) {
@@ -547,10 +668,13 @@ TEST_F(BadInputMatrix, EveryRowFailsWithOneLineOfOursAndLeavesTheFilesAsTheyWere
     const std::string args = Substitute(row.args, dir);
     SCOPED_TRACE(std::string(row.app) + " " + args);
     const auto before = Snapshot(dir);
-    const int status = std::system(
-        (AppPath(row.app) + " " + args + " >" + out_file + " 2>" + err_file + " </dev/null")
-            .c_str());
+    // A row that hangs (a FIFO opened) ends after the timeout with 124, a failure, not a hang.
+    const int status =
+        std::system(("timeout -k 5 " + std::to_string(kRowTimeoutSeconds) + " " + AppPath(row.app) +
+                     " " + args + " >" + out_file + " 2>" + err_file + " </dev/null")
+                        .c_str());
     ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal";
+    ASSERT_NE(WEXITSTATUS(status), 124) << "hung: still running after the timeout";
     EXPECT_EQ(WEXITSTATUS(status), row.exit_code);
     const std::string err = ReadBytes(err_file);
     EXPECT_EQ(CountLines(err), 1) << err;

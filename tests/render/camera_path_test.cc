@@ -129,6 +129,23 @@ TEST(CameraPath, APosesFileIsFollowedUpToTheChangeOfWorldAxes) {
                Error);  // 20 poses, 21 frames
 }
 
+// A scene reads files beside it only: never any file a path can name, quoted in an error.
+TEST(CameraPath, APosesFileOutsideTheScenesFolderIsRefused) {
+  test::ScopedTempDir dir;
+  for (const char* file : {"/etc/hostname", "../poses.txt", "sub/../../poses.txt"}) {
+    const nlohmann::json json = {{"type", "poses"}, {"file", file}};
+    try {
+      CameraPath::FromJson(json, "path", dir.path(), 1, 1);
+      FAIL() << file << " not refused";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("path: \"file\": must be a path inside the scene's folder (relative, "
+                            "without \"..\"), got \"") +
+                    file + "\"");
+    }
+  }
+}
+
 TEST(CameraPath, MistakesNameTheKey) {
   const auto message = [](const std::string& json) {
     try {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <map>
 
 #include "io/core/error.h"
@@ -130,6 +131,43 @@ TEST(SceneBuilder, MistakesAreOneLineNamingTheKey) {
   spec = nlohmann::json::parse(kStreet);
   spec["elements"][7]["photos"] = {5};
   EXPECT_NE(BuildError(spec.dump()).find("photograph index 5 out of range"), std::string::npos);
+}
+
+// What a scene asks of the renderer is bounded before any work, in the scene's words.
+TEST(SceneBuilder, ValuesThatCrashOrNeverEndAreRefused) {
+  const auto error = [](const std::function<void(nlohmann::json*)>& edit) {
+    nlohmann::json spec = nlohmann::json::parse(kStreet);
+    edit(&spec);
+    return BuildError(spec.dump());
+  };
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][0]["tile"] = 0;
+            }).find("elements[0]: \"tile\": must be in [0.1, 1000], got 0"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][1]["segments"] = 1000000000;
+            }).find("\"segments\": must be in [3, 4096]"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][2]["gap"] = {-5, 1};
+            }).find("\"gap\": must be in [0, 1000], got -5"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][3]["spacing"] = 1e-6;
+            }).find("\"spacing\": must be in [0.1, 10000]"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["frames"] = 1000000000;
+            }).find("\"frames\": must be in [1, 100000]"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["camera"] = {{"width", 4294967297ull}};
+            }).find("\"width\": expected a whole number within int's range, got 4294967297"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["description"] = {{"nested", {1, 2}}};
+            }).find("\"description\": expected a string"),
+            std::string::npos);
 }
 
 TEST(SceneBuilder, FilesAndPhotographsAreReadWithClearErrors) {

@@ -115,5 +115,39 @@ TEST_F(ProtectedInputs, AnOutputFolderMayNotHoldAnInput) {
                                                 {{"--photos", dir_.File("img.png")}}));
 }
 
+// comic_sfm writes chosen files and folders into --output: an input at one of them, inside one
+// (a model in sparse/0 when sparse/ is written) or holding one is refused; one beside them is not.
+TEST_F(ProtectedInputs, WrittenPathsMayNotBeOrHoldAnInput) {
+  fs::create_directories(dir_.File("proj/sparse/0"));
+  fs::create_directories(dir_.File("proj/images"));
+  std::ofstream(dir_.File("proj/sparse/0/cameras.txt")) << "model";
+  std::ofstream(dir_.File("proj/cameras.txt")) << "calibration";
+  const std::vector<NamedPath> written = {{"--output", dir_.File("proj/cameras.txt")},
+                                          {"--output", dir_.File("proj/sparse")}};
+  try {
+    CheckWrittenPathsAvoidInputs(written, {{"--gt", dir_.File("proj/sparse/0")}});
+    FAIL() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
+    EXPECT_EQ(std::string(e.what()),
+              dir_.File("proj/sparse/0") + ": the input --gt would be replaced: --output writes " +
+                  dir_.File("proj/sparse") + "; refusing (choose another --output)");
+  }
+  EXPECT_THROW(CheckWrittenPathsAvoidInputs(
+                   written, {{"--intrinsics", dir_.File("proj/images/../cameras.txt")}}),
+               Error);
+  EXPECT_THROW(CheckWrittenPathsAvoidInputs(written, {{"FRAMES", dir_.File("proj/sparse")}}),
+               Error);
+  // The written folder inside an input folder.
+  EXPECT_THROW(CheckWrittenPathsAvoidInputs({{"--write-frames", dir_.File("frames/sub")}},
+                                            {{"FRAMES", dir_.File("frames")}}),
+               Error);
+  // A COLMAP project's images/ as FRAMES, beside what the run writes; unset paths.
+  EXPECT_NO_THROW(CheckWrittenPathsAvoidInputs(
+      written, {{"FRAMES", dir_.File("proj/images")}, {"--gt", ""}, {"--masks", dir_.File("x")}}));
+  EXPECT_NO_THROW(
+      CheckWrittenPathsAvoidInputs({{"--colmap-db", ""}}, {{"FRAMES", dir_.File("proj/images")}}));
+}
+
 }  // namespace
 }  // namespace comic::io

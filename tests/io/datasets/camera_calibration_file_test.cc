@@ -3,6 +3,7 @@
 #include "io/datasets/camera_calibration_file.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <opencv2/core.hpp>
@@ -69,6 +70,20 @@ TEST(CameraCalibrationFile, ReadsTheBundledKittiCalibAsP) {
   EXPECT_EQ(calibration.format, "P");
   EXPECT_EQ(calibration.model, "PINHOLE");
   EXPECT_NEAR(calibration.params[0], 707.0912, 1e-4);
+}
+
+// `--intrinsics <(cat calib.txt)`: a pipe, read once (a second read found it empty: "got 0").
+TEST(CameraCalibrationFile, ReadsAPipeOnce) {
+  int ends[2];
+  ASSERT_EQ(::pipe(ends), 0);
+  const std::string text = "P0: 707.1 0 601.9 0 0 707.2 183.1 0 0 0 1 0\n";
+  ASSERT_EQ(::write(ends[1], text.data(), text.size()), static_cast<ssize_t>(text.size()));
+  ::close(ends[1]);
+  const CameraCalibration calibration =
+      ReadCameraCalibrationFile("/dev/fd/" + std::to_string(ends[0]));
+  ::close(ends[0]);
+  EXPECT_EQ(calibration.format, "P");
+  EXPECT_EQ(calibration.params, (std::vector<double>{707.1, 707.2, 601.9, 183.1}));
 }
 
 TEST(CameraCalibrationFile, ReadsOpenCvYamlAndXml) {

@@ -36,5 +36,15 @@ TEST(NumberField, RefusesPartialOutOfRangeAndNonFiniteFields) {
   EXPECT_FALSE(ParseNumberField("-", &value));
 }
 
+// A file that fails to parse is quoted only as far as a short prefix (a poses file may be any
+// file the user can read, /etc/shadow when run as root).
+TEST(NumberField, QuotesOnlyAShortPrefix) {
+  EXPECT_EQ(QuotedField("12x"), "'12x'");
+  EXPECT_EQ(QuotedField(std::string(kQuotedFieldLength, 'a')),
+            "'" + std::string(kQuotedFieldLength, 'a') + "'");
+  EXPECT_EQ(QuotedField("root:$6$saltsaltsalt$hashhashhashhashhash:19000:0:99999:7:::"),
+            "'root:$6$saltsaltsalt$has...'");
+}
+
 }  // namespace
 }  // namespace comic::io

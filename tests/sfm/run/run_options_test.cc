@@ -55,6 +55,7 @@ TEST(ReconstructionRunOptions, MessagesNameTheFlags) {
       {[](auto* o) { o->local_ba_images = 1; }, "--local-ba-images"},
       {[](auto* o) { o->global_ba_growth = 1.0; }, "--global-ba-growth"},
       {[](auto* o) { o->global_ba_max_images = -1; }, "--global-ba-max-images"},
+      {[](auto* o) { o->global_ba_max_images = 1; }, "--global-ba-max-images"},
       {[](auto* o) { o->loop_closure_max_move = 0.0; }, "--loop-closure-max-move"},
       {[](auto* o) { o->init_angle = 90.0; }, "--init-angle"},
       {[](auto* o) { o->init_max_gap = -1; }, "--init-max-gap"},
