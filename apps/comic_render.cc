@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/common/arg_parser.h"
+#include "apps/common/input_budget_flags.h"
 #include "apps/common/list_flags.h"
 #include "apps/common/progress_line.h"
 #include "apps/common/shared_flags.h"
@@ -83,9 +84,7 @@ int Run(int argc, char** argv) {
                    "comma-separated photographs (or folders of them) to cut textures from",
                    &photos);
   parser.AddOption("seed", "N", "draws positions, sizes, textures, shake and noise", &seed);
-  parser.AddOption("max-pixels", "N",
-                   "refuse a scene whose camera has more pixels than N per frame (width x height)",
-                   &max_pixels);
+  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
   parser.AddOption("frames", "N", "frames to render (0: the scene file's)", &build.num_frames);
   comic::apps::AddOutputFolderFlag(parser, &out_dir);
   parser.AddOption("supersampling", "N", "samples per pixel along each axis (1-8)",

@@ -15,8 +15,7 @@ namespace comic::sfm {
 void ModelSelfCheckOptions::Check() const {
   COMIC_CHECK(min_shared_tracks >= 8, kInvalidArgument,
               "self-check min_shared_tracks must be >= 8, got " << min_shared_tracks);
-  COMIC_CHECK(min_parallax_deg >= 0, kInvalidArgument,
-              "self-check min_parallax_deg must be >= 0");
+  COMIC_CHECK(min_parallax_deg >= 0, kInvalidArgument, "self-check min_parallax_deg must be >= 0");
   COMIC_CHECK(max_error_ratio >= 1, kInvalidArgument,
               "self-check max_error_ratio must be >= 1, got " << max_error_ratio);
   COMIC_CHECK(min_error_px > 0, kInvalidArgument, "self-check min_error_px must be > 0");

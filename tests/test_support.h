@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -18,8 +19,12 @@ inline std::string SourceDir() { return COMIC_SOURCE_DIR; }
 // The bundled example sequence (always present in a checkout).
 inline std::string ExampleDir() { return SourceDir() + "/examples/data/kitti06_000-011"; }
 
-// ../shared/data beside the repository, or "" where it is missing (a plain clone).
+// ../shared/data beside the repository, or "" where it is missing (a plain clone) or
+// COMIC_TEST_WITHOUT_SHARED_DATA is set (the sanitizer run: the evaluation-data tests run whole
+// reconstructions that the Release run already covers, at many times the cost under ASan).
 inline std::string SharedDataDir() {
+  const char* without = std::getenv("COMIC_TEST_WITHOUT_SHARED_DATA");
+  if (without != nullptr && std::string(without) == "1") return "";
   const std::string dir = SourceDir() + "/../shared/data";
   std::error_code ec;
   return std::filesystem::is_directory(dir, ec) ? dir : "";

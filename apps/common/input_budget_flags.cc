@@ -4,8 +4,9 @@ namespace comic::apps {
 
 void AddMaxPixelsFlag(ArgParser& parser, int* max_pixels) {
   parser.AddOption("max-pixels", "N",
-                   "refuse an image or frame with more pixels than N after resizing, read from its "
-                   "header before decoding (docs/robustness.md gives time and memory per size)",
+                   "refuse an image or frame with more pixels than N (after resizing; read from "
+                   "an image's header before decoding, from a scene's camera before rendering; "
+                   "docs/robustness.md gives time and memory per size)",
                    max_pixels);
 }
 

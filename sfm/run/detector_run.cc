@@ -7,6 +7,7 @@
 #include "frontend/detector_factory.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/run/run_report.h"
+#include "sfm/run/tracker_settings.h"
 
 namespace comic::sfm {
 
@@ -71,16 +72,17 @@ void RecoverWhatWasFound(const RunInputs& inputs, DetectorRun* result) {
   }
 }
 
-}  // namespace
-
-DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOptions& options,
-                        const RunInputs& inputs, bool writes_outputs,
-                        const RunCallbacks& callbacks) {
+// One run of `detector` with the given descriptor matching (none: the patch tracker), to its
+// diagnosis; the report's JSON is made by the caller.
+DetectorRun RunDetectorWith(const std::string& detector, const ReconstructionRunOptions& options,
+                            const RunInputs& inputs,
+                            const std::optional<frontend::ImageSetMatchingOptions>& image_set,
+                            const RunCallbacks& callbacks) {
   const frontend::DetectorOptions detector_options = RunDetectorOptions(detector, options);
   const std::unique_ptr<frontend::Detector> made = frontend::MakeDetector(detector_options);
   SequenceReconstructionOptions sfm_options =
       MakeSequenceReconstructionOptions(options, inputs.tracker, inputs.camera.refine_intrinsics,
-                                        inputs.image_set, frontend::IsVideo(inputs.pairing));
+                                        image_set, frontend::IsVideo(inputs.pairing));
   sfm_options.feature_masks = inputs.feature_masks;
   if (callbacks.adjustment_progress) {
     sfm_options.mapper.global_ba.progress = [&](const BundleAdjustmentProgress& progress) {
@@ -89,12 +91,76 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
   }
   DetectorRun result;
   result.detector = detector;
+  result.matcher = image_set ? "descriptors" : "patches";
   result.run = Reconstruct(detector_options, *made, sfm_options, options, inputs, callbacks,
                            &result.track_cache);
   Evaluate(inputs, &result);
   result.diagnosis =
       DiagnoseReconstruction(result.run.mapping, sfm_options.mapper, inputs.sequence->FrameNames());
   RecoverWhatWasFound(inputs, &result);
+  return result;
+}
+
+// --matcher auto on an image set starts with the patch tracker's image-set set-up (right on
+// the temple ring, where descriptors alone once built a wrong model) and, when that is not a
+// success (no model, too few frames, or a model its own pairs contradict), matches by
+// descriptors too (right on the NeRF lego set, where the patches find no initial pair) and
+// keeps the better: the auto choice's two paths compared where they differ.
+bool TriesDescriptorsToo(const ReconstructionRunOptions& options, const RunInputs& inputs,
+                         const DetectorRun& first) {
+  return options.matcher == "auto" && !inputs.image_set && !frontend::IsVideo(inputs.pairing) &&
+         !options.tracker.match_window &&
+         first.run.mapping.status != ReconstructionStatus::kSuccess;
+}
+
+// Success before partial before suspect before no model; then more frames in the largest model.
+bool Better(const DetectorRun& a, const DetectorRun& b) {
+  const auto rank = [](const DetectorRun& run) {
+    switch (run.run.mapping.status) {
+      case ReconstructionStatus::kSuccess:
+        return 3;
+      case ReconstructionStatus::kPartial:
+        return 2;
+      case ReconstructionStatus::kSuspect:
+        return 1;
+      default:
+        return 0;
+    }
+  };
+  if (rank(a) != rank(b)) return rank(a) > rank(b);
+  return a.run.mapping.registered_frames.size() > b.run.mapping.registered_frames.size();
+}
+
+nlohmann::json AttemptJson(const DetectorRun& run) {
+  return {{"matcher", run.matcher},
+          {"status", ReconstructionStatusName(run.run.mapping.status)},
+          {"registered_frames", run.run.mapping.registered_frames.size()}};
+}
+
+}  // namespace
+
+DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOptions& options,
+                        const RunInputs& inputs, bool writes_outputs,
+                        const RunCallbacks& callbacks) {
+  DetectorRun result = RunDetectorWith(detector, options, inputs, inputs.image_set, callbacks);
+  result.matcher_attempts = nlohmann::json::array({AttemptJson(result)});
+  if (TriesDescriptorsToo(options, inputs, result)) {
+    if (callbacks.warning) {
+      callbacks.warning("[" + detector + "] the patch matcher's model is " +
+                        ReconstructionStatusName(result.run.mapping.status) + " (" +
+                        std::to_string(result.run.mapping.registered_frames.size()) + "/" +
+                        std::to_string(inputs.sequence->NumFrames()) +
+                        " frames): matching by descriptors too, the better model is kept");
+    }
+    DetectorRun by_descriptors = RunDetectorWith(
+        detector, options, inputs,
+        ImageSetMatchingForRun("descriptors", inputs.pairing, inputs.tracker, options.threads),
+        callbacks);
+    nlohmann::json attempts = result.matcher_attempts;
+    attempts.push_back(AttemptJson(by_descriptors));
+    if (Better(by_descriptors, result)) result = std::move(by_descriptors);
+    result.matcher_attempts = attempts;
+  }
   result.report_json = DetectorReportJson(result, options, inputs, writes_outputs);
   if (callbacks.detector_finished) callbacks.detector_finished(result);
   return result;

@@ -51,6 +51,11 @@ struct RunCallbacks {
 
 struct DetectorRun {
   std::string detector;
+  // "patches" or "descriptors": what matched the frames of this model; and every matcher tried
+  // (--matcher auto on an image set tries descriptors when the patches give no success), each
+  // {matcher, status, registered_frames}, in the order tried.
+  std::string matcher;
+  nlohmann::json matcher_attempts;
   SequenceReconstruction run;
   TrackCacheUse track_cache;  // --cache: the file, and whether the tracks came from it
   SfmRunReport report;

@@ -175,6 +175,8 @@ nlohmann::json DetectorReportJson(const DetectorRun& run, const ReconstructionRu
                                   const RunInputs& inputs, bool writes_outputs) {
   nlohmann::json json = RunReportToJson(run.report);
   json["options"] = RunOptionsToJson(options, inputs);
+  if (!run.matcher.empty()) json["options"]["matcher"] = run.matcher;
+  json["matcher_attempts"] = run.matcher_attempts;
   json["camera"] = CameraReportJson(run.run, inputs);
   if (run.diagnosis.failed) json["diagnosis"] = DiagnosisToJson(run.diagnosis);
   const frontend::TrackBuildSummary& building = run.run.track_building;

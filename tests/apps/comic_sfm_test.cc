@@ -360,9 +360,33 @@ TEST(ComicSfm, TempleSparseRingClosesWithNoTrackerFlags) {
   const nlohmann::json report =
       nlohmann::json::parse(comic::io::ReadFileToString(dir.File("report.json")));
   EXPECT_EQ(report["options"]["matching"]["chosen"], "exhaustive");
+  // The patches succeed (and their model passes its self-check): descriptors are not tried.
+  EXPECT_EQ(report["status"], "success");
+  EXPECT_EQ(report["matcher_attempts"].size(), 1u);
+  EXPECT_EQ(report["options"]["matcher"], "patches");
+  EXPECT_FALSE(report["self_check"]["suspect"].get<bool>());
+  EXPECT_GE(report["self_check"]["pairs_checked"].get<int>(), 10);
   EXPECT_EQ(report["registered_frames"], 16);
   EXPECT_LT(report["ground_truth"]["ate_fraction_of_path"].get<double>(), 0.005);
   EXPECT_LT(report["ground_truth"]["mean_rotation_error_deg"].get<double>(), 1.0);
+}
+
+// An image set whose patch matching gives no success is matched by descriptors too (auto): both
+// tries are in report.json, in order, and the run says so on stderr.
+TEST(ComicSfm, AnImageSetThePatchesFailIsMatchedByDescriptorsToo) {
+  COMIC_REQUIRE_SHARED_DATA();
+  const std::string lego = comic::test::SharedDataDir() + "/nerf_synthetic_lego";
+  ScopedTempDir dir;
+  const auto result = RunCommand(AppPath("comic_sfm") + " " + lego + "/train --detector comic " +
+                                 "--last 19 --quiet --output " + dir.path());
+  EXPECT_EQ(result.exit_code, 1) << result.output;  // neither finds an initial pair in 20 views
+  EXPECT_NE(result.output.find("matching by descriptors too"), std::string::npos) << result.output;
+  const nlohmann::json report =
+      nlohmann::json::parse(comic::io::ReadFileToString(dir.File("report.json")));
+  ASSERT_EQ(report["matcher_attempts"].size(), 2u) << report["matcher_attempts"].dump();
+  EXPECT_EQ(report["matcher_attempts"][0]["matcher"], "patches");
+  EXPECT_EQ(report["matcher_attempts"][1]["matcher"], "descriptors");
+  EXPECT_EQ(report["matcher_attempts"][0]["status"], "no_initial_pair");
 }
 
 TEST(ComicSfm, UnreconstructableInputIsReportedNotCrashed) {
