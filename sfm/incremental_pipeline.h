@@ -25,10 +25,10 @@
 #include "sfm/camera.h"
 #include "sfm/focal_observability.h"
 #include "sfm/incremental_mapper.h"
-#include "sfm/model_self_check.h"
 #include "sfm/intrinsics_plausibility.h"
 #include "sfm/keyframe_selection.h"
 #include "sfm/loop_closure.h"
+#include "sfm/model_self_check.h"
 #include "sfm/reconstruction.h"
 #include "sfm/rigid3d.h"
 

@@ -75,36 +75,42 @@ std::unordered_map<uint64_t, int> SharedTrackCounts(const std::vector<char>& reg
   return counts;
 }
 
-// How far apart the model puts each registered image's centre from the others, against the
-// depth of what it sees: the median depth of its 3-D points (camera units; 0 without points).
-std::vector<double> MedianDepths(const Reconstruction& model, size_t num_frames) {
-  std::vector<double> depths(num_frames, 0.0);
+// The median of `values` (0 when empty).
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2),
+                   values.end());
+  return values[values.size() / 2];
+}
+
+// Where the model puts each registered frame's camera, and the median depth of the 3-D points it
+// sees (camera units; 0 without points): computed once, read for every pair.
+struct ViewGeometry {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double median_depth = 0.0;
+};
+
+std::vector<ViewGeometry> RegisteredViews(const Reconstruction& model, size_t num_frames) {
+  std::vector<ViewGeometry> views(num_frames);
   for (const image_t image_id : model.RegisteredImageIds()) {
     const size_t frame = static_cast<size_t>(image_id) - 1;
     if (frame >= num_frames) continue;
     const Image& image = model.image(image_id);
-    std::vector<double> z;
+    std::vector<double> depths;
     for (const Point2D& point : image.points2D) {
-      if (point.point3D_id == kInvalidPoint3DId) continue;
-      z.push_back((image.cam_from_world * model.point3D(point.point3D_id).xyz).z());
+      if (!point.HasPoint3D()) continue;
+      depths.push_back((image.cam_from_world * model.point3D(point.point3D_id).xyz).z());
     }
-    if (z.empty()) continue;
-    std::nth_element(z.begin(), z.begin() + static_cast<long>(z.size() / 2), z.end());
-    depths[frame] = z[z.size() / 2];
+    views[frame] = {ProjectionCenter(image.cam_from_world), Median(std::move(depths))};
   }
-  return depths;
+  return views;
 }
 
 // The parallax the model gives a pair: its baseline seen from the nearer median depth, degrees.
-double ModelParallaxDeg(const Reconstruction& model, const std::vector<double>& depths, int frame1,
-                        int frame2) {
-  const double depth = std::min(depths[frame1], depths[frame2]);
+double ModelParallaxDeg(const ViewGeometry& view1, const ViewGeometry& view2) {
+  const double depth = std::min(view1.median_depth, view2.median_depth);
   if (depth <= 0) return 0.0;
-  const Eigen::Vector3d center1 =
-      model.image(static_cast<image_t>(frame1 + 1)).cam_from_world.Inverse().translation;
-  const Eigen::Vector3d center2 =
-      model.image(static_cast<image_t>(frame2 + 1)).cam_from_world.Inverse().translation;
-  return 2.0 * std::atan2(0.5 * (center1 - center2).norm(), depth) * 180.0 / M_PI;
+  return 2.0 * std::atan2(0.5 * (view1.center - view2.center).norm(), depth) * 180.0 / M_PI;
 }
 
 // Per frame, its partners in the order they are tried: those the model gives enough parallax
@@ -113,13 +119,13 @@ double ModelParallaxDeg(const Reconstruction& model, const std::vector<double>& 
 std::vector<std::vector<int>> PartnerCandidates(const std::unordered_map<uint64_t, int>& counts,
                                                 const Reconstruction& model, size_t num_frames,
                                                 const ModelSelfCheckOptions& options) {
-  const std::vector<double> depths = MedianDepths(model, num_frames);
+  const std::vector<ViewGeometry> views = RegisteredViews(model, num_frames);
   std::vector<std::vector<std::pair<int, int>>> by_frame(num_frames);  // (partner, count)
   for (const auto& [key, count] : counts) {
     if (count < options.min_shared_tracks) continue;
     const int frame1 = static_cast<int>(key >> 32);
     const int frame2 = static_cast<int>(key & 0xffffffffu);
-    if (ModelParallaxDeg(model, depths, frame1, frame2) < options.min_parallax_deg) {
+    if (ModelParallaxDeg(views[frame1], views[frame2]) < options.min_parallax_deg) {
       continue;
     }
     by_frame[frame1].emplace_back(frame2, count);
@@ -143,13 +149,6 @@ struct PairVerdict {
   double model_median_error_px = 0.0;
   double own_median_error_px = 0.0;
 };
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2),
-                   values.end());
-  return values[values.size() / 2];
-}
 
 // Sampson distance of a normalised correspondence to the epipolar geometry `essential`.
 double SampsonDistance(const Eigen::Matrix3d& essential, const Eigen::Vector2d& normalized1,

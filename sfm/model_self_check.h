@@ -27,9 +27,9 @@ struct ModelSelfCheckOptions {
   // one's median depth (degrees): the pair's own relative pose is then estimated (an essential
   // matrix; a homography-like pair still tests the rotation) ...
   double min_parallax_deg = 1.0;
-  // ... and kept when at least this fraction of the shared tracks are inliers of that pose: a pair whose
-  // correspondences mostly disagree with each other (tracks chained through other frames) has no
-  // coherent evidence of its own.
+  // ... and kept when at least this fraction of the shared tracks are inliers of that pose: a pair
+  // whose correspondences mostly disagree with each other (tracks chained through other frames) has
+  // no coherent evidence of its own.
   double min_inlier_ratio = 0.5;
   // The pair disagrees with the model when its inliers lie, in the median, more than this many
   // times farther (Sampson distance) from the model's epipolar geometry of the pair than from the

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "frontend/detector_factory.h"
+#include "frontend/matching/pairing.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/run/run_report.h"
 #include "sfm/run/tracker_settings.h"
@@ -108,8 +109,8 @@ DetectorRun RunDetectorWith(const std::string& detector, const ReconstructionRun
 // keeps the better: the auto choice's two paths compared where they differ.
 bool TriesDescriptorsToo(const ReconstructionRunOptions& options, const RunInputs& inputs,
                          const DetectorRun& first) {
-  return options.matcher == "auto" && !inputs.image_set && !frontend::IsVideo(inputs.pairing) &&
-         !options.tracker.match_window &&
+  return frontend::ParseFeatureMatcher(options.matcher) == frontend::FeatureMatcher::kAuto &&
+         !inputs.image_set && !frontend::IsVideo(inputs.pairing) && !options.tracker.match_window &&
          first.run.mapping.status != ReconstructionStatus::kSuccess;
 }
 
