@@ -240,6 +240,9 @@ class ConsoleProgress {
     callbacks.warning = [](const std::string& message) {
       apps::PrintWarning("comic_sfm", message);
     };
+    callbacks.note = [](const std::string& message) {
+      std::cout << "comic_sfm: " << message << std::endl;
+    };
     callbacks.frame_registered = [this](const std::string& detector,
                                         const sfm::MapperProgress& progress) {
       if (!quiet_) std::cout << sfm::FrameRegisteredLine(detector, progress) << std::endl;

@@ -479,6 +479,12 @@ sfm::RunCallbacks RunCallbacksFor(const py::object& callback, bool quiet,
     py::gil_scoped_acquire gil;
     if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw py::error_already_set();
   };
+  // A choice the run made as it went (a second matcher tried), printed as the command line does.
+  callbacks.note = [quiet, program](const std::string& message) {
+    if (quiet) return;
+    py::gil_scoped_acquire gil;
+    py::print(program + ": " + message);
+  };
   callbacks.frame_registered = [function, quiet](const std::string& detector,
                                                  const sfm::MapperProgress& p) {
     if (function->is_none() && quiet) return;

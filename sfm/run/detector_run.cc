@@ -3,9 +3,11 @@
 #include <functional>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include "frontend/detector_factory.h"
 #include "frontend/matching/pairing.h"
+#include "io/core/error.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/run/run_report.h"
 #include "sfm/run/tracker_settings.h"
@@ -76,13 +78,13 @@ void RecoverWhatWasFound(const RunInputs& inputs, DetectorRun* result) {
 // One run of `detector` with the given descriptor matching (none: the patch tracker), to its
 // diagnosis; the report's JSON is made by the caller.
 DetectorRun RunDetectorWith(const std::string& detector, const ReconstructionRunOptions& options,
-                            const RunInputs& inputs,
+                            const RunInputs& inputs, const frontend::TrackerOptions& tracker,
                             const std::optional<frontend::ImageSetMatchingOptions>& image_set,
                             const RunCallbacks& callbacks) {
   const frontend::DetectorOptions detector_options = RunDetectorOptions(detector, options);
   const std::unique_ptr<frontend::Detector> made = frontend::MakeDetector(detector_options);
   SequenceReconstructionOptions sfm_options =
-      MakeSequenceReconstructionOptions(options, inputs.tracker, inputs.camera.refine_intrinsics,
+      MakeSequenceReconstructionOptions(options, tracker, inputs.camera.refine_intrinsics,
                                         image_set, frontend::IsVideo(inputs.pairing));
   sfm_options.feature_masks = inputs.feature_masks;
   if (callbacks.adjustment_progress) {
@@ -93,6 +95,7 @@ DetectorRun RunDetectorWith(const std::string& detector, const ReconstructionRun
   DetectorRun result;
   result.detector = detector;
   result.matcher = image_set ? "descriptors" : "patches";
+  result.verify_min_gap = tracker.verify_min_gap;
   result.run = Reconstruct(detector_options, *made, sfm_options, options, inputs, callbacks,
                            &result.track_cache);
   Evaluate(inputs, &result);
@@ -102,16 +105,10 @@ DetectorRun RunDetectorWith(const std::string& detector, const ReconstructionRun
   return result;
 }
 
-// --matcher auto on an image set starts with the patch tracker's image-set set-up (right on
-// the temple ring, where descriptors alone once built a wrong model) and, when that is not a
-// success (no model, too few frames, or a model its own pairs contradict), matches by
-// descriptors too (right on the NeRF lego set, where the patches find no initial pair) and
-// keeps the better: the auto choice's two paths compared where they differ.
-bool TriesDescriptorsToo(const ReconstructionRunOptions& options, const RunInputs& inputs,
-                         const DetectorRun& first) {
-  return frontend::ParseFeatureMatcher(options.matcher) == frontend::FeatureMatcher::kAuto &&
-         !inputs.image_set && !frontend::IsVideo(inputs.pairing) && !options.tracker.match_window &&
-         first.run.mapping.status != ReconstructionStatus::kSuccess;
+// A success with every frame in its largest model: nothing left for another matcher to find.
+bool EveryFrameInOneModel(const DetectorRun& run, const RunInputs& inputs) {
+  return run.run.mapping.status == ReconstructionStatus::kSuccess &&
+         run.run.mapping.registered_frames.size() == inputs.sequence->NumFrames();
 }
 
 // Success before partial before suspect before no model; then more frames in the largest model.
@@ -143,25 +140,26 @@ nlohmann::json AttemptJson(const DetectorRun& run) {
 DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOptions& options,
                         const RunInputs& inputs, bool writes_outputs,
                         const RunCallbacks& callbacks) {
-  DetectorRun result = RunDetectorWith(detector, options, inputs, inputs.image_set, callbacks);
-  result.matcher_attempts = nlohmann::json::array({AttemptJson(result)});
-  if (TriesDescriptorsToo(options, inputs, result)) {
-    if (callbacks.warning) {
-      callbacks.warning("[" + detector + "] the patch matcher's model is " +
-                        ReconstructionStatusName(result.run.mapping.status) + " (" +
-                        std::to_string(result.run.mapping.registered_frames.size()) + "/" +
-                        std::to_string(inputs.sequence->NumFrames()) +
-                        " frames): matching by descriptors too, the better model is kept");
+  const std::vector<MatcherAttempt>& attempts = inputs.matchers;
+  COMIC_CHECK(!attempts.empty(), kInvalidArgument, "run: no matcher resolved");
+  DetectorRun result = RunDetectorWith(detector, options, inputs, attempts[0].tracker,
+                                       attempts[0].image_set, callbacks);
+  nlohmann::json tried = nlohmann::json::array({AttemptJson(result)});
+  for (size_t a = 1; a < attempts.size(); ++a) {
+    if (EveryFrameInOneModel(result, inputs)) break;
+    if (callbacks.note) {
+      callbacks.note("[" + detector + "] the " + result.matcher + " matcher's model is " +
+                     ReconstructionStatusName(result.run.mapping.status) + " (" +
+                     std::to_string(result.run.mapping.registered_frames.size()) + "/" +
+                     std::to_string(inputs.sequence->NumFrames()) +
+                     " frames): matching by descriptors too, the better model is kept");
     }
-    DetectorRun by_descriptors = RunDetectorWith(
-        detector, options, inputs,
-        ImageSetMatchingForRun("descriptors", inputs.pairing, inputs.tracker, options.threads),
-        callbacks);
-    nlohmann::json attempts = result.matcher_attempts;
-    attempts.push_back(AttemptJson(by_descriptors));
-    if (Better(by_descriptors, result)) result = std::move(by_descriptors);
-    result.matcher_attempts = attempts;
+    DetectorRun next = RunDetectorWith(detector, options, inputs, attempts[a].tracker,
+                                       attempts[a].image_set, callbacks);
+    tried.push_back(AttemptJson(next));
+    if (Better(next, result)) result = std::move(next);
   }
+  result.matcher_attempts = std::move(tried);
   result.report_json = DetectorReportJson(result, options, inputs, writes_outputs);
   if (callbacks.detector_finished) callbacks.detector_finished(result);
   return result;

@@ -45,6 +45,8 @@ struct RunCallbacks {
   // Something the run worked around, in one line (a --cache file that could not be read, tracked
   // again and replaced).
   std::function<void(const std::string& message)> warning;
+  // A choice the run made as it went, in one line (--matcher auto matching by descriptors too).
+  std::function<void(const std::string& message)> note;
   // A detector's run is complete (its outputs not yet written).
   std::function<void(const DetectorRun&)> detector_finished;
 };
@@ -52,10 +54,13 @@ struct RunCallbacks {
 struct DetectorRun {
   std::string detector;
   // "patches" or "descriptors": what matched the frames of this model; and every matcher tried
-  // (--matcher auto on an image set tries descriptors when the patches give no success), each
+  // (--matcher auto tries the patch tracker first and descriptors when it gives no success), each
   // {matcher, status, registered_frames}, in the order tried.
   std::string matcher;
   nlohmann::json matcher_attempts;
+  // The patch tracker's --verify-min-gap as this model was matched (auto verifies every pair of
+  // a video).
+  int verify_min_gap = 0;
   SequenceReconstruction run;
   TrackCacheUse track_cache;  // --cache: the file, and whether the tracks came from it
   SfmRunReport report;

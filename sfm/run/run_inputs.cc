@@ -115,7 +115,27 @@ RunInputs ResolveRunInputs(const ReconstructionRunOptions& options) {
                                         static_cast<int>(inputs.sequence->NumFrames()));
   inputs.image_set =
       ImageSetMatchingForRun(options.matcher, inputs.pairing, inputs.tracker, options.threads);
+  inputs.matchers = ResolveMatchers(options, inputs);
   return inputs;
+}
+
+std::vector<MatcherAttempt> ResolveMatchers(const ReconstructionRunOptions& options,
+                                            const RunInputs& inputs) {
+  const MatcherAttempt as_given{inputs.tracker, inputs.image_set};
+  if (frontend::ParseFeatureMatcher(options.matcher) != frontend::FeatureMatcher::kAuto ||
+      options.tracker.match_window) {
+    return {as_given};
+  }
+  if (frontend::IsVideo(inputs.pairing)) {
+    if (!inputs.image_set) return {as_given};
+    MatcherAttempt verified_patches{inputs.tracker, std::nullopt};
+    if (!options.tracker.verify_min_gap) verified_patches.tracker.verify_min_gap = 1;
+    return {verified_patches, as_given};
+  }
+  if (inputs.image_set) return {as_given};
+  return {as_given,
+          MatcherAttempt{inputs.tracker, ImageSetMatchingForRun("descriptors", inputs.pairing,
+                                                                inputs.tracker, options.threads)}};
 }
 
 RegionLabelFn RegionLabelsOf(const RunInputs& inputs) {

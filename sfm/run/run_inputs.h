@@ -22,6 +22,13 @@
 
 namespace comic::sfm {
 
+// One way of matching the frames: the patch tracker with `tracker` (no image_set), or
+// descriptors with `image_set`.
+struct MatcherAttempt {
+  frontend::TrackerOptions tracker;
+  std::optional<frontend::ImageSetMatchingOptions> image_set;
+};
+
 struct RunInputs {
   std::unique_ptr<io::ImageSequence> sequence;
   std::vector<int> source_indices;  // per frame: its index in the folder or video
@@ -41,7 +48,22 @@ struct RunInputs {
   frontend::TrackerOptions tracker;       // the tracker settings set up for that pairing
   // --matcher resolved: the descriptor matching of the pairs, or none (the patch tracker).
   std::optional<frontend::ImageSetMatchingOptions> image_set;
+  // What matches the frames, tried in order until a model holds every frame (ResolveMatchers).
+  std::vector<MatcherAttempt> matchers;
 };
+
+// What --matcher auto tries, in order; the next only while no model holds every frame, and the
+// better model is kept: the auto choice's two paths compared where they differ.
+//  - A video: the patch tracker with every frame pair verified (fast, and on a clean drive the
+//    more precise: its links align the patches themselves), then descriptors over a window of
+//    frames (their links survive blur and passing occluders).
+//  - An image set: the patch tracker's image-set set-up (right on the temple ring, where
+//    descriptors alone once built a wrong model), then descriptors (right on the NeRF lego set,
+//    where the patches find no initial pair).
+// --matcher patches or descriptors, or the tracker's --match-window, ask for one of them (the
+// one `tracker` and `image_set` describe).
+std::vector<MatcherAttempt> ResolveMatchers(const ReconstructionRunOptions& options,
+                                            const RunInputs& inputs);
 
 // Opens the frames and resolves everything above. Throws comic::Error for unreadable or
 // inconsistent input (frames, ground truth, calibration, regions), naming the file.

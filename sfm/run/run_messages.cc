@@ -18,6 +18,20 @@ std::string WithoutFinalNewline(std::string text) {
 
 }  // namespace
 
+namespace {
+
+// How the frames are matched, as the run will try it.
+std::string MatchersText(const RunInputs& inputs) {
+  if (inputs.matchers.size() > 1) {
+    return ", by the patch tracker (every pair verified), then by SIFT descriptors too if frames "
+           "are left out";
+  }
+  if (!inputs.matchers.empty() && inputs.matchers[0].image_set) return ", by SIFT descriptors";
+  return "";
+}
+
+}  // namespace
+
 std::vector<std::string> RunInputsLines(const RunInputs& inputs, const std::string& program) {
   std::ostringstream frames;
   frames << program << ": " << inputs.sequence->NumFrames() << " frames "
@@ -33,7 +47,7 @@ std::vector<std::string> RunInputsLines(const RunInputs& inputs, const std::stri
   std::ostringstream matching;
   matching << program << ": matching " << frontend::PairingName(inputs.pairing.chosen) << " ("
            << (inputs.pairing.requested.mode == frontend::PairingMode::kAuto ? "auto: " : "")
-           << inputs.pairing.reason << ")" << (inputs.image_set ? ", by SIFT descriptors" : "");
+           << inputs.pairing.reason << ")" << MatchersText(inputs);
   return {frames.str(), matching.str()};
 }
 

@@ -176,6 +176,7 @@ nlohmann::json DetectorReportJson(const DetectorRun& run, const ReconstructionRu
   nlohmann::json json = RunReportToJson(run.report);
   json["options"] = RunOptionsToJson(options, inputs);
   if (!run.matcher.empty()) json["options"]["matcher"] = run.matcher;
+  json["options"]["verify_min_gap"] = run.verify_min_gap;
   json["matcher_attempts"] = run.matcher_attempts;
   json["camera"] = CameraReportJson(run.run, inputs);
   if (run.diagnosis.failed) json["diagnosis"] = DiagnosisToJson(run.diagnosis);

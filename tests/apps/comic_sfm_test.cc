@@ -174,6 +174,11 @@ TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {
   EXPECT_LT(report["ground_truth"]["ate_fraction_of_path"].get<double>(), 0.01);
   EXPECT_EQ(report["detector"], "harris");
   EXPECT_EQ(report["options"]["max_features"], 2000);
+  // A clean drive: the patch tracker, every pair verified, holds every frame; descriptors are
+  // not tried.
+  EXPECT_EQ(report["matcher_attempts"].size(), 1u) << report["matcher_attempts"].dump();
+  EXPECT_EQ(report["options"]["matcher"], "patches");
+  EXPECT_EQ(report["options"]["verify_min_gap"], 1);
 
   // Same input and options: the same model, bit for bit, with any --threads (the default, 0, is
   // one per core; 1 here).
