@@ -32,6 +32,7 @@
 #include "io/core/file_utils.h"
 #include "io/core/pixel_budget.h"
 #include "io/core/printable_text.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/thread_count.h"
 #include "io/core/version.h"
 #include "io/image/image_io.h"
@@ -964,6 +965,10 @@ void WriteOutputs(const PyReconstruction& r, const std::string& folder,
   options.ply_format = ply_format;
   io::ParsePlyFormat(ply_format);  // its message names the PLY formats
   options.Check();
+  // As comic_sfm's --output: no written file may replace an input (a folder of frames written
+  // into would receive trajectory.png and the reports).
+  io::CheckOutputsAvoidInputs({{"write", folder}}, sfm::RunInputPaths(options));
+  io::CheckWrittenPathsAvoidInputs(sfm::RunWrittenPaths(options), sfm::RunInputPaths(options));
   py::gil_scoped_release release;
   sfm::WriteDetectorOutputs(r.run_result->runs[r.run_index], options, r.run_result->inputs, folder);
 }

@@ -177,10 +177,24 @@ def test_a_failed_run_writes_what_comic_sfm_writes(tmp_path):
 WRITE_EXCLUDED = {"report.json", "report.html"}
 
 
-@pytest.mark.parametrize("resize_height", [0, 200])
-def test_write_is_what_comic_sfm_writes(tmp_path, resize_height):
-    run_cli(FRAMES, "--resize-height", resize_height, "--output", tmp_path / "cli")
-    models = comic.reconstruct(FRAMES, resize_height=resize_height)
+@pytest.mark.parametrize(
+    "frames, resize_height",
+    [
+        (FRAMES, 0),
+        (FRAMES, 200),
+        # The case that wrote the working size's cameras (1025x683) for 3072x2048 images.
+        pytest.param(
+            HERZ_JESU,
+            683,
+            marks=pytest.mark.skipif(
+                not os.path.isdir(HERZ_JESU), reason="needs ../shared/data (Herz-Jesu-P8)"
+            ),
+        ),
+    ],
+)
+def test_write_is_what_comic_sfm_writes(tmp_path, frames, resize_height):
+    run_cli(frames, "--resize-height", resize_height, "--output", tmp_path / "cli")
+    models = comic.reconstruct(frames, resize_height=resize_height)
     models.write(tmp_path / "python")
     assert tree(tmp_path / "cli") == tree(tmp_path / "python")
     compared = [name for name in tree(tmp_path / "cli") if name not in WRITE_EXCLUDED]
@@ -192,5 +206,12 @@ def test_write_is_what_comic_sfm_writes(tmp_path, resize_height):
     written = comic.Reconstruction(tmp_path / "cli")
     assert len(models) >= 1 and models[0].images.tobytes() == models.images.tobytes()
     assert np.array_equal(models.cameras["params"], written.cameras["params"])
-    assert models.cameras["height"][0] == 370
+    first = sorted(os.listdir(frames))[0]
+    assert models.cameras["height"][0] == comic.imread(os.path.join(frames, first)).shape[0]
     assert [len(m.images) for m in models] == sorted((len(m.images) for m in models), reverse=True)
+
+
+def test_write_refuses_the_frames_folder():
+    models = comic.reconstruct(FRAMES, last=3)
+    with pytest.raises(ValueError, match="FRAMES"):
+        models.write(FRAMES)
