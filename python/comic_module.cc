@@ -32,6 +32,7 @@
 #include "io/core/file_utils.h"
 #include "io/core/pixel_budget.h"
 #include "io/core/printable_text.h"
+#include "io/core/protected_inputs.h"
 #include "io/core/thread_count.h"
 #include "io/core/version.h"
 #include "io/image/image_io.h"
@@ -43,6 +44,7 @@
 #include "sfm/run/colmap_export_run.h"
 #include "sfm/run/reconstruction_run.h"
 #include "sfm/run/run_messages.h"
+#include "sfm/run/run_outputs.h"
 
 namespace py = pybind11;
 
@@ -618,7 +620,13 @@ py::dict Track(const py::object& frames, const std::string& detector_name,
 
 // A reconstruction for Python: the COLMAP model and, for a run's, its report.json and status.
 struct PyReconstruction {
-  io::ColmapTextModel model;
+  io::ColmapTextModel model;  // a run's largest model, in the input's pixels as comic_sfm writes it
+  // A run's: every model (the largest first), in the input's pixels; and the run itself with its
+  // options, kept so that writing it is comic_sfm's own writer on the same run (WriteOutputs).
+  std::vector<io::ColmapTextModel> models;
+  std::shared_ptr<const sfm::ReconstructionRunResult> run_result;
+  size_t run_index = 0;
+  sfm::ReconstructionRunOptions run_options;
   std::string status;       // ReconstructionStatusName; "" for a model read without a report
   std::string report_json;  // report.json's text ("" without one)
   std::string failure;      // a single detector's run without a model: the command line's error
@@ -861,9 +869,22 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
   return table;
 }
 
-PyReconstruction FromDetectorRun(const sfm::DetectorRun& run, const std::string& path) {
+// The `index`th run of `run_result`, its models in the input's pixels (as comic_sfm writes them).
+PyReconstruction FromDetectorRun(
+    const std::shared_ptr<const sfm::ReconstructionRunResult>& run_result, size_t index,
+    const sfm::ReconstructionRunOptions& options, const std::string& path) {
+  const sfm::DetectorRun& run = run_result->runs[index];
   PyReconstruction result;
-  if (run.success()) result.model = sfm::ToColmapTextModel(run.run.mapping.reconstruction);
+  result.run_result = run_result;
+  result.run_index = index;
+  result.run_options = options;
+  if (run.success()) {
+    const sfm::ModelSetWriteOptions in_input_pixels = sfm::ModelWriteOptions(run, options);
+    for (const sfm::Reconstruction* model : sfm::ModelsLargestFirst(run.run.mapping)) {
+      result.models.push_back(sfm::ColmapModelForImages(*model, in_input_pixels));
+    }
+    result.model = result.models.front();
+  }
   result.status = sfm::ReconstructionStatusName(run.run.mapping.status);
   result.report_json = io::JsonText(run.report_json, 2);
   result.path = run.success() ? path : "";
@@ -898,21 +919,23 @@ py::dict Reconstruct(const std::string& frames, const py::dict& options,
     py::gil_scoped_release release;
     result = sfm::RunReconstruction(run, callbacks);
   }
+  const auto shared = std::make_shared<const sfm::ReconstructionRunResult>(std::move(result));
   py::list runs;
-  for (const sfm::DetectorRun& detector_run : result.runs) {
+  for (size_t i = 0; i < shared->runs.size(); ++i) {
+    const std::string& detector = shared->runs[i].detector;
     const std::string folder = run.output.empty() ? ""
-                               : run.compare      ? io::JoinPaths(run.output, detector_run.detector)
+                               : run.compare      ? io::JoinPaths(run.output, detector)
                                                   : run.output;
-    PyReconstruction reconstruction = FromDetectorRun(detector_run, folder);
-    if (!run.compare) reconstruction.failure = result.failure;
+    PyReconstruction reconstruction = FromDetectorRun(shared, i, run, folder);
+    if (!run.compare) reconstruction.failure = shared->failure;
     runs.append(py::cast(std::move(reconstruction)));
   }
   py::dict out;
   out["runs"] = runs;
-  out["failure"] = result.failure;
+  out["failure"] = shared->failure;
   out["comparison"] =
-      result.comparison ? py::object(py::str(result.comparison->ToMarkdown())) : py::none();
-  out["lines"] = sfm::RunOutcomeLines(result, run.output, "comic.reconstruct", quiet);
+      shared->comparison ? py::object(py::str(shared->comparison->ToMarkdown())) : py::none();
+  out["lines"] = sfm::RunOutcomeLines(*shared, run.output, "comic.reconstruct", quiet);
   return out;
 }
 
@@ -921,6 +944,7 @@ py::dict Reconstruct(const std::string& frames, const py::dict& options,
 PyReconstruction ReadReconstruction(const std::string& path) {
   PyReconstruction result;
   result.model = io::ReadColmapModel(path);
+  result.models = {result.model};
   result.path = path;
   const std::string report = io::JoinPaths(path, "report.json");
   if (io::PathExists(report)) {
@@ -931,6 +955,42 @@ PyReconstruction ReadReconstruction(const std::string& path) {
     if (json.contains("status") && json["status"].is_string()) result.status = json["status"];
   }
   return result;
+}
+
+// Reconstructions.write: a run's outputs written by comic_sfm's writer (sfm/run/run_outputs.h) into
+// `folder`, as `comic_sfm FRAMES --output folder --model-format ... --ply-format ...` writes them
+// for one detector.
+void WriteOutputs(const PyReconstruction& r, const std::string& folder,
+                  const std::string& model_format, const std::string& ply_format) {
+  COMIC_CHECK(r.run_result != nullptr, kInvalidArgument,
+              "write: only a run's reconstruction (comic.reconstruct) writes a run's outputs");
+  sfm::ReconstructionRunOptions options = r.run_options;
+  options.output = folder;
+  options.compare = false;
+  options.model_format = model_format;
+  options.ply_format = ply_format;
+  io::ParsePlyFormat(ply_format);  // its message names the PLY formats
+  options.Check();
+  // As comic_sfm's --output: no written file may replace an input (a folder of frames written
+  // into would receive trajectory.png and the reports).
+  io::CheckOutputsAvoidInputs({{"write", folder}}, sfm::RunInputPaths(options));
+  io::CheckWrittenPathsAvoidInputs(sfm::RunWrittenPaths(options), sfm::RunInputPaths(options));
+  py::gil_scoped_release release;
+  sfm::WriteDetectorOutputs(r.run_result->runs[r.run_index], options, r.run_result->inputs, folder);
+}
+
+// One model of a run's reconstruction (0: the largest), alone, with the run's report.
+PyReconstruction ModelOf(const PyReconstruction& r, size_t index) {
+  COMIC_CHECK(index < r.models.size(), kInvalidArgument,
+              "model " << index << ": the reconstruction holds " << r.models.size() << " models");
+  PyReconstruction model;
+  model.model = r.models[index];
+  model.models = {r.models[index]};
+  model.status = r.status;
+  model.report_json = r.report_json;
+  model.failure = r.failure;
+  model.path = r.path;
+  return model;
 }
 
 // comic_export_colmap's options by their flags' names (apps/comic_export_colmap.cc).
@@ -1057,6 +1117,11 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("failure", &PyReconstruction::failure)
       .def_readonly("path", &PyReconstruction::path)
       .def("columns", [](const PyReconstruction& r) { return ModelToColumns(r.model); })
+      .def("num_models", [](const PyReconstruction& r) { return r.models.size(); })
+      .def("has_run", [](const PyReconstruction& r) { return r.run_result != nullptr; })
+      .def("model", &ModelOf, py::arg("index"))
+      .def("write_outputs", &WriteOutputs, py::arg("folder"), py::arg("model_format"),
+           py::arg("ply_format"))
       .def("write_text",
            [](const PyReconstruction& r, const std::string& folder) {
              comic::io::WriteColmapTextModel(r.model, folder);

@@ -26,6 +26,7 @@ PACKAGES=(
   python3-pip    # its wheel (pyproject.toml), built offline with setuptools and wheel (ctest python/wheel)
   python3-setuptools
   python3-wheel
+  python3-venv   # the README's `python3 -m venv --system-site-packages .venv && .venv/bin/pip install ...`
   clang          # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
   libfuzzer-14-dev
   libjs-three    # three.js, inlined into report.html's 3-D view (io/report/html_page.h)

@@ -14,7 +14,7 @@
 
 #include "frontend/matching/track.h"
 #include "sfm/incremental_mapper.h"
-#include "sfm/incremental_pipeline.h"
+#include "sfm/incremental_pipeline_types.h"
 #include "sfm/keyframe_selection.h"
 #include "sfm/loop_closure.h"
 

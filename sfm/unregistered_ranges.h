@@ -16,7 +16,7 @@
 
 #include "frontend/matching/track.h"
 #include "sfm/absolute_pose.h"
-#include "sfm/incremental_pipeline.h"
+#include "sfm/incremental_pipeline_types.h"
 
 namespace comic::sfm {
 

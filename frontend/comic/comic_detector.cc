@@ -10,6 +10,7 @@
 #include "frontend/comic/corner_convergence.h"
 #include "frontend/comic/corner_feature.h"
 #include "frontend/comic/initial_corners.h"
+#include "frontend/comic/neighbour_suppression.h"
 #include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
 #include "io/core/error.h"
@@ -48,42 +49,6 @@ ComicDetector::ComicDetector(const ComicDetectorOptions& options) : options_(opt
 namespace {
 
 constexpr double kSqrt2 = 1.41421356237309504880;
-
-// Greedy suppression of candidates closer than `radius` to a kept one, in the given order
-// (strongest first). `same_group` restricts which pairs may suppress each other. Grid-hashed.
-template <class T, class Position, class SameGroup>
-std::vector<T> SuppressNeighbours(std::vector<T> items, double radius, Position position,
-                                  SameGroup same_group) {
-  if (radius <= 0) return items;
-  const double cell = radius;
-  std::unordered_map<uint64_t, std::vector<int>> grid;
-  auto key = [](int64_t cx, int64_t cy) { return GridCellKey(cx, cy); };
-  std::vector<T> kept;
-  kept.reserve(items.size());
-  for (T& item : items) {
-    const cv::Point2f p = position(item);
-    const int64_t cx = static_cast<int64_t>(std::floor(p.x / cell));
-    const int64_t cy = static_cast<int64_t>(std::floor(p.y / cell));
-    bool suppressed = false;
-    for (int64_t dy = -1; dy <= 1 && !suppressed; ++dy) {
-      for (int64_t dx = -1; dx <= 1 && !suppressed; ++dx) {
-        auto it = grid.find(key(cx + dx, cy + dy));
-        if (it == grid.end()) continue;
-        for (int index : it->second) {
-          const cv::Point2f q = position(kept[index]);
-          if (std::hypot(p.x - q.x, p.y - q.y) <= radius && same_group(kept[index], item)) {
-            suppressed = true;
-            break;
-          }
-        }
-      }
-    }
-    if (suppressed) continue;
-    grid[key(cx, cy)].push_back(static_cast<int>(kept.size()));
-    kept.push_back(std::move(item));
-  }
-  return kept;
-}
 
 // The states (apex, threshold) convergence runs have passed through, hashed on a grid, with the
 // run that passed through each.

@@ -13,9 +13,9 @@
 #include "frontend/comic/image_component_tree.h"
 #include "frontend/comic/iso_curve.h"
 #include "frontend/comic/iso_curve_stability.h"
+#include "frontend/comic/neighbour_suppression.h"
 #include "frontend/comic/segment_stability.h"
 #include "frontend/comic/side_mask.h"
-#include "frontend/grid_cell_key.h"
 #include "frontend/parallel_for.h"
 #include "io/core/error.h"
 
@@ -334,38 +334,6 @@ std::vector<int> LinkAcrossLevels(const std::vector<LevelCorner>& corners, doubl
     if (j >= 0 && following(j, -1) == i) next[i] = j;
   }
   return next;
-}
-
-// Greedy suppression in the given order of candidates closer than `radius` to a kept one.
-template <typename T, typename Position>
-std::vector<T> SuppressNeighbours(std::vector<T> items, double radius, Position position) {
-  std::vector<T> kept;
-  const double cell = std::max(radius, 1.0);
-  std::unordered_map<int64_t, std::vector<cv::Point2f>> grid;
-  // GridCellKey: the same bits without shifting a negative value (fuzzing found cx = -1).
-  auto key = [](int64_t cx, int64_t cy) { return static_cast<int64_t>(GridCellKey(cx, cy)); };
-  for (T& item : items) {
-    const cv::Point2f p = position(item);
-    const int64_t cx = static_cast<int64_t>(std::floor(p.x / cell));
-    const int64_t cy = static_cast<int64_t>(std::floor(p.y / cell));
-    bool suppressed = false;
-    for (int64_t dy = -1; dy <= 1 && !suppressed; ++dy) {
-      for (int64_t dx = -1; dx <= 1 && !suppressed; ++dx) {
-        auto it = grid.find(key(cx + dx, cy + dy));
-        if (it == grid.end()) continue;
-        for (const cv::Point2f& q : it->second) {
-          if (std::hypot(q.x - p.x, q.y - p.y) < radius) {
-            suppressed = true;
-            break;
-          }
-        }
-      }
-    }
-    if (suppressed) continue;
-    grid[key(cx, cy)].push_back(p);
-    kept.push_back(std::move(item));
-  }
-  return kept;
 }
 
 struct RunFeature {

@@ -555,6 +555,43 @@ double WeightedStabilityEvaluator::CentreOffset(int l) {
   return Crossing(centre_row_, l + delta_steps_, &clipped);
 }
 
+template <class CurveCrossing, class BandWidth>
+void WeightedStabilityEvaluator::IntegrateBand(CurveCrossing curve_crossing, BandWidth band_width,
+                                               LevelValues* values) {
+  // Length element of the level's curve at each normal: half of each adjoining chord between
+  // the points where the curve crosses consecutive normals (0 where it does not cross).
+  std::fill(elements_.begin(), elements_.end(), 0.0);
+  cv::Point2d previous;
+  bool previous_valid = false;
+  for (int r = 0; r < num_normals_; ++r) {
+    bool valid = false;
+    const double u = curve_crossing(r, &valid);
+    const cv::Point2d q = points_[r] + u * normals_[r];
+    if (valid && previous_valid) {
+      const double dx = q.x - previous.x;
+      const double dy = q.y - previous.y;
+      const double chord = std::sqrt(dx * dx + dy * dy);
+      elements_[r - 1] += 0.5 * chord;
+      elements_[r] += 0.5 * chord;
+    }
+    previous = q;
+    previous_valid = valid;
+  }
+  // The strip of normal r has the band's width there times the curve's length element: the
+  // area between Up and Down in that strip.
+  double length = 0;
+  double band = 0;
+  for (int r = 0; r < num_normals_; ++r) {
+    length += weights_[r] * elements_[r];
+    if (elements_[r] == 0.0) continue;  // adds exactly nothing; skips reading its band
+    band += weights_[r] * elements_[r] * band_width(r);
+  }
+  band = std::max(band, 1e-6 * weight_sum_);
+  values->band_area = band;
+  values->length = length;
+  values->stability = length / band;
+}
+
 const WeightedStabilityEvaluator::LevelValues& WeightedStabilityEvaluator::Evaluate(int l) {
   LevelValues& values = levels_[l];
   if (values.stability >= 0) return values;
@@ -578,39 +615,13 @@ const WeightedStabilityEvaluator::LevelValues& WeightedStabilityEvaluator::Evalu
     const double u1 = row[j1];
     return u0 + t * (u1 - u0);
   };
-  // Length element of the level's curve at each normal: half of each adjoining chord between
-  // the points where the curve crosses consecutive normals (0 where it does not cross).
-  std::fill(elements_.begin(), elements_.end(), 0.0);
-  cv::Point2d previous;
-  bool previous_valid = false;
-  for (int r = 0; r < num_normals_; ++r) {
-    const size_t index = static_cast<size_t>(r) * stride + j;
-    const double u = crossings_[index];
-    const bool valid = clipped_[index] == 0;
-    const cv::Point2d q = points_[r] + u * normals_[r];
-    if (valid && previous_valid) {
-      const double dx = q.x - previous.x;
-      const double dy = q.y - previous.y;
-      const double chord = std::sqrt(dx * dx + dy * dy);
-      elements_[r - 1] += 0.5 * chord;
-      elements_[r] += 0.5 * chord;
-    }
-    previous = q;
-    previous_valid = valid;
-  }
-  // The strip of normal r has the band's width there times the curve's length element: the
-  // area between Up and Down in that strip.
-  double length = 0;
-  double band = 0;
-  for (int r = 0; r < num_normals_; ++r) {
-    length += weights_[r] * elements_[r];
-    if (elements_[r] == 0.0) continue;  // adds exactly nothing; skips reading its band
-    band += weights_[r] * elements_[r] * (u_at(r, j + delta) - u_at(r, j - delta));
-  }
-  band = std::max(band, 1e-6 * weight_sum_);
-  values.band_area = band;
-  values.length = length;
-  values.stability = length / band;
+  IntegrateBand(
+      [&](int r, bool* valid) {
+        const size_t index = static_cast<size_t>(r) * stride + j;
+        *valid = clipped_[index] == 0;
+        return crossings_[index];
+      },
+      [&](int r) { return u_at(r, j + delta) - u_at(r, j - delta); }, &values);
   return values;
 }
 
@@ -636,35 +647,12 @@ double WeightedStabilityEvaluator::SingleLevelStability(int l) {
           &single_crossings_[t * n + r], &single_clipped_[t * n + r]);
     }
   }
-  // As Evaluate, operation for operation.
-  std::fill(elements_.begin(), elements_.end(), 0.0);
-  cv::Point2d previous;
-  bool previous_valid = false;
-  for (int r = 0; r < num_normals_; ++r) {
-    const double u = single_crossings_[r];
-    const bool valid = single_clipped_[r] == 0;
-    const cv::Point2d q = points_[r] + u * normals_[r];
-    if (valid && previous_valid) {
-      const double dx = q.x - previous.x;
-      const double dy = q.y - previous.y;
-      const double chord = std::sqrt(dx * dx + dy * dy);
-      elements_[r - 1] += 0.5 * chord;
-      elements_[r] += 0.5 * chord;
-    }
-    previous = q;
-    previous_valid = valid;
-  }
-  double length = 0;
-  double band = 0;
-  for (int r = 0; r < num_normals_; ++r) {
-    length += weights_[r] * elements_[r];
-    if (elements_[r] == 0.0) continue;
-    band += weights_[r] * elements_[r] * (single_crossings_[2 * n + r] - single_crossings_[n + r]);
-  }
-  band = std::max(band, 1e-6 * weight_sum_);
-  values.band_area = band;
-  values.length = length;
-  values.stability = length / band;
+  IntegrateBand(
+      [&](int r, bool* valid) {
+        *valid = single_clipped_[r] == 0;
+        return single_crossings_[r];
+      },
+      [&](int r) { return single_crossings_[2 * n + r] - single_crossings_[n + r]; }, &values);
   return values.stability;
 }
 

@@ -178,6 +178,13 @@ class WeightedStabilityEvaluator {
     double band_area = 0.0;
   };
   const LevelValues& Evaluate(int l);
+  // The level's length (the weighted length of its curve) and band area (the weighted area between
+  // Up and Down) into `values`, stability their ratio: curve_crossing(r, &valid) is where the
+  // level's curve crosses normal r and whether it does, band_width(r) the band's width there (read
+  // only where the curve has length). Evaluate and SingleLevelStability differ only in where they
+  // read the crossings.
+  template <class CurveCrossing, class BandWidth>
+  void IntegrateBand(CurveCrossing curve_crossing, BandWidth band_width, LevelValues* values);
   bool PrepareImpl(const cv::Mat& gray, const std::vector<cv::Point2f>& reference, int centre_index,
                    const WeightedStabilityOptions& options, bool with_middle_level);
   // Signed crossing of threshold index j (threshold first_threshold_ + j) on normal r, and

@@ -39,6 +39,7 @@ __all__ = [
     "MAX_PIXELS",
     "RECONSTRUCT_OPTIONS",
     "Reconstruction",
+    "Reconstructions",
     "Tracks",
     "detect",
     "export_colmap",
@@ -336,9 +337,10 @@ class Reconstruction:
             raise RuntimeError("reconstruction failed (%s): nothing to write" % self.status)
 
     def write(self, folder, model_format="both", ply_format="binary"):
-        """Writes the model as comic_sfm does into `folder`: cameras.txt, images.txt,
-        points3D.txt (model_format "txt" or "both"), sparse/0/*.bin ("bin" or "both") and
-        points.ply (ply_format "binary" or "ascii"). Raises ValueError for an unknown format and
+        """Writes this one model into `folder`: cameras.txt, images.txt, points3D.txt
+        (model_format "txt" or "both"), sparse/0/*.bin ("bin" or "both") and points.ply
+        (ply_format "binary" or "ascii"). A run's Reconstructions.write writes every model and
+        the run's other files, as comic_sfm does. Raises ValueError for an unknown format and
         RuntimeError for a failed run's reconstruction (no model)."""
         if model_format not in ("txt", "bin", "both"):
             raise ValueError(
@@ -371,6 +373,57 @@ class Reconstruction:
         return "<comic.Reconstruction %s: %d cameras, %d images, %d points>" % (
             self.status or "model",
             len(self.cameras),
+            len(self.images),
+            len(self.points3D),
+        )
+
+
+class Reconstructions(Reconstruction):
+    """Every model of a run of reconstruct(), the largest first; it is also its largest model.
+
+    A run may end with several models (the frames between them could not be linked): comic_sfm
+    writes each one (sparse/0 the largest, sparse/1, ...). len(), indexing and iteration give them
+    as Reconstruction objects, in the input's pixels; the attributes of Reconstruction (cameras,
+    images, points3D, points2D, status, report, failure, path) are those of the largest model, as
+    reconstruct() returned before it returned every model. A failed run holds no model (len 0).
+    """
+
+    def _load(self, core):
+        super()._load(core)
+        self.models = [Reconstruction._from_core(core.model(k)) for k in range(core.num_models())]
+
+    def __len__(self):
+        return len(self.models)
+
+    def __bool__(self):
+        return True
+
+    def __getitem__(self, index):
+        return self.models[index]
+
+    def __iter__(self):
+        return iter(self.models)
+
+    def write(self, folder, model_format="both", ply_format="binary"):
+        """Writes what `comic_sfm FRAMES --output folder` writes for this run, by comic_sfm's own
+        writer (sfm/run/run_outputs.h) on the same run: every model in the input's pixels (the
+        largest as text at the top and every one in sparse/<k>/ by model_format "txt", "bin" or
+        "both"), points.ply (ply_format "binary" or "ascii"), trajectory.png, transforms.json,
+        trajectory_tum.txt, report.html and report.json (whose "outputs" list, as in a run without
+        output=, is absent); a failed run's report and tracks.db. Raises ValueError for an unknown
+        format."""
+        if model_format not in ("txt", "bin", "both"):
+            raise ValueError(
+                "--model-format: unknown format '%s' (expected txt, bin or both)" % model_format
+            )
+        if not self._core.has_run():
+            return super().write(folder, model_format, ply_format)
+        _call("write", self._core.write_outputs, _os.fspath(folder), model_format, ply_format)
+
+    def __repr__(self):
+        return "<comic.Reconstructions %s: %d models, the largest %d images, %d points>" % (
+            self.status or "model",
+            len(self.models),
             len(self.images),
             len(self.points3D),
         )
@@ -413,8 +466,9 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
     `callback(event)` is called after each registered frame with a dict (detector, frame,
     frame_name, model, initial_pair, merged, num_registered, num_frames, num_points3D).
 
-    Returns a Reconstruction; with compare=True a dict {detector: Reconstruction} in the order
-    run. A sequence that cannot be reconstructed is not an exception: its Reconstruction has
+    Returns a Reconstructions: every model (the largest first, in the input's pixels), which is
+    also a Reconstruction, the largest model; its write(folder) writes what comic_sfm writes. With
+    compare=True a dict {detector: Reconstructions} in the order run. A sequence that cannot be reconstructed is not an exception: its Reconstruction has
     status != "success", no model, its report (with the diagnosis) and `failure`, comic_sfm's
     error line. Bad options raise ValueError (TypeError for a wrong type) with comic_sfm's
     message; unreadable input raises RuntimeError.
@@ -430,7 +484,7 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
     if not options.get("quiet", True):
         for line in result["lines"]:
             print(line)
-    runs = [Reconstruction._from_core(core) for core in result["runs"]]
+    runs = [Reconstructions._from_core(core) for core in result["runs"]]
     if options.get("compare", False):
         return {run.report["detector"]: run for run in runs}
     return runs[0]

@@ -11,6 +11,7 @@ import os
 import re
 import subprocess
 
+import numpy as np
 import pytest
 
 import comic
@@ -167,3 +168,50 @@ def test_a_failed_run_writes_what_comic_sfm_writes(tmp_path):
         str(tmp_path / "python"), str(tmp_path / "cli")
     )
     assert_same_outputs(tmp_path / "cli", tmp_path / "python")
+
+
+# Reconstructions.write(folder) is comic_sfm's writer on the run: every file comic_sfm writes into
+# --output, every model, in the input's pixels (not the working size of resize_height). Compared
+# byte for byte but for report.json and report.html, which hold the run's measured times (and
+# report.json the list of outputs that a run given output= writes, which write() does not).
+WRITE_EXCLUDED = {"report.json", "report.html"}
+
+
+@pytest.mark.parametrize(
+    "frames, resize_height",
+    [
+        (FRAMES, 0),
+        (FRAMES, 200),
+        # The case that wrote the working size's cameras (1025x683) for 3072x2048 images.
+        pytest.param(
+            HERZ_JESU,
+            683,
+            marks=pytest.mark.skipif(
+                not os.path.isdir(HERZ_JESU), reason="needs ../shared/data (Herz-Jesu-P8)"
+            ),
+        ),
+    ],
+)
+def test_write_is_what_comic_sfm_writes(tmp_path, frames, resize_height):
+    run_cli(frames, "--resize-height", resize_height, "--output", tmp_path / "cli")
+    models = comic.reconstruct(frames, resize_height=resize_height)
+    models.write(tmp_path / "python")
+    assert tree(tmp_path / "cli") == tree(tmp_path / "python")
+    compared = [name for name in tree(tmp_path / "cli") if name not in WRITE_EXCLUDED]
+    assert {"cameras.txt", "points3D.txt", "sparse/0/images.bin", "points.ply"} <= set(compared)
+    for name in compared:
+        cli = (tmp_path / "cli" / name).read_bytes()
+        assert cli == (tmp_path / "python" / name).read_bytes(), name
+    # The arrays are the written model's: every model, the largest first, in the input's pixels.
+    written = comic.Reconstruction(tmp_path / "cli")
+    assert len(models) >= 1 and models[0].images.tobytes() == models.images.tobytes()
+    assert np.array_equal(models.cameras["params"], written.cameras["params"])
+    first = sorted(os.listdir(frames))[0]
+    assert models.cameras["height"][0] == comic.imread(os.path.join(frames, first)).shape[0]
+    assert [len(m.images) for m in models] == sorted((len(m.images) for m in models), reverse=True)
+
+
+def test_write_refuses_the_frames_folder():
+    models = comic.reconstruct(FRAMES, last=3)
+    with pytest.raises(ValueError, match="FRAMES"):
+        models.write(FRAMES)

@@ -29,23 +29,32 @@ std::vector<std::string> ModelSetFiles(const IncrementalReconstruction& mapping,
   return files;
 }
 
-std::vector<std::string> WriteModelSet(const IncrementalReconstruction& mapping,
-                                       const std::string& folder,
-                                       const ModelSetWriteOptions& options) {
+std::vector<const Reconstruction*> ModelsLargestFirst(const IncrementalReconstruction& mapping) {
   COMIC_CHECK(
       HasModel(mapping.status), kInvalidArgument,
       "write models: the run has no model (" << ReconstructionStatusName(mapping.status) << ")");
   std::vector<const Reconstruction*> models = {&mapping.reconstruction};
   for (const IncrementalModel& model : mapping.other_models)
     models.push_back(&model.reconstruction);
+  return models;
+}
+
+io::ColmapTextModel ColmapModelForImages(const Reconstruction& model,
+                                         const ModelSetWriteOptions& options) {
+  // Copied only to be resized: a 5000-frame model is hundreds of MB.
+  std::optional<Reconstruction> resized;
+  if (options.width > 0 && options.height > 0) {
+    resized = ResizedReconstruction(model, options.width, options.height);
+  }
+  return ToColmapTextModel(resized ? *resized : model);
+}
+
+std::vector<std::string> WriteModelSet(const IncrementalReconstruction& mapping,
+                                       const std::string& folder,
+                                       const ModelSetWriteOptions& options) {
+  const std::vector<const Reconstruction*> models = ModelsLargestFirst(mapping);
   for (size_t k = 0; k < models.size(); ++k) {
-    // Copied only to be resized: a 5000-frame model is hundreds of MB.
-    std::optional<Reconstruction> resized;
-    if (options.width > 0 && options.height > 0) {
-      resized = ResizedReconstruction(*models[k], options.width, options.height);
-    }
-    const io::ColmapTextModel model = ToColmapTextModel(resized ? *resized : *models[k]);
-    resized.reset();
+    const io::ColmapTextModel model = ColmapModelForImages(*models[k], options);
     const std::string sparse = io::JoinPaths(folder, "sparse/" + std::to_string(k));
     if (k == 0 && options.text) io::WriteColmapTextModel(model, folder);
     if (options.binary) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "io/colmap/colmap_text_model.h"
 #include "sfm/incremental_pipeline.h"
 
 namespace comic::sfm {
@@ -25,6 +26,15 @@ struct ModelSetWriteOptions {
   int width = 0;
   int height = 0;
 };
+
+// Every model of `mapping` (HasModel(mapping.status) must hold), in the order written: the largest,
+// then the others largest first.
+std::vector<const Reconstruction*> ModelsLargestFirst(const IncrementalReconstruction& mapping);
+
+// `model` as a COLMAP model for images of options.width x options.height (as written; 0: as it
+// is), what WriteModelSet writes for it and what the Python module hands out.
+io::ColmapTextModel ColmapModelForImages(const Reconstruction& model,
+                                         const ModelSetWriteOptions& options);
 
 // The files WriteModelSet writes for `mapping`, relative to the folder, in its order.
 std::vector<std::string> ModelSetFiles(const IncrementalReconstruction& mapping,

@@ -110,15 +110,6 @@ std::string DatabaseWritePath(const ReconstructionRunOptions& options,
   return path;
 }
 
-// The files and folders a run reads, by the option that names them.
-std::vector<io::NamedPath> RunInputPaths(const ReconstructionRunOptions& options) {
-  return {{"FRAMES", options.frames},
-          {"--gt", options.gt},
-          {"--intrinsics", options.camera.intrinsics},
-          {"--regions", options.regions},
-          {"--masks", options.masks}};
-}
-
 // --write-frames is for a video; a folder's images are COLMAP's already.
 void CheckFramesOption(const ReconstructionRunOptions& options, const RunInputs& inputs) {
   COMIC_CHECK(options.write_frames.empty() || inputs.sequence->IsVideo(), kInvalidArgument,
@@ -224,6 +215,14 @@ std::string FailureLine(const ReconstructionRunOptions& options,
 }
 
 }  // namespace
+
+std::vector<io::NamedPath> RunInputPaths(const ReconstructionRunOptions& options) {
+  return {{"FRAMES", options.frames},
+          {"--gt", options.gt},
+          {"--intrinsics", options.camera.intrinsics},
+          {"--regions", options.regions},
+          {"--masks", options.masks}};
+}
 
 void CheckRunOptions(const ReconstructionRunOptions& options) {
   options.Check();

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "io/core/protected_inputs.h"
 #include "io/report/report_table.h"
 #include "sfm/run/colmap_outputs.h"
 #include "sfm/run/detector_run.h"
@@ -49,6 +50,9 @@ struct ReconstructionRunResult {
 // work; nothing is left in options.output then.
 ReconstructionRunResult RunReconstruction(const ReconstructionRunOptions& options,
                                           const RunCallbacks& callbacks = {});
+
+// The files and folders a run reads, by the option that names them.
+std::vector<io::NamedPath> RunInputPaths(const ReconstructionRunOptions& options);
 
 // The checks before any work: the options, then what they name on the file system (the output
 // folder, --colmap-db, COLMAP for --compare-colmap). Throws comic::Error.

@@ -29,19 +29,6 @@ namespace {
 
 const char* const kTextModelFiles[] = {"cameras.txt", "images.txt", "points3D.txt"};
 
-// Every model, in the input's pixels: sparse/<k>/ as COLMAP's mapper numbers its models (sparse/0,
-// the largest, is where nerfstudio and the Gaussian-splatting tools look), the largest also as
-// text at the top (sfm/colmap/model_set_writer.h).
-ModelSetWriteOptions ModelWriteOptions(const DetectorRun& run,
-                                       const ReconstructionRunOptions& options) {
-  ModelSetWriteOptions write;
-  write.text = options.model_format != "bin";
-  write.binary = options.model_format != "txt";
-  write.width = run.run.input_size.width;
-  write.height = run.run.input_size.height;
-  return write;
-}
-
 void WriteModel(const DetectorRun& run, const ReconstructionRunOptions& options,
                 const std::string& folder) {
   WriteModelSet(run.run.mapping, folder, ModelWriteOptions(run, options));
@@ -149,6 +136,16 @@ void WriteWhatWasFound(const DetectorRun& run, const ReconstructionRunOptions& o
 }
 
 }  // namespace
+
+ModelSetWriteOptions ModelWriteOptions(const DetectorRun& run,
+                                       const ReconstructionRunOptions& options) {
+  ModelSetWriteOptions write;
+  write.text = options.model_format != "bin";
+  write.binary = options.model_format != "txt";
+  write.width = run.run.input_size.width;
+  write.height = run.run.input_size.height;
+  return write;
+}
 
 std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
                                              const ReconstructionRunOptions& options) {

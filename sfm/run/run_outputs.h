@@ -16,12 +16,19 @@
 
 #include "io/core/protected_inputs.h"
 #include "io/report/report_table.h"
+#include "sfm/colmap/model_set_writer.h"
 #include "sfm/evaluation/trajectory_plot.h"
 #include "sfm/run/detector_run.h"
 #include "sfm/run/run_inputs.h"
 #include "sfm/run/run_options.h"
 
 namespace comic::sfm {
+
+// How `run`'s models are written: every model in the input's pixels, sparse/<k>/ as COLMAP's mapper
+// numbers its models (sparse/0, the largest, is where nerfstudio and the Gaussian-splatting tools
+// look), the largest also as text at the top, by --model-format (sfm/colmap/model_set_writer.h).
+ModelSetWriteOptions ModelWriteOptions(const DetectorRun& run,
+                                       const ReconstructionRunOptions& options);
 
 // The files WriteDetectorOutputs writes for `run`, relative to its folder, in report.json's order.
 std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
