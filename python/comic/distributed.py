@@ -151,6 +151,15 @@ def run_chunk(spec, failure_hook=None):
     return record
 
 
+def _remove_staging_left_by_dead_workers(output):
+    """A worker killed mid-chunk leaves its temporary folder (its finally never ran); once every
+    chunk task is over no attempt can still be writing one."""
+    chunks = os.path.join(output, "chunks")
+    for name in sorted(os.listdir(chunks)) if os.path.isdir(chunks) else []:
+        if ".tmp-" in name:
+            shutil.rmtree(os.path.join(chunks, name), ignore_errors=True)
+
+
 def merge_chunks(records, output, global_ba_max_images):
     """Merges the chunks' models (a Dask task, on one worker): writes the models into
     output/merged.tmp-*/k and returns (the folder, the merge's summary)."""
@@ -250,6 +259,7 @@ def run(
         for spec in specs
     ]
     wait(futures)
+    _remove_staging_left_by_dead_workers(output)
     records = []
     for spec, future in zip(specs, futures):
         if future.status == "finished":

@@ -34,7 +34,7 @@ CHUNKING = {"chunk_size": 5, "overlap": 1}
 @pytest.fixture(scope="module")
 def client():
     cluster = distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0"
     )
     with distributed.Client(cluster) as dask_client:
         yield dask_client
@@ -61,7 +61,8 @@ def test_plan_chunks_overlap_and_cover():
     assert comic_distributed.plan_chunks(12, 5, 1) == [(0, 4), (4, 8), (8, 11)]
     assert comic_distributed.plan_chunks(12, 4, 1) == [(0, 3), (3, 6), (6, 9), (9, 11)]
     # A tail too short to start a model of its own joins the chunk before.
-    assert comic_distributed.plan_chunks(10, 5, 2) == [(0, 4), (3, 9)]
+    assert comic_distributed.plan_chunks(10, 5, 2) == [(0, 4), (3, 7), (6, 9)]
+    assert comic_distributed.plan_chunks(9, 5, 2) == [(0, 4), (3, 8)]
     assert comic_distributed.plan_chunks(3, 5, 1) == [(0, 2)]
     with pytest.raises(ValueError, match="--overlap"):
         comic_distributed.plan_chunks(12, 4, 4)
@@ -169,7 +170,7 @@ def test_worker_killed_mid_chunk_gives_the_same_model(first_run, tmp_path):
     marker = tmp_path / "killed_once"
     hook = {"chunk": 1, "marker": str(marker), "how": "exit"}
     cluster = distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
     )
     with distributed.Client(cluster) as process_client:
         report = run_example(process_client, tmp_path / "killed", failure_hook=hook)
@@ -177,3 +178,4 @@ def test_worker_killed_mid_chunk_gives_the_same_model(first_run, tmp_path):
     assert marker.exists(), "no worker was killed"
     assert report["status"] == "success"
     assert model_bytes(tmp_path / "killed") == model_bytes(output)
+    assert not [n for n in os.listdir(tmp_path / "killed" / "chunks") if ".tmp-" in n]
