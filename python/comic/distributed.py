@@ -253,8 +253,12 @@ def run(
     os.makedirs(output, exist_ok=True)
     futures = [
         client.submit(
-            run_chunk, spec, failure_hook, key="chunk-%04d-%s" % (spec["index"], uuid.uuid4().hex),
-            retries=retries, pure=False,
+            run_chunk,
+            spec,
+            failure_hook,
+            key="chunk-%04d-%s" % (spec["index"], uuid.uuid4().hex),
+            retries=retries,
+            pure=False,
         )
         for spec in specs
     ]
@@ -270,8 +274,12 @@ def run(
                 for k in ("index", "clip", "input", "first", "last", "frames", "name_prefix")
             }
             record.update(
-                {"path": None, "status": "failed", "registered_frames": [],
-                 "error": repr(future.exception())}
+                {
+                    "path": None,
+                    "status": "failed",
+                    "registered_frames": [],
+                    "error": repr(future.exception()),
+                }
             )
             records.append(record)
     staging, summary = client.submit(
@@ -309,28 +317,35 @@ def main(argv=None):
         "OUTPUT/cameras.txt, images.txt, points3D.txt, sparse/0, points.ply and report.json (each "
         "chunk's time, worker and registered frames; status success or partial); the chunks' own "
         "models stay in OUTPUT/chunks/.",
+        epilog="example: python3 -m comic.distributed frames/ -o out/run --chunk-size 500 "
+        "--overlap 50 --workers 2. Exit code 0 for success, 1 for partial. docs/distributed.md",
     )
     parser.add_argument("inputs", nargs="+", help="image folders or videos (each one clip)")
     parser.add_argument("--output", "-o", required=True, help="output folder (shared by workers)")
     parser.add_argument("--chunk-size", type=int, default=500, help="frames per chunk [500]")
     parser.add_argument("--overlap", type=int, default=50, help="frames shared by neighbours [50]")
     cluster = parser.add_mutually_exclusive_group()
+    cluster.add_argument("--scheduler", help="a running Dask scheduler's address (tcp://host:8786)")
     cluster.add_argument(
-        "--scheduler", help="address of a running Dask scheduler (tcp://host:8786)"
-    )
-    cluster.add_argument(
-        "--workers", type=int, default=1,
+        "--workers",
+        type=int,
+        default=1,
         help="without --scheduler: a LocalCluster of this many worker processes [1]",
     )
     parser.add_argument("--retries", type=int, default=2, help="retries of a failed chunk [2]")
     parser.add_argument(
-        "--global-ba-max-images", type=int, default=300,
+        "--global-ba-max-images",
+        type=int,
+        default=300,
         help="frames per window of the merged model's adjustment (0: all at once, -1: none) [300]",
     )
     parser.add_argument("--intrinsics", help="as comic_sfm --intrinsics")
     parser.add_argument("--detector", help="as comic_sfm --detector [harris]")
     parser.add_argument(
-        "--set", action="append", default=[], metavar="NAME=VALUE",
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
         help="any other comic_sfm option for every chunk, e.g. --set matcher=patches (repeatable)",
     )
     args = parser.parse_args(argv)
@@ -347,15 +362,26 @@ def main(argv=None):
         client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1))
     with client:
         report = run(
-            args.inputs, args.output, client,
-            chunk_size=args.chunk_size, overlap=args.overlap, retries=args.retries,
-            global_ba_max_images=args.global_ba_max_images, **options
+            args.inputs,
+            args.output,
+            client,
+            chunk_size=args.chunk_size,
+            overlap=args.overlap,
+            retries=args.retries,
+            global_ba_max_images=args.global_ba_max_images,
+            **options
         )
     print(
         "%s: %d/%d frames in the first model, %d chunks (%d failed), %.1f s -> %s"
-        % (report["status"], report["num_registered"], report["num_frames"],
-           len(report["chunks"]), len(report["failed_chunks"]), report["wall_time_s"],
-           os.path.join(args.output, "report.json"))
+        % (
+            report["status"],
+            report["num_registered"],
+            report["num_frames"],
+            len(report["chunks"]),
+            len(report["failed_chunks"]),
+            report["wall_time_s"],
+            os.path.join(args.output, "report.json"),
+        )
     )
     return 0 if report["status"] == "success" else 1
 
