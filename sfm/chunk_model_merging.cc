@@ -158,10 +158,13 @@ camera_t FindOrAddCamera(const Camera& camera, Reconstruction* model) {
 }
 
 // Adds the chunk's frames the model lacks (poses mapped by `model_from_chunk`) and its points
-// (mapped; fused with the model's point where a shared frame's feature has one).
+// (mapped; fused with the model's point where a shared frame's feature has one and the two agree
+// as the similarity's pairs must: a disagreeing pair is a wrong point in one of the two, and
+// fusing it would pull the right one; the chunk's point then keeps its other observations).
 void AddChunk(const Reconstruction& chunk, const Sim3d& model_from_chunk,
               const std::map<image_t, std::map<point2D_t, point2D_t>>& shared,
-              const std::map<image_t, image_t>& model_image_of_chunk_image, Reconstruction* model) {
+              const std::map<image_t, image_t>& model_image_of_chunk_image,
+              double max_relative_distance, Reconstruction* model) {
   std::map<camera_t, camera_t> camera_ids;
   for (const auto& [id, camera] : chunk.cameras()) camera_ids[id] = FindOrAddCamera(camera, model);
   std::map<image_t, image_t> new_image_ids;
@@ -196,7 +199,11 @@ void AddChunk(const Reconstruction& chunk, const Sim3d& model_from_chunk,
       const image_t model_id = model_image_of_chunk_image.at(element.image_id);
       const Point2D& point = model->image(model_id).points2D[feature->second];
       if (point.HasPoint3D()) {
-        if (fused == kInvalidPoint3DId) fused = point.point3D_id;
+        const Eigen::Vector3d& xyz = model->point3D(point.point3D_id).xyz;
+        const double depth = (model->image(model_id).cam_from_world * xyz).z();
+        const bool agree =
+            (model_from_chunk * chunk_point.xyz - xyz).norm() <= max_relative_distance * depth;
+        if (agree && fused == kInvalidPoint3DId) fused = point.point3D_id;
       } else {
         track.push_back({model_id, feature->second});
       }
@@ -218,7 +225,7 @@ void AddChunk(const Reconstruction& chunk, const Sim3d& model_from_chunk,
 // A chunk as a model of its own: its registered frames, their cameras and its points.
 Reconstruction StartModel(const Reconstruction& chunk) {
   Reconstruction model;
-  AddChunk(chunk, Sim3d(), {}, {}, &model);
+  AddChunk(chunk, Sim3d(), {}, {}, 0.0, &model);
   return model;
 }
 
@@ -276,7 +283,8 @@ ChunkMergingResult MergeChunkModels(const std::vector<Reconstruction>& chunks,
       outcome.num_point_pairs = static_cast<int>(pairs.size());
       const std::optional<Sim3d> sim = EstimateModelFromChunk(pairs, options, &outcome.num_inliers);
       if (sim) {
-        AddChunk(chunk, *sim, shared, model_image_of_chunk_image, &model);
+        AddChunk(chunk, *sim, shared, model_image_of_chunk_image, options.max_relative_distance,
+                 &model);
         outcome.model_index = current;
         outcome.model_from_chunk = *sim;
         continue;

@@ -61,7 +61,8 @@ struct ChunkMergingResult {
 
 // Merges `chunks` (in sequence order) as described above. Cameras identical in two chunks become
 // one; frames only a joining chunk registered are added with their poses mapped; its points are
-// mapped and fused with the model's points that a shared frame's feature gives both.
+// mapped and fused with the model's points that a shared frame's feature gives both when the two
+// agree (within max_relative_distance, as the similarity's pairs).
 ChunkMergingResult MergeChunkModels(const std::vector<Reconstruction>& chunks,
                                     const ChunkMergingOptions& options);
 
