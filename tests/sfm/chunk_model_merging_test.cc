@@ -1,7 +1,8 @@
 // Merging separately reconstructed chunks by their shared frames (MergeChunkModels): chunks of a
 // synthetic video, each in a world of its own (another similarity, scale included), sharing one
-// frame, are put back into the first chunk's world; a chunk whose shared frame disagrees, or that
-// shares no frame, begins a model of its own.
+// frame, are put back into the first chunk's world; a point of the shared frame that disagrees is
+// not fused; a chunk whose shared frame disagrees, or that shares no frame, begins a model of its
+// own.
 #include "sfm/chunk_model_merging.h"
 
 #include <gtest/gtest.h>
@@ -119,6 +120,49 @@ TEST(ChunkModelMerging, PutsChunksSharingOneFrameIntoTheFirstChunksWorld) {
     }
   }
   EXPECT_LT(model.ComputeMeanReprojectionError(), 1e-6);
+}
+
+TEST(ChunkModelMerging, APointOfTheSharedFrameThatDisagreesIsNotFused) {
+  const SyntheticScene scene = HandHeldScene();
+  const Reconstruction first = MakeChunk(scene, 0, 5, Sim3d());
+  Reconstruction second = MakeChunk(scene, 5, 10, Sim3d());
+  // One point the shared frame (frame 5, the second chunk's first image) sees, moved far off.
+  image_t shared_id = 0;
+  for (const auto& [id, image] : second.images()) {
+    if (image.name == FrameName(5)) shared_id = id;
+  }
+  const Image& shared = second.image(shared_id);
+  point3D_t moved = kInvalidPoint3DId;
+  for (const Point2D& point : shared.points2D) {
+    if (point.HasPoint3D() && second.point3D(point.point3D_id).track.size() >= 3) {
+      moved = point.point3D_id;
+      break;
+    }
+  }
+  ASSERT_NE(moved, kInvalidPoint3DId);
+  second.point3D(moved).xyz += Eigen::Vector3d(5, -5, 5);
+  const Eigen::Vector3d moved_xyz = second.point3D(moved).xyz;
+  const ChunkMergingResult merged = MergeChunkModels({first, second}, WithoutAdjustment());
+  ASSERT_EQ(merged.models.size(), 1u);
+  const Reconstruction& model = merged.models[0];
+  // The moved point stays a point of its own, without the shared frame's observation, and every
+  // point the shared frame sees is where the first chunk put it.
+  size_t num_moved = 0;
+  for (const auto& [id, point] : model.points3D()) {
+    if ((point.xyz - moved_xyz).norm() < 1e-9) {
+      ++num_moved;
+      EXPECT_EQ(point.track.size(), second.point3D(moved).track.size() - 1);
+    }
+  }
+  EXPECT_EQ(num_moved, 1u);
+  for (const auto& [id, image] : model.images()) {
+    if (image.name != FrameName(5)) continue;
+    for (point2D_t i = 0; i < image.points2D.size(); ++i) {
+      if (image.points2D[i].HasPoint3D()) {
+        EXPECT_LT(model.ReprojectionError(id, i), 1e-6);
+      }
+    }
+  }
 }
 
 TEST(ChunkModelMerging, AChunkThatDisagreesOrSharesNoFrameBeginsAModelOfItsOwn) {
