@@ -39,6 +39,7 @@
 #include "io/image/image_sequence.h"
 #include "io/report/json_text.h"
 #include "io/report/ply.h"
+#include "python/distributed_binding.h"
 #include "sfm/colmap/colmap_model_conversion.h"
 #include "sfm/option_vocabulary.h"
 #include "sfm/run/colmap_export_run.h"
@@ -1096,6 +1097,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("export_colmap", &ExportColmap, py::arg("frames"), py::arg("colmap_db"), py::arg("options"),
         py::arg("detector_options"));
   m.def("read_reconstruction", &ReadReconstruction, py::arg("path"));
+  BindDistributed(m);
   m.def("reconstruct_option_names", [] {
     comic::sfm::ReconstructionRunOptions options;
     bool quiet = true;

@@ -27,6 +27,8 @@ PACKAGES=(
   python3-setuptools
   python3-wheel
   python3-venv   # the README's `python3 -m venv --system-site-packages .venv && .venv/bin/pip install ...`
+  python3-dask   # comic.distributed: chunks of a run as tasks on a Dask cluster (docs/distributed.md)
+  python3-distributed  # its scheduler and workers (LocalCluster on one machine)
   clang          # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
   libfuzzer-14-dev
   libjs-three    # three.js, inlined into report.html's 3-D view (io/report/html_page.h)

@@ -1,0 +1,181 @@
+"""comic.distributed on a Dask LocalCluster with the bundled KITTI example (12 frames): the chunks
+merged into one model of every frame, byte for byte the same on a second run, after a chunk task
+that failed and was retried, and after a worker process that died mid-chunk; a chunk that fails
+for good gives `partial` naming its frames."""
+
+import json
+import os
+
+import pytest
+
+pytest.importorskip("dask", reason="python3-dask is not installed (scripts/install_deps.sh)")
+distributed = pytest.importorskip(
+    "distributed", reason="python3-distributed is not installed (scripts/install_deps.sh)"
+)
+
+import comic  # noqa: E402
+from comic import distributed as comic_distributed  # noqa: E402
+from conftest import EXAMPLE  # noqa: E402
+
+FRAMES = os.path.join(EXAMPLE, "image_l")
+CALIB = os.path.join(EXAMPLE, "calib.txt")
+MODEL_FILES = [
+    "cameras.txt",
+    "images.txt",
+    "points3D.txt",
+    "sparse/0/cameras.bin",
+    "sparse/0/images.bin",
+    "sparse/0/points3D.bin",
+]
+# 12 frames in chunks of 5 sharing 1: frames 0-4, 4-8 and 8-11, three chunks.
+CHUNKING = {"chunk_size": 5, "overlap": 1}
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0"
+    )
+    with distributed.Client(cluster) as dask_client:
+        yield dask_client
+    cluster.close()
+
+
+def run_example(client, output, **kwargs):
+    return comic_distributed.run(
+        FRAMES, str(output), client, intrinsics=CALIB, **CHUNKING, **kwargs
+    )
+
+
+def model_bytes(folder):
+    return {name: (folder / name).read_bytes() for name in MODEL_FILES}
+
+
+@pytest.fixture(scope="module")
+def first_run(client, tmp_path_factory):
+    output = tmp_path_factory.mktemp("distributed") / "run"
+    return output, run_example(client, output)
+
+
+def test_plan_chunks_overlap_and_cover():
+    assert comic_distributed.plan_chunks(12, 5, 1) == [(0, 4), (4, 8), (8, 11)]
+    assert comic_distributed.plan_chunks(12, 4, 1) == [(0, 3), (3, 6), (6, 9), (9, 11)]
+    # A tail too short to start a model of its own joins the chunk before.
+    assert comic_distributed.plan_chunks(10, 5, 2) == [(0, 4), (3, 7), (6, 9)]
+    assert comic_distributed.plan_chunks(9, 5, 2) == [(0, 4), (3, 8)]
+    assert comic_distributed.plan_chunks(3, 5, 1) == [(0, 2)]
+    with pytest.raises(ValueError, match="--overlap"):
+        comic_distributed.plan_chunks(12, 4, 4)
+
+
+def test_chunks_merge_into_one_model_of_every_frame(first_run):
+    output, report = first_run
+    assert report["status"] == "success"
+    assert len(report["chunks"]) == 3
+    assert [(c["first"], c["last"]) for c in report["chunks"]] == [(0, 4), (4, 8), (8, 11)]
+    for chunk in report["chunks"]:
+        assert chunk["status"] == "success"
+        assert chunk["num_registered"] == chunk["num_frames"]
+        assert chunk["worker"]
+        assert chunk["time_s"] > 0
+        assert os.path.isdir(chunk["path"])
+    # Every chunk after the first joined the first one's model through its one shared frame.
+    assert [c["merge"]["model_index"] for c in report["chunks"]] == [0, 0, 0]
+    assert [c["merge"]["num_shared_frames"] for c in report["chunks"]] == [0, 1, 1]
+    assert len(report["models"]) == 1
+    assert report["num_frames"] == 12 and report["num_registered"] == 12
+    assert report["unregistered_frames"] == [] and report["failed_chunks"] == []
+    model = comic.Reconstruction(str(output))
+    assert sorted(model.images["name"]) == sorted(os.listdir(FRAMES))
+    assert len(model.points3D) > 100
+    on_disk = json.loads((output / "report.json").read_text())
+    assert on_disk["status"] == "success" and on_disk["num_registered"] == 12
+    # Nothing half written is left behind.
+    assert not [n for n in os.listdir(output / "chunks") if ".tmp-" in n]
+    assert not [n for n in os.listdir(output) if ".tmp" in n]
+
+
+def test_merged_model_is_close_to_the_truth(first_run):
+    """The merge puts the chunks in one frame: the camera centres fit KITTI's poses up to a
+    similarity within a few centimetres over the 12 frames (about 9 m)."""
+    import numpy as np
+
+    output, _ = first_run
+    model = comic.Reconstruction(str(output))
+    poses = np.loadtxt(os.path.join(EXAMPLE, "poses.txt")).reshape(-1, 3, 4)
+    order = np.argsort(model.images["name"])
+    estimated = []
+    for i in order:
+        w, x, y, z = model.images["qvec"][i]
+        rotation = np.array(
+            [
+                [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+            ]
+        )
+        estimated.append(-rotation.T @ model.images["tvec"][i])
+    estimated = np.array(estimated)
+    truth = poses[:, :, 3]
+    # Umeyama: the similarity taking the estimated centres onto the true ones.
+    mu_e, mu_t = estimated.mean(0), truth.mean(0)
+    e, t = estimated - mu_e, truth - mu_t
+    u, s, vt = np.linalg.svd(t.T @ e / len(e))
+    d = np.eye(3)
+    d[2, 2] = np.sign(np.linalg.det(u @ vt))
+    rotation = u @ d @ vt
+    scale = np.trace(np.diag(s) @ d) / (e**2).sum(1).mean()
+    aligned = scale * (rotation @ e.T).T + mu_t
+    ate = np.sqrt(((aligned - truth) ** 2).sum(1).mean())
+    assert ate < 0.1
+
+
+def test_same_run_twice_gives_the_same_files(client, first_run, tmp_path):
+    output, _ = first_run
+    again = tmp_path / "again"
+    report = run_example(client, again)
+    assert report["num_registered"] == 12
+    assert model_bytes(again) == model_bytes(output)
+
+
+def test_failed_chunk_task_is_retried_with_the_same_result(client, first_run, tmp_path):
+    output, _ = first_run
+    marker = tmp_path / "failed_once"
+    retried = tmp_path / "retried"
+    hook = {"chunk": 1, "marker": str(marker), "how": "raise"}
+    report = run_example(client, retried, failure_hook=hook)
+    assert marker.exists(), "the simulated failure did not happen"
+    assert report["status"] == "success" and report["failed_chunks"] == []
+    assert model_bytes(retried) == model_bytes(output)
+
+
+def test_chunk_failing_for_good_gives_partial_naming_its_frames(client, tmp_path):
+    hook = {"chunk": 2, "marker": str(tmp_path / "failed_once"), "how": "raise"}
+    report = run_example(client, tmp_path / "failed", failure_hook=hook, retries=0)
+    assert report["status"] == "partial"
+    names = sorted(os.listdir(FRAMES))
+    assert report["failed_chunks"] == [{"index": 2, "frames": names[8:12]}]
+    assert report["chunks"][2]["status"] == "failed"
+    assert "simulated failure" in report["chunks"][2]["error"]
+    # The other chunks' frames are still merged into one model.
+    assert report["num_registered"] == 9
+    assert report["unregistered_frames"] == names[9:12]
+    assert sorted(comic.Reconstruction(str(tmp_path / "failed")).images["name"]) == names[:9]
+
+
+def test_worker_killed_mid_chunk_gives_the_same_model(first_run, tmp_path):
+    """A worker process that dies mid-chunk (after writing its temporary folder): the nanny
+    restarts it, the scheduler runs the chunk again, and the model is the same byte for byte."""
+    output, _ = first_run
+    marker = tmp_path / "killed_once"
+    hook = {"chunk": 1, "marker": str(marker), "how": "exit"}
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
+    )
+    with distributed.Client(cluster) as process_client:
+        report = run_example(process_client, tmp_path / "killed", failure_hook=hook)
+    cluster.close()
+    assert marker.exists(), "no worker was killed"
+    assert report["status"] == "success"
+    assert model_bytes(tmp_path / "killed") == model_bytes(output)
+    assert not [n for n in os.listdir(tmp_path / "killed" / "chunks") if ".tmp-" in n]
