@@ -121,8 +121,11 @@ TEST(ComicExportColmap, WritesTheBundledExampleAndOverwritesOnlyWhenAsked) {
 TEST(ComicExportColmap, WritesTheSameDatabaseAsComicSfm) {
   ScopedTempDir dir;
   const std::string example = comic::test::ExampleDir();
-  const std::string common =
-      example + "/image_l --intrinsics " + example + "/calib.txt --detector fast --last 7";
+  // The matcher named: with auto, comic_sfm tries the patch tracker first on a video and keeps
+  // it when it holds every frame, while the export (nothing maps there to judge a first try)
+  // matches a video by descriptors.
+  const std::string common = example + "/image_l --intrinsics " + example +
+                             "/calib.txt --detector fast --last 7 --matcher descriptors";
   const auto exported = RunCommand(AppPath("comic_export_colmap") + " " + common + " --colmap-db " +
                                    dir.File("export.db") + " --threads 1");
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
