@@ -14,8 +14,11 @@ void AddMatchingFlag(ArgParser& parser, std::string* matching) {
 void AddMatcherFlag(ArgParser& parser, std::string* matcher) {
   parser.AddOption(
       "matcher", "M",
-      "how the pairs are matched: auto (default: descriptors for a video, the patch "
-      "tracker's image-set set-up for an image set), descriptors (SIFT descriptors of every "
+      "how the pairs are matched: auto (default; comic_sfm: the patch tracker with every frame "
+      "pair verified, then descriptors when it leaves frames out, the better model kept, for a "
+      "video and for an image set (there the tracker's image-set set-up); comic_export_colmap: "
+      "descriptors for a video, the tracker's image-set set-up for an image set), descriptors "
+      "(SIFT descriptors of every "
       "feature, ratio test, cross check and fundamental-matrix verification of every pair; a "
       "video's frames each with the next 10 and those 2^k after it, as COLMAP's sequential "
       "matcher; an image set's every pair) or patches (the patch tracker: faster, for clean "

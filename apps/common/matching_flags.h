@@ -11,8 +11,8 @@
 namespace comic::apps {
 
 void AddMatchingFlag(ArgParser& parser, std::string* matching);
-// --matcher: patches (the default), descriptors, or auto (descriptors for an image set, the patch
-// tracker for a video): frontend::FeatureMatcher.
+// --matcher: auto (the default), descriptors or patches: frontend::FeatureMatcher. One text for
+// every app that takes it, saying what auto does in each.
 void AddMatcherFlag(ArgParser& parser, std::string* matcher);
 
 }  // namespace comic::apps
