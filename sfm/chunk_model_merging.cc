@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <map>
 #include <optional>
-#include <random>
 #include <set>
 #include <utility>
 
 #include "io/core/error.h"
-#include "sfm/trajectory_evaluation.h"
+#include "sfm/similarity_ransac.h"
 
 namespace comic::sfm {
 
@@ -95,56 +94,22 @@ std::vector<PointPair> PointPairs(const Reconstruction& model, const Reconstruct
   return pairs;
 }
 
-// RANSAC over triples with a fixed seed (the merge is repeatable), then Umeyama refitted on the
-// agreeing pairs until that set stops growing (twice at most).
+// The similarity taking the chunk's points onto the model's (EstimateSim3dRansac), a pair
+// agreeing when it lands within max_relative_distance of its depth in the model.
 std::optional<Sim3d> EstimateModelFromChunk(const std::vector<PointPair>& pairs,
                                             const ChunkMergingOptions& options, int* num_inliers) {
-  *num_inliers = 0;
-  if (pairs.size() < 3) return std::nullopt;
-  const auto inliers = [&](const Sim3d& sim, std::vector<Eigen::Vector3d>* src,
-                           std::vector<Eigen::Vector3d>* dst) {
-    src->clear();
-    dst->clear();
-    for (const PointPair& pair : pairs) {
-      if ((sim * pair.chunk_xyz - pair.model_xyz).norm() >
-          options.max_relative_distance * pair.depth) {
-        continue;
-      }
-      src->push_back(pair.chunk_xyz);
-      dst->push_back(pair.model_xyz);
-    }
-    return src->size();
-  };
-  std::mt19937 random(1);
-  std::uniform_int_distribution<size_t> pick(0, pairs.size() - 1);
-  std::vector<Eigen::Vector3d> best_src, best_dst, src, dst;
-  constexpr int kNumIterations = 500;
-  for (int iteration = 0; iteration < kNumIterations; ++iteration) {
-    const size_t a = pick(random), b = pick(random), c = pick(random);
-    if (a == b || b == c || a == c) continue;
-    const std::optional<Sim3d> sim =
-        EstimateSim3dUmeyama({pairs[a].chunk_xyz, pairs[b].chunk_xyz, pairs[c].chunk_xyz},
-                             {pairs[a].model_xyz, pairs[b].model_xyz, pairs[c].model_xyz});
-    if (!sim || !(sim->scale > 0)) continue;
-    if (inliers(*sim, &src, &dst) > best_src.size()) {
-      best_src.swap(src);
-      best_dst.swap(dst);
-    }
+  std::vector<Eigen::Vector3d> chunk_points, model_points;
+  for (const PointPair& pair : pairs) {
+    chunk_points.push_back(pair.chunk_xyz);
+    model_points.push_back(pair.model_xyz);
   }
-  std::optional<Sim3d> sim;
-  for (int round = 0; round < 2 && best_src.size() >= 3; ++round) {
-    sim = EstimateSim3dUmeyama(best_src, best_dst);
-    if (!sim) return std::nullopt;
-    if (inliers(*sim, &src, &dst) < best_src.size()) break;
-    best_src.swap(src);
-    best_dst.swap(dst);
-  }
-  *num_inliers = static_cast<int>(best_src.size());
-  if (!sim || *num_inliers < options.min_num_inliers ||
-      *num_inliers < options.min_inlier_ratio * static_cast<double>(pairs.size())) {
-    return std::nullopt;
-  }
-  return sim;
+  return EstimateSim3dRansac(
+      chunk_points, model_points,
+      [&](const Sim3d& sim, size_t i) {
+        return (sim * pairs[i].chunk_xyz - pairs[i].model_xyz).norm() <=
+               options.max_relative_distance * pairs[i].depth;
+      },
+      options.min_num_inliers, options.min_inlier_ratio, num_inliers);
 }
 
 camera_t FindOrAddCamera(const Camera& camera, Reconstruction* model) {

@@ -5,10 +5,9 @@
 #include <cstdio>
 #include <map>
 #include <optional>
-#include <random>
 
 #include "io/core/error.h"
-#include "sfm/trajectory_evaluation.h"
+#include "sfm/similarity_ransac.h"
 
 namespace comic::sfm {
 
@@ -149,56 +148,6 @@ struct ModelPointPair {
   Eigen::Vector3d other_xyz;  // the point of the other model
   Eigen::Vector3d xyz;        // the point of this model
 };
-
-// The similarity taking the other model's points onto this model's, by RANSAC over triples
-// (deterministic) and a refit on the pairs `consistent` accepts until that set stops growing (twice
-// at most); none unless at least min_num_inliers and min_inlier_ratio of the pairs agree.
-template <typename Consistent>
-std::optional<Sim3d> EstimateMergeSimilarity(const std::vector<ModelPointPair>& pairs,
-                                             const Consistent& consistent, int min_num_inliers,
-                                             double min_inlier_ratio) {
-  const auto count_inliers = [&](const Sim3d& sim, std::vector<Eigen::Vector3d>* src,
-                                 std::vector<Eigen::Vector3d>* dst) {
-    src->clear();
-    dst->clear();
-    for (const ModelPointPair& pair : pairs) {
-      if (!consistent(sim, pair)) continue;
-      src->push_back(pair.other_xyz);
-      dst->push_back(pair.xyz);
-    }
-    return src->size();
-  };
-  std::mt19937 random(1);
-  std::uniform_int_distribution<size_t> pick(0, pairs.size() - 1);
-  std::vector<Eigen::Vector3d> best_src, best_dst, src, dst;
-  constexpr int kNumIterations = 500;
-  for (int iteration = 0; iteration < kNumIterations; ++iteration) {
-    const size_t a = pick(random), b = pick(random), c = pick(random);
-    if (a == b || b == c || a == c) continue;
-    const auto sim =
-        EstimateSim3dUmeyama({pairs[a].other_xyz, pairs[b].other_xyz, pairs[c].other_xyz},
-                             {pairs[a].xyz, pairs[b].xyz, pairs[c].xyz});
-    if (!sim || !(sim->scale > 0)) continue;
-    if (count_inliers(*sim, &src, &dst) > best_src.size()) {
-      best_src.swap(src);
-      best_dst.swap(dst);
-    }
-  }
-  std::optional<Sim3d> sim;
-  for (int round = 0; round < 2 && best_src.size() >= 3; ++round) {
-    sim = EstimateSim3dUmeyama(best_src, best_dst);
-    if (!sim) return std::nullopt;
-    if (count_inliers(*sim, &src, &dst) < best_src.size()) break;
-    best_src.swap(src);
-    best_dst.swap(dst);
-  }
-  const double num_inliers = static_cast<double>(best_src.size());
-  if (!sim || num_inliers < min_num_inliers ||
-      num_inliers < min_inlier_ratio * static_cast<double>(pairs.size())) {
-    return std::nullopt;
-  }
-  return sim;
-}
 
 }  // namespace
 
@@ -741,8 +690,14 @@ size_t IncrementalMapper::MergeModel(const Reconstruction& other,
     return projection &&
            (*projection - pair.xy).norm() <= options_.filter_max_reprojection_error_px;
   };
-  const std::optional<Sim3d> sim = EstimateMergeSimilarity(
-      pairs, consistent, options_.merge_min_num_inliers, options_.merge_min_inlier_ratio);
+  std::vector<Eigen::Vector3d> other_points, points;
+  for (const ModelPointPair& pair : pairs) {
+    other_points.push_back(pair.other_xyz);
+    points.push_back(pair.xyz);
+  }
+  const std::optional<Sim3d> sim = EstimateSim3dRansac(
+      other_points, points, [&](const Sim3d& s, size_t i) { return consistent(s, pairs[i]); },
+      options_.merge_min_num_inliers, options_.merge_min_inlier_ratio);
   if (!sim) return 0;
   for (image_t image_id : new_image_ids) {
     Image& image = reconstruction_.image(image_id);

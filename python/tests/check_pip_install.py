@@ -16,6 +16,8 @@ import subprocess
 import sys
 import tempfile
 
+from installed_comic_check import installed_comic_check
+
 DEBIAN_PYTHON = "/usr/bin/python3"
 
 
@@ -65,16 +67,7 @@ def main(source_dir, binary_dir, version):
         print("running: " + command, flush=True)
         subprocess.check_call(["bash", "-c", command], cwd=source_dir, env=env)
         python = os.path.join(venv, "bin", "python")
-        check = (
-            "import comic, numpy\n"
-            "assert comic.__file__.startswith(%r), comic.__file__\n"
-            "assert comic.__version__ == %r, comic.__version__\n"
-            "image = numpy.full((60, 60), 40, numpy.uint8)\n"
-            "image[20:40, 20:40] = 200\n"
-            "features, _ = comic.detect(image, detector='harris')\n"
-            "assert len(features) >= 4, len(features)\n"
-            "print('pip install ok:', comic.__file__, comic.__version__)\n"
-        ) % (venv, version)
+        check = installed_comic_check(venv, version, "pip install ok:")
         subprocess.check_call([python, "-c", check], cwd=work, env=env)
 
 

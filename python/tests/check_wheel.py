@@ -12,6 +12,8 @@ import sys
 import tempfile
 import zipfile
 
+from installed_comic_check import installed_comic_check
+
 
 def main(source_dir, binary_dir, version):
     with tempfile.TemporaryDirectory() as work:
@@ -33,16 +35,7 @@ def main(source_dir, binary_dir, version):
         subprocess.check_call(
             pip + ["install", "--no-deps", "--no-index", "--target", site, wheels[0]], env=env
         )
-        check = (
-            "import comic, numpy\n"
-            "assert comic.__file__.startswith(%r), comic.__file__\n"
-            "assert comic.__version__ == %r, comic.__version__\n"
-            "image = numpy.full((60, 60), 40, numpy.uint8)\n"
-            "image[20:40, 20:40] = 200\n"
-            "features, _ = comic.detect(image, detector='harris')\n"
-            "assert len(features) >= 4, len(features)\n"
-            "print('wheel ok:', comic.__file__, comic.__version__, len(features), 'features')\n"
-        ) % (site, version)
+        check = installed_comic_check(site, version, "wheel ok:")
         subprocess.check_call([sys.executable, "-c", check], env=dict(env, PYTHONPATH=site), cwd=work)
 
 
