@@ -143,6 +143,8 @@ std::vector<std::vector<int>> PartnerCandidates(const std::unordered_map<uint64_
 
 struct PairVerdict {
   bool kept = false;
+  int inliers = 0;
+  int shared_tracks = 0;
   double rotation_difference_deg = 0.0;
   // Median Sampson distances (pixels) of the pair's inliers to the model's epipolar geometry and
   // to the pair's own.
@@ -196,6 +198,8 @@ PairVerdict CheckPair(const Reconstruction& model, const frontend::FeatureTracks
       model.camera(image1.camera_id), model.camera(image2.camera_id), points1, points2,
       options.two_view);
   PairVerdict verdict;
+  verdict.inliers = geometry.num_inliers;
+  verdict.shared_tracks = static_cast<int>(points1.size());
   // A homography-like pair (little parallax, or a plane) still tests the model's rotation: with
   // x2 ~ R x1, x2' [t]x R x1 vanishes for every t, so only a wrong R leaves a distance.
   verdict.kept =
@@ -258,6 +262,7 @@ ModelSelfCheck CheckModelAgainstItsPairs(const Reconstruction& model,
 
   std::vector<double> differences;
   std::vector<double> error_ratios;
+  ModelSelfCheck check;
   for (size_t frame = 0; frame < num_frames; ++frame) {
     int kept = 0;
     int tried = 0;
@@ -268,13 +273,18 @@ ModelSelfCheck CheckModelAgainstItsPairs(const Reconstruction& model,
           CheckPair(model, tracks, frame_tracks, static_cast<int>(frame), partner, options);
       if (!verdict.kept) continue;
       ++kept;
+      const double ratio = verdict.model_median_error_px /
+                           std::max(verdict.own_median_error_px, options.min_error_px);
       differences.push_back(verdict.rotation_difference_deg);
-      error_ratios.push_back(verdict.model_median_error_px /
-                             std::max(verdict.own_median_error_px, options.min_error_px));
+      error_ratios.push_back(ratio);
+      if (ratio > options.max_error_ratio) {
+        check.disagreeing.push_back({static_cast<int>(frame), partner, ratio,
+                                     verdict.rotation_difference_deg, verdict.inliers,
+                                     verdict.shared_tracks});
+      }
     }
   }
 
-  ModelSelfCheck check;
   check.pairs_checked = static_cast<int>(differences.size());
   for (size_t p = 0; p < differences.size(); ++p) {
     check.pairs_disagreeing += error_ratios[p] > options.max_error_ratio ? 1 : 0;

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "frontend/matching/track.h"
 #include "sfm/reconstruction.h"
@@ -57,6 +58,16 @@ struct ModelSelfCheckOptions {
   void Check() const;
 };
 
+// One kept pair the model's cameras do not explain, for the report: which frames, by how much.
+struct DisagreeingPair {
+  int frame1 = 0;
+  int frame2 = 0;
+  double error_ratio = 0.0;  // the model's median distance over the pair's own
+  double rotation_difference_deg = 0.0;
+  int inliers = 0;  // of the pair's own pose
+  int shared_tracks = 0;
+};
+
 struct ModelSelfCheck {
   int pairs_checked = 0;      // kept: a pose with enough of the shared tracks as inliers
   int pairs_disagreeing = 0;  // of those, the model's epipolar geometry fits too badly
@@ -66,7 +77,8 @@ struct ModelSelfCheck {
   double median_rotation_difference_deg = 0.0;
   double max_rotation_difference_deg = 0.0;
   bool suspect = false;
-  std::string reason;  // one sentence when suspect, empty otherwise
+  std::string reason;                        // one sentence when suspect, empty otherwise
+  std::vector<DisagreeingPair> disagreeing;  // in frame order, suspect or not
 };
 
 // Checks the registered images of `model` (image i + 1 is frame i of `tracks`, in the same

@@ -198,7 +198,17 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                         {"median_rotation_difference_deg", check.median_rotation_difference_deg},
                         {"max_rotation_difference_deg", check.max_rotation_difference_deg},
                         {"suspect", check.suspect},
-                        {"reason", check.reason}};
+                        {"reason", check.reason},
+                        {"disagreeing_pairs", nlohmann::json::array()}};
+  for (const DisagreeingPair& pair : check.disagreeing) {
+    json["self_check"]["disagreeing_pairs"].push_back(
+        {{"frame1", pair.frame1},
+         {"frame2", pair.frame2},
+         {"error_ratio", pair.error_ratio},
+         {"rotation_difference_deg", pair.rotation_difference_deg},
+         {"inliers", pair.inliers},
+         {"shared_tracks", pair.shared_tracks}});
+  }
   json["unregistered_ranges"] = nlohmann::json::array();
   for (const UnregisteredRange& range : report.unregistered_ranges) {
     json["unregistered_ranges"].push_back({{"first", range.first_frame},

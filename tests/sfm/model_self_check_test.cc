@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -73,6 +74,7 @@ TEST(ModelSelfCheck, TheTrueCamerasExplainEveryPair) {
       ModelWithCameras(scene, scene.cams_from_world), scene.tracks, ModelSelfCheckOptions());
   EXPECT_GE(check.pairs_checked, 20);
   EXPECT_EQ(check.pairs_disagreeing, 0);
+  EXPECT_TRUE(check.disagreeing.empty());
   EXPECT_FALSE(check.suspect);
   EXPECT_TRUE(check.reason.empty());
   EXPECT_LT(check.median_rotation_difference_deg, 1.0);
@@ -89,6 +91,15 @@ TEST(ModelSelfCheck, CamerasTurnedHalfWayAreSuspect) {
   EXPECT_LT(check.pairs_disagreeing, check.pairs_checked);
   EXPECT_TRUE(check.suspect);
   EXPECT_NE(check.reason.find("not explained by the model"), std::string::npos) << check.reason;
+  // Each disagreeing pair is named, and each straddles the turn at frame 10.
+  ASSERT_EQ(check.disagreeing.size(), static_cast<size_t>(check.pairs_disagreeing));
+  for (const DisagreeingPair& pair : check.disagreeing) {
+    EXPECT_LT(std::min(pair.frame1, pair.frame2), 10);
+    EXPECT_GE(std::max(pair.frame1, pair.frame2), 10);
+    EXPECT_GT(pair.error_ratio, ModelSelfCheckOptions().max_error_ratio);
+    EXPECT_GT(pair.inliers, 0);
+    EXPECT_GE(pair.shared_tracks, pair.inliers);
+  }
 }
 
 TEST(ModelSelfCheck, TooFewPairsSayNothing) {
