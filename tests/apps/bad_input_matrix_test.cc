@@ -323,6 +323,21 @@ const std::vector<Case> kCases = {
    {"--contact-sheet lies inside the input FRAMES"}},
   {"comic_inspect", "{d}/onlyfifo", 2, {"onlyfifo", "'x.png' (a FIFO)"}},
   {"comic_inspect", "{d}/huge_second", 1, {"huge.png", "30000x30000"}},
+  // The decoder goes by content, not by name: the header of every format it reads is read before
+  // decoding (a WebP named .png, a Radiance HDR, ...), and content of no such format is refused.
+  {"comic_detect", "{d}/webp_huge.png", 1, {"webp_huge.png", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/huge.hdr", 1, {"huge.hdr", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/j2k_huge.jpg", 1, {"j2k_huge.jpg", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/jp2_huge.tif", 1, {"jp2_huge.tif", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/exr_huge.bmp", 1, {"exr_huge.bmp", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/ras_huge.pgm", 1, {"ras_huge.pgm", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/pam_huge.pnm", 1, {"pam_huge.pnm", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/pfm_huge.ppm", 1, {"pfm_huge.ppm", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/gif.png", 1, {"gif.png", "cannot decode image", "WebP, Radiance HDR"}},
+  {"comic_sfm", "{d}/webp_second --output {d}/out", 1,
+   {"webp_huge.png", "12000x12000", "--max-pixels"}},
+  {"comic_inspect", "{d}/webp_second", 1, {"webp_huge.png", "12000x12000", "--max-pixels"}},
+  {"comic_sfm", "{d}/gif_second --output {d}/out", 1, {"gif.png", "cannot decode image"}},
   // comic_render ({x}/../../../scenes is the repository's scenes/)
   {"comic_render", "{d}/missing.json --photos {d}/good.png --output {d}/out", 1,
    {"missing.json", "no such scene file"}},
@@ -480,6 +495,48 @@ void MakeIssue29Fixture(const std::string& dir) {
   WriteBytes(dir + "/gone.db-journal", std::string(600, 'j'));
 }
 
+std::string LittleEndian32(uint32_t v) {
+  return std::string{static_cast<char>(v), static_cast<char>(v >> 8), static_cast<char>(v >> 16),
+                     static_cast<char>(v >> 24)};
+}
+std::string BigEndian32(uint32_t v) {
+  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                     static_cast<char>(v >> 8), static_cast<char>(v)};
+}
+
+// Headers of the other formats OpenCV decodes, each declaring 12000x12000 in under 100 bytes,
+// under the names of formats the frame filter accepts; a GIF (no decoder, no header reader).
+void MakeHeaderFixture(const std::string& dir) {
+  const uint32_t n = 12000;
+  const std::string exr_window =
+      LittleEndian32(0) + LittleEndian32(0) + LittleEndian32(n - 1) + LittleEndian32(n - 1);
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"webp_huge.png", "RIFF" + LittleEndian32(100) + "WEBPVP8L" + LittleEndian32(80) + "\x2f" +
+                            LittleEndian32((n - 1) | (n - 1) << 14) + std::string(20, '\0')},
+      {"huge.hdr",
+       "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 12000 +X 12000\n" + std::string(16, '\0')},
+      {"j2k_huge.jpg", std::string("\xff\x4f\xff\x51\x00\x29\x00\x00", 8) + BigEndian32(n) +
+                           BigEndian32(n) + std::string(24, '\0')},
+      {"jp2_huge.tif", std::string("\0\0\0\x0cjP  \r\n\x87\n", 12) + BigEndian32(45) + "jp2h" +
+                           BigEndian32(22) + "ihdr" + BigEndian32(n) + BigEndian32(n) +
+                           std::string(6, '\0')},
+      {"exr_huge.bmp", "\x76\x2f\x31\x01" + LittleEndian32(2) + "dataWindow" + '\0' + "box2i" +
+                           '\0' + LittleEndian32(16) + exr_window + '\0'},
+      {"ras_huge.pgm", "\x59\xa6\x6a\x95" + BigEndian32(n) + BigEndian32(n) + BigEndian32(8) +
+                           std::string(16, '\0')},
+      {"pam_huge.pnm", "P7\nWIDTH 12000\nHEIGHT 12000\nDEPTH 1\nMAXVAL 255\nENDHDR\n"},
+      {"pfm_huge.ppm", "PF\n12000 12000\n-1.0\n"},
+      {"gif.png", std::string("GIF89a\x10\0\x10\0\0\0\0", 13) + std::string(40, '\0')}};
+  for (const auto& [name, bytes] : files) WriteBytes(dir + "/" + name, bytes);
+  const std::string example = ExampleDir() + "/image_l/000000.png";
+  for (const std::string second : {"webp", "gif"}) {
+    fs::create_directories(dir + "/" + second + "_second");
+    fs::copy_file(example, dir + "/" + second + "_second/000000.png");
+  }
+  fs::copy_file(dir + "/webp_huge.png", dir + "/webp_second/webp_huge.png");
+  fs::copy_file(dir + "/gif.png", dir + "/gif_second/gif.png");
+}
+
 // A COLMAP project (proj/sparse/0, proj/images) holding inputs where a run given --output proj
 // writes: a model, a calibration, a report, a --compare detector's folder.
 void MakeProjectFixture(const std::string& dir) {
@@ -577,6 +634,7 @@ void MakeFixture(const std::string& dir) {
   WriteBytes(dir + "/truncated.avi", bytes.substr(0, bytes.size() * 6 / 10));
   fs::remove(video);
   MakeIssue29Fixture(dir);
+  MakeHeaderFixture(dir);
   MakeProjectFixture(dir);
   MakeSceneFixture(dir);
   fs::create_directories(dir + "/thin");
