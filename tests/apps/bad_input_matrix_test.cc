@@ -9,9 +9,11 @@
 #include <sys/stat.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -776,6 +778,81 @@ TEST_F(BadInputMatrix, AllowTruncatedWarnsAndUsesTheFramesBeforeTheBreak) {
   EXPECT_GE(frames, 1);
   EXPECT_LT(frames, 20);
   EXPECT_NE(err.find("first " + std::to_string(frames) + " frames"), std::string::npos) << err;
+}
+
+// The cache is optional: what goes wrong with it is one warning line and a run that succeeds.
+// Each case on five frames with Harris, the cache made by the first run.
+TEST_F(BadInputMatrix, CacheEdgesWarnAndTheRunSucceeds) {
+  ScopedTempDir dir;
+  const std::string cache = dir.File("cache");
+  const std::string out_file = captures_->File("stdout_cache");
+  const std::string err_file = captures_->File("stderr_cache");
+  int run = 0;
+  const auto comic_sfm = [&]() -> int {
+    const std::string command = "timeout -k 5 " + std::to_string(kRowTimeoutSeconds) + " " +
+                                AppPath("comic_sfm") + " " + ExampleDir() +
+                                "/image_l --last 4 --detector harris --cache " + cache +
+                                " --output " + dir.File("out" + std::to_string(run++)) + " >" +
+                                out_file + " 2>" + err_file + " </dev/null";
+    const int status = std::system(command.c_str());
+    EXPECT_TRUE(WIFEXITED(status)) << "killed by a signal";
+    return WEXITSTATUS(status);
+  };
+  ASSERT_EQ(comic_sfm(), 0) << ReadBytes(err_file);
+  ASSERT_EQ(ReadBytes(err_file), "");
+  const std::string file = fs::directory_iterator(cache)->path().string();
+  const std::string good = ReadBytes(file);
+  const auto expect_warning = [&](const std::vector<std::string>& words) {
+    EXPECT_EQ(comic_sfm(), 0);
+    const std::string err = ReadBytes(err_file);
+    EXPECT_EQ(CountLines(err), 1) << err;
+    EXPECT_EQ(err.rfind("comic_sfm: warning: ", 0), 0u) << err;
+    for (const std::string& word : words) {
+      EXPECT_NE(err.find(word), std::string::npos) << "'" << word << "' missing in: " << err;
+    }
+    EXPECT_TRUE(fs::exists(dir.File("out" + std::to_string(run - 1) + "/report.json")));
+  };
+
+  // A NaN position behind a valid checksum. Layout (frontend/matching/track_file.h): a 24-byte
+  // header, the detector name, the image size, the frame names, the frame count, frame 0's
+  // feature count, then its first feature's x.
+  std::string forged = good;
+  size_t x_at = 24 + 8 + std::string("harris").size() + 8 + 8 + 8 + 8;
+  for (int k = 0; k < 5; ++k) x_at += 8 + std::string("000000.png").size();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(forged.data() + x_at, &nan, sizeof(nan));
+  uint64_t checksum = 14695981039346656037ull;  // FNV-1a 64 of every byte before the checksum
+  for (size_t k = 0; k + 8 < forged.size(); ++k) {
+    checksum = (checksum ^ static_cast<unsigned char>(forged[k])) * 1099511628211ull;
+  }
+  std::memcpy(forged.data() + forged.size() - 8, &checksum, sizeof(checksum));
+  WriteBytes(file, forged);
+  expect_warning({file, "feature position nan", "detecting and tracking again"});
+  EXPECT_EQ(ReadBytes(file), good);  // replaced by the tracks computed again
+
+  // A link to /dev/zero in the file's place: not read, replaced.
+  fs::remove(file);
+  fs::create_symlink("/dev/zero", file);
+  expect_warning({file, "not a regular file", "detecting and tracking again"});
+  EXPECT_FALSE(fs::is_symlink(fs::symlink_status(file)));
+  EXPECT_EQ(ReadBytes(file), good);
+
+  // The file cannot be written (a folder holds its name): the run goes on without it.
+  fs::remove(file);
+  fs::create_directories(file + "/x");
+  expect_warning({file, "the tracks are not kept in --cache, the run goes on"});
+  fs::remove_all(file);
+
+  // A write failing on a full disk, leaving no empty folder: tests/sfm/run/track_cache_test.cc.
+
+  // A read-only cache folder holding the right file: read, no warning.
+  WriteBytes(file, good);
+  fs::permissions(cache, fs::perms::owner_read | fs::perms::owner_exec);
+  EXPECT_EQ(comic_sfm(), 0);
+  fs::permissions(cache, fs::perms::owner_all);
+  EXPECT_EQ(ReadBytes(err_file), "");
+  EXPECT_NE(ReadBytes(out_file).find("[harris] tracks read from --cache"), std::string::npos)
+      << ReadBytes(out_file);
 }
 
 }  // namespace
