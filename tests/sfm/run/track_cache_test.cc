@@ -1,7 +1,9 @@
 // The track cache (--cache): its key follows the frames, the detector and the tracker and not the
 // mapper; a re-run from the cache writes the same model files byte for byte without detecting; a
 // changed tracker or detector option makes a second file; a corrupt file is tracked again with a
-// warning; a cache among the inputs or in --output is refused before any work.
+// warning; a cache among the inputs or in --output is refused before any work. The cache is
+// optional: a failed write warns and leaves nothing behind, forged or non-regular files are
+// recomputed with a warning, and a read-only cache holding the file is read.
 #include "sfm/run/track_cache.h"
 
 #include <gtest/gtest.h>
