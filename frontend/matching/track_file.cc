@@ -1,5 +1,6 @@
 #include "frontend/matching/track_file.h"
 
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 
@@ -71,14 +72,15 @@ class Reader {
     return text;
   }
   size_t left() const { return end_ - pos_; }
-
- private:
+  // Throws unless `count` items of `item_size` bytes are still there: called before allocating
+  // for them, so a forged count costs nothing.
   void Need(uint64_t count, size_t item_size, const char* field) const {
     COMIC_CHECK(item_size == 0 || count <= left() / item_size, kInvalidData,
                 what_ << ": track file is truncated or corrupt (" << field << ": " << count << " x "
                       << item_size << " bytes, " << left() << " left)");
   }
 
+ private:
   const std::string& bytes_;
   size_t pos_;
   size_t end_;
@@ -105,6 +107,13 @@ void PutFeature(const Feature& feature, Writer* out) {
   }
 }
 
+// The checksum vouches for the bytes, not for their meaning: a file made to pass it may hold NaN or
+// infinite positions, which no detector writes and the mapper cannot use.
+void CheckFinite(float a, float b, const char* field, const std::string& what) {
+  COMIC_CHECK(std::isfinite(a) && std::isfinite(b), kInvalidData,
+              what << ": track file is corrupt (" << field << " " << a << ", " << b << ")");
+}
+
 Feature GetFeature(Reader* in, const std::string& what) {
   Feature feature;
   feature.x = in->Get<float>("feature x");
@@ -128,7 +137,10 @@ Feature GetFeature(Reader* in, const std::string& what) {
   for (cv::Point2f& point : feature.curve) {
     point.x = in->Get<float>("curve");
     point.y = in->Get<float>("curve");
+    CheckFinite(point.x, point.y, "curve point", what);
   }
+  CheckFinite(feature.x, feature.y, "feature position", what);
+  CheckFinite(feature.scale, 0.0f, "feature scale", what);
   return feature;
 }
 
@@ -151,6 +163,7 @@ std::vector<cv::Mat> GetDescriptors(Reader* in, const std::string& what) {
     if (rows == 0 && cols == 0) continue;
     COMIC_CHECK(rows > 0 && cols == 128, kInvalidData,
                 what << ": track file is corrupt (descriptors " << rows << "x" << cols << ")");
+    in->Need(static_cast<uint64_t>(rows), static_cast<size_t>(cols), "descriptors");
     d.create(rows, cols, CV_8UC1);
     in->GetBytes(d.data, d.total(), "descriptors");
   }
@@ -306,7 +319,7 @@ void WriteTrackFile(const std::string& path, const TrackFile& file) {
 }
 
 TrackFile ReadTrackFile(const std::string& path) {
-  return DecodeTrackFile(io::ReadFileToString(path), path);
+  return DecodeTrackFile(io::ReadRegularFile(path), path);
 }
 
 }  // namespace comic::frontend

@@ -44,15 +44,18 @@ std::string EncodeTrackFile(const TrackFile& file);
 
 // Reads the bytes of a file; `what` (its path) starts every message. Throws
 // comic::Error(kInvalidData) for anything but a complete file of this version written on a machine
-// of this byte order (wrong magic, other version, checksum mismatch, a count larger than the bytes
-// left, tracks that fail FeatureTracks::Check()); never reads past the end.
+// of this byte order (wrong magic, other version, checksum mismatch, a count or a descriptor size
+// larger than the bytes left, a position or scale that is not finite, tracks that fail
+// FeatureTracks::Check()); never reads past the end, nor allocates more than the bytes hold.
 TrackFile DecodeTrackFile(const std::string& bytes, const std::string& what);
 
 // EncodeTrackFile written atomically (io/core/file_utils.h): `path` is the complete new file or
 // untouched. Throws comic::Error(kIo) naming `path`.
 void WriteTrackFile(const std::string& path, const TrackFile& file);
 
-// DecodeTrackFile of the file at `path`. Throws comic::Error (kNotFound, kIo, kInvalidData).
+// DecodeTrackFile of the file at `path`, read by io::ReadRegularFile: a device, FIFO or other
+// non-regular file is refused (kInvalidData), and no more than the file's size is read. Throws
+// comic::Error (kNotFound, kIo, kInvalidData).
 TrackFile ReadTrackFile(const std::string& path);
 
 }  // namespace comic::frontend

@@ -1,5 +1,6 @@
 #include "io/core/file_utils.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -123,17 +124,22 @@ void EnsureWritableDirectory(const std::string& folder) {
               folder << ": folder is not writable");
 }
 
-std::string CheckCreatableFolder(const std::string& folder) {
+std::string CheckFolderPath(const std::string& folder) {
   COMIC_CHECK(!folder.empty(), kInvalidArgument, "output folder name is empty");
   COMIC_CHECK(!PathExists(folder) || IsDirectory(folder), kIo,
               folder << ": exists and is not a folder");
-  // The nearest existing ancestor must be a writable folder (a file there: "X is not a folder").
+  // The nearest existing ancestor must be a folder (a file there: "X is not a folder").
   fs::path existing = fs::path(folder);
   std::error_code ec;
   while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
   const std::string ancestor = existing.empty() ? "." : existing.string();
   COMIC_CHECK(IsDirectory(ancestor), kIo,
               folder << ": cannot create it, " << ancestor << " is not a folder");
+  return ancestor;
+}
+
+std::string CheckCreatableFolder(const std::string& folder) {
+  const std::string ancestor = CheckFolderPath(folder);
   COMIC_CHECK(::access(ancestor.c_str(), W_OK | X_OK) == 0, kIo,
               folder << ": folder " << ancestor << " is not writable");
   return ancestor;
@@ -160,6 +166,35 @@ std::string ReadFileToString(const std::string& path) {
   buffer << in.rdbuf();
   COMIC_CHECK(!in.bad(), kIo, path << ": read failed");
   return buffer.str();
+}
+
+std::string ReadRegularFile(const std::string& path) {
+  CheckInputFile(path);
+  // Non-blocking, and checked on the open descriptor: a FIFO put in the file's place after the
+  // check above is refused, not waited for.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  COMIC_CHECK(fd >= 0, kIo, path << ": cannot open for reading: " << std::strerror(errno));
+  struct stat info;
+  const bool regular = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
+  if (!regular) ::close(fd);
+  COMIC_CHECK(regular, kInvalidData, path << ": not a regular file; refusing to read it");
+  // The size as opened bounds the read: a file that keeps growing is not followed.
+  std::string bytes(static_cast<size_t>(info.st_size), '\0');
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t got = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    done += static_cast<size_t>(got);
+  }
+  const int read_errno = errno;
+  ::close(fd);
+  COMIC_CHECK(done == bytes.size(), kIo,
+              path << ": read failed after " << done << " of " << bytes.size() << " bytes"
+                   << (done < bytes.size() && read_errno != 0
+                           ? std::string(" (") + std::strerror(read_errno) + ")"
+                           : std::string()));
+  return bytes;
 }
 
 void WriteAtomically(const std::string& path, const std::function<void(const std::string&)>& write,

@@ -45,6 +45,12 @@ std::string DescribeSkippedEntries(const std::vector<SkippedEntry>& skipped);
 // Throws comic::Error(kIo) naming the folder otherwise.
 void EnsureWritableDirectory(const std::string& folder);
 
+// Checks, without creating anything, that `folder` could be a folder: it is not a file, and its
+// nearest existing ancestor is a folder (writable or not). Returns that ancestor. Throws
+// comic::Error(kIo) naming the path ("X is not a folder" when X is a file). For a folder that is
+// only written if it can be (a cache): a read-only one is still read.
+std::string CheckFolderPath(const std::string& folder);
+
 // Checks, without creating anything, that `folder` is a writable folder or could be created:
 // it is not a file, and its nearest existing ancestor is a writable folder. Returns that
 // ancestor. Throws comic::Error(kIo) naming the path ("X is not a folder" when X is a file).
@@ -58,6 +64,12 @@ void CheckWritableFile(const std::string& path, bool overwrite = true);
 
 // Reads a whole text or binary file. Throws comic::Error(kNotFound / kIo).
 std::string ReadFileToString(const std::string& path);
+
+// Reads the regular file at `path` (or the one a symlink names), never more than the size it has
+// when opened, so that a device, a stream or a growing file cannot make the read endless. Throws
+// comic::Error: kNotFound, kInvalidData for anything but a regular file (a FIFO is not waited
+// for, a stream path such as /dev/stdin is refused too), kIo for an open or read error.
+std::string ReadRegularFile(const std::string& path);
 
 // How a finished temporary file takes the place of the target: (temp_path, path). Empty:
 // rename(2). io/colmap/sqlite_file.h checks and locks an old database around the rename.

@@ -96,10 +96,14 @@ cv::Mat ResizeToHeight(const cv::Mat& image, int height) {
   return out;
 }
 
-cv::Mat ReadImageUnchanged(const std::string& path) {
+cv::Mat ReadImageUnchanged(const std::string& path, int64_t max_pixels) {
   COMIC_CHECK(PathExists(path), kNotFound, path << ": no such file");
   COMIC_CHECK(!IsDirectory(path), kInvalidData, path << ": is a folder, not an image file");
   COMIC_CHECK(IsRegularFile(path), kInvalidData, path << ": not a regular file");
+  // The decoder allocates what the header declares: a file whose header is not read is not
+  // decoded, and a declared size beyond the budget is refused before any allocation.
+  const ImageHeader header = RequireImageHeader(path);
+  CheckPixelBudget(path, header.width, header.height, max_pixels);
   cv::Mat image;
   std::string opencv_error;
   // libpng and libjpeg print to stderr instead of reporting (a truncated JPEG even decodes, grey
@@ -128,19 +132,22 @@ void CheckResizeHeight(int resize_height, const std::string& what) {
                    << kMaxResizeHeight << "] pixels, got " << resize_height);
 }
 
-std::optional<cv::Size> CheckImageHeaderBudget(const std::string& path, int resize_height,
-                                               int64_t max_pixels) {
-  const std::optional<ImageHeader> header = ReadImageHeader(path);
-  if (!header || header->height <= 0 || header->width <= 0) return std::nullopt;  // decoder says
-  int64_t width = header->width;
-  int64_t height = header->height;
+cv::Size CheckImageHeaderBudget(const std::string& path, int resize_height, int64_t max_pixels) {
+  const ImageHeader header = RequireImageHeader(path);
+  COMIC_CHECK(header.width > 0 && header.height > 0, kInvalidData,
+              path << ": cannot decode image (its " << header.format << " header declares "
+                   << header.width << "x" << header.height << ")");
+  int64_t width = header.width;
+  int64_t height = header.height;
   if (resize_height > 0 && resize_height != height) {
     width = std::max<int64_t>(1, std::llround(static_cast<double>(width) * resize_height / height));
     height = resize_height;
   }
   CheckPixelBudget(path, width, height, max_pixels);
-  // Within the budget, so within int (kMaxMaxPixels < 2^31).
-  return cv::Size(static_cast<int>(header->width), static_cast<int>(header->height));
+  // The stored size is decoded too: it must stay within what any budget allows.
+  CheckPixelBudget(path, header.width, header.height, kMaxMaxPixels);
+  // Within kMaxMaxPixels, so within int (kMaxMaxPixels < 2^31).
+  return cv::Size(static_cast<int>(header.width), static_cast<int>(header.height));
 }
 
 LoadedImage LoadImage(const std::string& path, int resize_height, int64_t max_pixels) {

@@ -44,21 +44,21 @@ void CheckResizeHeight(int resize_height, const std::string& what = "--resize-he
 constexpr int kMinResizeHeight = 8;
 
 // Refuses the image at `path` when the size its header declares (io/image/image_header.h),
-// resized to `resize_height`, exceeds `max_pixels` (CheckPixelBudget), before anything is
-// decoded, and returns that size. Files whose header this cannot read pass with std::nullopt
-// (their size is checked after decoding).
-std::optional<cv::Size> CheckImageHeaderBudget(const std::string& path, int resize_height,
-                                               int64_t max_pixels);
+// resized to `resize_height`, exceeds `max_pixels` (CheckPixelBudget), or its stored size exceeds
+// kMaxMaxPixels, before anything is decoded, and returns the stored size. A file whose header is
+// not read (RequireImageHeader) or declares no pixels is refused too ("cannot decode image").
+cv::Size CheckImageHeaderBudget(const std::string& path, int resize_height, int64_t max_pixels);
 
-// Reads `path` (any format OpenCV decodes) and returns grey and colour at `resize_height`
-// (0 = original size). Throws comic::Error: kNotFound for a missing file, kInvalidData for a
-// file that is not a decodable image or has an unsupported depth, or whose size after resizing
-// exceeds `max_pixels` (io/core/pixel_budget.h; checked on the header before decoding, where the
-// format allows, and before resizing), naming the file.
+// Reads `path` (any format whose header io/image/image_header.h reads) and returns grey and colour
+// at `resize_height` (0 = original size). Throws comic::Error: kNotFound for a missing file,
+// kInvalidData for a file that is not a decodable image or has an unsupported depth, or whose size
+// after resizing exceeds `max_pixels` (io/core/pixel_budget.h; checked on the header before
+// decoding, and again before resizing), naming the file.
 LoadedImage LoadImage(const std::string& path, int resize_height = 0,
                       int64_t max_pixels = kDefaultMaxPixels);
 
-// Reads `path` unchanged (depth and channels as stored). Same errors as LoadImage.
-cv::Mat ReadImageUnchanged(const std::string& path);
+// Reads `path` unchanged (depth and channels as stored). Same errors as LoadImage; the size the
+// header declares is checked against `max_pixels` before decoding.
+cv::Mat ReadImageUnchanged(const std::string& path, int64_t max_pixels = kMaxMaxPixels);
 
 }  // namespace comic::io

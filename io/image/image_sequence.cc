@@ -170,10 +170,9 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
 void ImageSequence::CheckFrameHeaders() const {
   for (size_t i = 1; i < names_.size(); ++i) {
     const std::string path = JoinPaths(folder_, names_[i]);
-    const std::optional<cv::Size> size =
-        CheckImageHeaderBudget(path, options_.resize_height, options_.max_pixels);
-    COMIC_CHECK(!size || *size == source_size_, kInvalidData,
-                path << ": size " << size->width << "x" << size->height
+    const cv::Size size = CheckImageHeaderBudget(path, options_.resize_height, options_.max_pixels);
+    COMIC_CHECK(size == source_size_, kInvalidData,
+                path << ": size " << size.width << "x" << size.height
                      << " differs from the first frame's " << source_size_.width << "x"
                      << source_size_.height);
   }

@@ -243,7 +243,10 @@ void CheckRunOptions(const ReconstructionRunOptions& options) {
               "--cache " << options.cache << " is, or lies inside, --output " << options.output
                          << ", which each run replaces: keep the cache beside it (e.g. --cache "
                          << io::JoinPaths(io::ParentPath(options.output), "cache") << ")");
-  if (!options.cache.empty()) io::CheckCreatableFolder(options.cache);
+  // The cache is optional: a folder that cannot be written only costs keeping the tracks (a
+  // warning), and a read-only one holding them is read; a path that can never be a folder is an
+  // error of the command line.
+  if (!options.cache.empty()) io::CheckFolderPath(options.cache);
   // Validate, then write, all or nothing: --output is checked but not created; the outputs go to
   // a staging folder beside it and move into place when the run is complete.
   if (!options.output.empty()) io::CheckCreatableFolder(options.output);

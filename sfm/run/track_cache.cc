@@ -1,9 +1,12 @@
 #include "sfm/run/track_cache.h"
 
 #include <chrono>
+#include <exception>
+#include <filesystem>
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "frontend/combined_detector.h"
 #include "frontend/matching/track_file.h"
@@ -303,7 +306,35 @@ std::optional<SequenceTracking> ReadCachedTracking(const std::string& file, uint
     return tracking;
   } catch (const Error& e) {
     *warning = std::string(e.what()) + "; detecting and tracking again, and replacing it";
-    return std::nullopt;
+  } catch (const std::exception& e) {
+    // Whatever else reading a damaged file meets (memory, a library's exception) costs a
+    // recomputation, never the run: the cache is optional.
+    *warning = file + ": cannot read the track file (" + e.what() +
+               "); detecting and tracking again, and replacing it";
+  }
+  return std::nullopt;
+}
+
+// Writes `file` into `folder`, creating it if needed. A failure (a full disk, a read-only folder)
+// removes the folders this call created, so nothing empty is left behind, and is returned as one
+// line: the tracks exist, and the run goes on without keeping them.
+std::string KeepTracking(const std::string& folder, const std::string& path,
+                         const frontend::TrackFile& file) {
+  std::vector<std::string> created;
+  for (std::string missing = folder; !missing.empty() && !io::PathExists(missing);
+       missing = io::ParentPath(missing)) {
+    created.push_back(missing);
+  }
+  try {
+    io::EnsureWritableDirectory(folder);
+    frontend::WriteTrackFile(path, file);
+    return "";
+  } catch (const std::exception& e) {
+    for (const std::string& made : created) {
+      std::error_code ec;
+      std::filesystem::remove(made, ec);  // only when empty
+    }
+    return std::string(e.what()) + "; the tracks are not kept in --cache, the run goes on";
   }
 }
 
@@ -363,7 +394,6 @@ SequenceTracking TrackFramesThroughCache(
   if (!folder.empty()) {
     // Written as soon as the tracks exist, before the mapping: a run stopped while mapping is
     // resumed from here.
-    io::EnsureWritableDirectory(folder);
     frontend::TrackFile file;
     file.key = use->key;
     file.tracks = std::move(tracking.tracks);  // lent, not copied: a long clip's tracks are large
@@ -377,7 +407,8 @@ SequenceTracking TrackFramesThroughCache(
       s.detection_cpu_s = s.description_cpu_s = s.matching_cpu_s = s.verification_cpu_s =
           s.track_building_cpu_s = 0.0;
     }
-    frontend::WriteTrackFile(use->file, file);
+    const std::string failure = KeepTracking(folder, use->file, file);
+    if (!failure.empty()) use->warning += (use->warning.empty() ? "" : "; then ") + failure;
     tracking.tracks = std::move(file.tracks);
   }
   return tracking;

@@ -48,7 +48,9 @@ struct TrackCacheUse {
   uint64_t key = 0;         // TrackCacheKey
   bool from_cache = false;  // the tracks were read from `file`: nothing was detected or tracked
   // A cache file of this key that could not be used (corrupt, truncated, another format
-  // version): one line; the tracks were computed again and the file replaced. Empty otherwise.
+  // version, forged sizes or positions, not a regular file): the tracks were computed again and
+  // the file replaced. Or a cache folder or file that could not be written (a full disk, a
+  // read-only folder): the run went on without keeping the tracks. One line; empty otherwise.
   std::string warning;
 };
 
@@ -56,8 +58,10 @@ struct TrackCacheUse {
 // `folder`/TrackCacheFile exists and reads back with the same key, its tracks are returned and
 // nothing is detected (`tracking_started` and `tracking_progress` are not called). Otherwise the
 // frames are tracked (`tracking_started` first) and the file is written atomically, creating
-// `folder` if needed. `detector` must be MakeDetector(detector_options). Throws comic::Error for
-// what TrackFrames throws for, and kIo for a cache folder or file it cannot write.
+// `folder` if needed; when that fails the folders it created are removed again and `use->warning`
+// says why: the cache is optional, and never fails a run. A read-only `folder` holding the file is
+// read as any other. `detector` must be MakeDetector(detector_options). Throws comic::Error for
+// what TrackFrames throws for.
 SequenceTracking TrackFramesThroughCache(
     const std::string& folder, const frontend::DetectorOptions& detector_options,
     const frontend::Detector& detector, const io::ImageSequence& sequence,

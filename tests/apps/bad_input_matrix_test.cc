@@ -9,9 +9,11 @@
 #include <sys/stat.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -323,6 +325,21 @@ const std::vector<Case> kCases = {
    {"--contact-sheet lies inside the input FRAMES"}},
   {"comic_inspect", "{d}/onlyfifo", 2, {"onlyfifo", "'x.png' (a FIFO)"}},
   {"comic_inspect", "{d}/huge_second", 1, {"huge.png", "30000x30000"}},
+  // The decoder goes by content, not by name: the header of every format it reads is read before
+  // decoding (a WebP named .png, a Radiance HDR, ...), and content of no such format is refused.
+  {"comic_detect", "{d}/webp_huge.png", 1, {"webp_huge.png", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/huge.hdr", 1, {"huge.hdr", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/j2k_huge.jpg", 1, {"j2k_huge.jpg", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/jp2_huge.tif", 1, {"jp2_huge.tif", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/exr_huge.bmp", 1, {"exr_huge.bmp", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/ras_huge.pgm", 1, {"ras_huge.pgm", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/pam_huge.pnm", 1, {"pam_huge.pnm", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/pfm_huge.ppm", 1, {"pfm_huge.ppm", "12000x12000", "--max-pixels"}},
+  {"comic_detect", "{d}/gif.png", 1, {"gif.png", "cannot decode image", "WebP, Radiance HDR"}},
+  {"comic_sfm", "{d}/webp_second --output {d}/out", 1,
+   {"webp_huge.png", "12000x12000", "--max-pixels"}},
+  {"comic_inspect", "{d}/webp_second", 1, {"webp_huge.png", "12000x12000", "--max-pixels"}},
+  {"comic_sfm", "{d}/gif_second --output {d}/out", 1, {"gif.png", "cannot decode image"}},
   // comic_render ({x}/../../../scenes is the repository's scenes/)
   {"comic_render", "{d}/missing.json --photos {d}/good.png --output {d}/out", 1,
    {"missing.json", "no such scene file"}},
@@ -480,6 +497,48 @@ void MakeIssue29Fixture(const std::string& dir) {
   WriteBytes(dir + "/gone.db-journal", std::string(600, 'j'));
 }
 
+std::string LittleEndian32(uint32_t v) {
+  return std::string{static_cast<char>(v), static_cast<char>(v >> 8), static_cast<char>(v >> 16),
+                     static_cast<char>(v >> 24)};
+}
+std::string BigEndian32(uint32_t v) {
+  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                     static_cast<char>(v >> 8), static_cast<char>(v)};
+}
+
+// Headers of the other formats OpenCV decodes, each declaring 12000x12000 in under 100 bytes,
+// under the names of formats the frame filter accepts; a GIF (no decoder, no header reader).
+void MakeHeaderFixture(const std::string& dir) {
+  const uint32_t n = 12000;
+  const std::string exr_window =
+      LittleEndian32(0) + LittleEndian32(0) + LittleEndian32(n - 1) + LittleEndian32(n - 1);
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"webp_huge.png", "RIFF" + LittleEndian32(100) + "WEBPVP8L" + LittleEndian32(80) + "\x2f" +
+                            LittleEndian32((n - 1) | (n - 1) << 14) + std::string(20, '\0')},
+      {"huge.hdr",
+       "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 12000 +X 12000\n" + std::string(16, '\0')},
+      {"j2k_huge.jpg", std::string("\xff\x4f\xff\x51\x00\x29\x00\x00", 8) + BigEndian32(n) +
+                           BigEndian32(n) + std::string(24, '\0')},
+      {"jp2_huge.tif", std::string("\0\0\0\x0cjP  \r\n\x87\n", 12) + BigEndian32(45) + "jp2h" +
+                           BigEndian32(22) + "ihdr" + BigEndian32(n) + BigEndian32(n) +
+                           std::string(6, '\0')},
+      {"exr_huge.bmp", "\x76\x2f\x31\x01" + LittleEndian32(2) + "dataWindow" + '\0' + "box2i" +
+                           '\0' + LittleEndian32(16) + exr_window + '\0'},
+      {"ras_huge.pgm", "\x59\xa6\x6a\x95" + BigEndian32(n) + BigEndian32(n) + BigEndian32(8) +
+                           std::string(16, '\0')},
+      {"pam_huge.pnm", "P7\nWIDTH 12000\nHEIGHT 12000\nDEPTH 1\nMAXVAL 255\nENDHDR\n"},
+      {"pfm_huge.ppm", "PF\n12000 12000\n-1.0\n"},
+      {"gif.png", std::string("GIF89a\x10\0\x10\0\0\0\0", 13) + std::string(40, '\0')}};
+  for (const auto& [name, bytes] : files) WriteBytes(dir + "/" + name, bytes);
+  const std::string example = ExampleDir() + "/image_l/000000.png";
+  for (const std::string second : {"webp", "gif"}) {
+    fs::create_directories(dir + "/" + second + "_second");
+    fs::copy_file(example, dir + "/" + second + "_second/000000.png");
+  }
+  fs::copy_file(dir + "/webp_huge.png", dir + "/webp_second/webp_huge.png");
+  fs::copy_file(dir + "/gif.png", dir + "/gif_second/gif.png");
+}
+
 // A COLMAP project (proj/sparse/0, proj/images) holding inputs where a run given --output proj
 // writes: a model, a calibration, a report, a --compare detector's folder.
 void MakeProjectFixture(const std::string& dir) {
@@ -577,6 +636,7 @@ void MakeFixture(const std::string& dir) {
   WriteBytes(dir + "/truncated.avi", bytes.substr(0, bytes.size() * 6 / 10));
   fs::remove(video);
   MakeIssue29Fixture(dir);
+  MakeHeaderFixture(dir);
   MakeProjectFixture(dir);
   MakeSceneFixture(dir);
   fs::create_directories(dir + "/thin");
@@ -718,6 +778,81 @@ TEST_F(BadInputMatrix, AllowTruncatedWarnsAndUsesTheFramesBeforeTheBreak) {
   EXPECT_GE(frames, 1);
   EXPECT_LT(frames, 20);
   EXPECT_NE(err.find("first " + std::to_string(frames) + " frames"), std::string::npos) << err;
+}
+
+// The cache is optional: what goes wrong with it is one warning line and a run that succeeds.
+// Each case on five frames with Harris, the cache made by the first run.
+TEST_F(BadInputMatrix, CacheEdgesWarnAndTheRunSucceeds) {
+  ScopedTempDir dir;
+  const std::string cache = dir.File("cache");
+  const std::string out_file = captures_->File("stdout_cache");
+  const std::string err_file = captures_->File("stderr_cache");
+  int run = 0;
+  const auto comic_sfm = [&]() -> int {
+    const std::string command = "timeout -k 5 " + std::to_string(kRowTimeoutSeconds) + " " +
+                                AppPath("comic_sfm") + " " + ExampleDir() +
+                                "/image_l --last 4 --detector harris --cache " + cache +
+                                " --output " + dir.File("out" + std::to_string(run++)) + " >" +
+                                out_file + " 2>" + err_file + " </dev/null";
+    const int status = std::system(command.c_str());
+    EXPECT_TRUE(WIFEXITED(status)) << "killed by a signal";
+    return WEXITSTATUS(status);
+  };
+  ASSERT_EQ(comic_sfm(), 0) << ReadBytes(err_file);
+  ASSERT_EQ(ReadBytes(err_file), "");
+  const std::string file = fs::directory_iterator(cache)->path().string();
+  const std::string good = ReadBytes(file);
+  const auto expect_warning = [&](const std::vector<std::string>& words) {
+    EXPECT_EQ(comic_sfm(), 0);
+    const std::string err = ReadBytes(err_file);
+    EXPECT_EQ(CountLines(err), 1) << err;
+    EXPECT_EQ(err.rfind("comic_sfm: warning: ", 0), 0u) << err;
+    for (const std::string& word : words) {
+      EXPECT_NE(err.find(word), std::string::npos) << "'" << word << "' missing in: " << err;
+    }
+    EXPECT_TRUE(fs::exists(dir.File("out" + std::to_string(run - 1) + "/report.json")));
+  };
+
+  // A NaN position behind a valid checksum. Layout (frontend/matching/track_file.h): a 24-byte
+  // header, the detector name, the image size, the frame names, the frame count, frame 0's
+  // feature count, then its first feature's x.
+  std::string forged = good;
+  size_t x_at = 24 + 8 + std::string("harris").size() + 8 + 8 + 8 + 8;
+  for (int k = 0; k < 5; ++k) x_at += 8 + std::string("000000.png").size();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(forged.data() + x_at, &nan, sizeof(nan));
+  uint64_t checksum = 14695981039346656037ull;  // FNV-1a 64 of every byte before the checksum
+  for (size_t k = 0; k + 8 < forged.size(); ++k) {
+    checksum = (checksum ^ static_cast<unsigned char>(forged[k])) * 1099511628211ull;
+  }
+  std::memcpy(forged.data() + forged.size() - 8, &checksum, sizeof(checksum));
+  WriteBytes(file, forged);
+  expect_warning({file, "feature position nan", "detecting and tracking again"});
+  EXPECT_EQ(ReadBytes(file), good);  // replaced by the tracks computed again
+
+  // A link to /dev/zero in the file's place: not read, replaced.
+  fs::remove(file);
+  fs::create_symlink("/dev/zero", file);
+  expect_warning({file, "not a regular file", "detecting and tracking again"});
+  EXPECT_FALSE(fs::is_symlink(fs::symlink_status(file)));
+  EXPECT_EQ(ReadBytes(file), good);
+
+  // The file cannot be written (a folder holds its name): the run goes on without it.
+  fs::remove(file);
+  fs::create_directories(file + "/x");
+  expect_warning({file, "the tracks are not kept in --cache, the run goes on"});
+  fs::remove_all(file);
+
+  // A write failing on a full disk, leaving no empty folder: tests/sfm/run/track_cache_test.cc.
+
+  // A read-only cache folder holding the right file: read, no warning.
+  WriteBytes(file, good);
+  fs::permissions(cache, fs::perms::owner_read | fs::perms::owner_exec);
+  EXPECT_EQ(comic_sfm(), 0);
+  fs::permissions(cache, fs::perms::owner_all);
+  EXPECT_EQ(ReadBytes(err_file), "");
+  EXPECT_NE(ReadBytes(out_file).find("[harris] tracks read from --cache"), std::string::npos)
+      << ReadBytes(out_file);
 }
 
 }  // namespace

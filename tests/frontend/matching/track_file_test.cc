@@ -4,11 +4,15 @@
 #include "frontend/matching/track_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "io/core/content_hash.h"
 #include "io/core/error.h"
@@ -222,6 +226,85 @@ TEST(TrackFile, AMissingFileIsNotFound) {
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::kNotFound);
   }
+}
+
+// `bytes` with `replacement` written over the first place `original` occurs, and the checksum
+// made right again: a forged file, as a hand-edited cache would be.
+std::string Forge(std::string bytes, const std::string& original, const std::string& replacement) {
+  const size_t at = bytes.find(original);
+  EXPECT_NE(at, std::string::npos);
+  if (at == std::string::npos) return bytes;
+  bytes.replace(at, replacement.size(), replacement);
+  const uint64_t checksum = io::HashBytes(bytes.substr(0, bytes.size() - 8));
+  std::memcpy(bytes.data() + bytes.size() - 8, &checksum, sizeof(checksum));
+  return bytes;
+}
+
+template <typename T>
+std::string BytesOf(T value) {
+  return std::string(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+// Descriptor rows of 2^31 - 1 (a 256 GB matrix) behind a valid checksum: refused from the bytes
+// left, before the matrix is allocated, as kInvalidData (a cache miss), not std::bad_alloc.
+TEST(TrackFile, AForgedDescriptorSizeIsRefusedBeforeAllocating) {
+  const std::string bytes = EncodeTrackFile(MakeFile(true));
+  // Frame 1's descriptors: 3 rows of 128, their first bytes 0, 1, 2.
+  const std::string rows = BytesOf<int32_t>(3) + BytesOf<int32_t>(128) + std::string("\0\1\2", 3);
+  const std::string forged =
+      Forge(bytes, rows, BytesOf<int32_t>(std::numeric_limits<int32_t>::max()));
+  ASSERT_NE(forged, bytes);
+  const std::string error = DecodeError(forged);
+  EXPECT_NE(error.find("t.bin: track file is truncated or corrupt (descriptors: 2147483647 x 128"),
+            std::string::npos)
+      << error;
+}
+
+// NaN or infinite positions and scales behind a valid checksum: refused (a cache miss), not handed
+// to the mapper. A NaN response stays valid: detectors may leave it undefined.
+TEST(TrackFile, NonFinitePositionsAreRefused) {
+  const std::string bytes = EncodeTrackFile(MakeFile(false));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  // Feature 0 of frame 0 is at (11.25, 19.5), scale 8.4; its curve holds (3, -4.125).
+  const std::vector<std::pair<std::string, std::string>> forgeries = {
+      {BytesOf(11.25f) + BytesOf(19.5f), BytesOf(nan)},
+      {BytesOf(11.25f) + BytesOf(19.5f), BytesOf(11.25f) + BytesOf(-inf)},
+      {BytesOf(19.5f) + BytesOf(8.4f), BytesOf(19.5f) + BytesOf(inf)},
+      {BytesOf(3.0f) + BytesOf(-4.125f), BytesOf(nan)}};
+  for (const auto& [original, replacement] : forgeries) {
+    const std::string error = DecodeError(Forge(bytes, original, replacement));
+    EXPECT_NE(error.find("t.bin: track file is corrupt ("), std::string::npos) << error;
+    EXPECT_NE(error.find("inf"), error.find("nan")) << error;  // one of them is named
+  }
+  const std::string curve = DecodeError(Forge(bytes, forgeries[3].first, BytesOf(nan)));
+  EXPECT_NE(curve.find("(curve point nan, -4.125)"), std::string::npos) << curve;
+  const std::string position = DecodeError(Forge(bytes, forgeries[0].first, BytesOf(nan)));
+  EXPECT_NE(position.find("(feature position nan, 19.5)"), std::string::npos) << position;
+}
+
+// A link to /dev/zero or a FIFO in the cache file's place: refused at once, nothing read (the
+// read is bounded by the file's size, and only regular files have one).
+TEST(TrackFile, ANonRegularFileIsNotRead) {
+  test::ScopedTempDir dir;
+  const std::string link = dir.File("zero.bin");
+  ASSERT_EQ(::symlink("/dev/zero", link.c_str()), 0);
+  const std::string fifo = dir.File("fifo.bin");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  for (const std::string& path : {link, fifo}) {
+    try {
+      ReadTrackFile(path);
+      FAIL() << "no error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kInvalidData);
+      EXPECT_NE(std::string(e.what()).find(path + ": not a regular file"), std::string::npos)
+          << e.what();
+    }
+  }
+  // A link to a regular file is read as the file.
+  WriteTrackFile(dir.File("tracks.bin"), MakeFile(false));
+  ASSERT_EQ(::symlink(dir.File("tracks.bin").c_str(), dir.File("link.bin").c_str()), 0);
+  ExpectSame(MakeFile(false), ReadTrackFile(dir.File("link.bin")));
 }
 
 }  // namespace

@@ -175,8 +175,9 @@ TEST(ImageSequenceErrors, CorruptImageIsNamed) {
   ScopedTempDir dir;
   cv::imwrite(dir.File("frame_1.png"), NumberedFrame(1));
   std::ofstream(dir.File("frame_2.png")) << "this is not a PNG";
-  const auto sequence = ImageSequence::Open(dir.path());
-  ExpectError([&] { sequence.ReadFrame(1); }, ErrorKind::kInvalidData,
+  // Refused when opening, with every frame's header, not when its turn comes: content with no
+  // header of a format read is never decoded.
+  ExpectError([&] { ImageSequence::Open(dir.path()); }, ErrorKind::kInvalidData,
               "frame_2.png: cannot decode");
   // A corrupt first frame is caught when opening.
   ScopedTempDir dir2;

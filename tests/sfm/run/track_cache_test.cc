@@ -1,17 +1,27 @@
 // The track cache (--cache): its key follows the frames, the detector and the tracker and not the
 // mapper; a re-run from the cache writes the same model files byte for byte without detecting; a
 // changed tracker or detector option makes a second file; a corrupt file is tracked again with a
-// warning; a cache among the inputs or in --output is refused before any work.
+// warning; a cache among the inputs or in --output is refused before any work. The cache is
+// optional: a failed write warns and leaves nothing behind, forged or non-regular files are
+// recomputed with a warning, and a read-only cache holding the file is read.
 #include "sfm/run/track_cache.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 
+#include <csignal>
+#include <cstring>
 #include <filesystem>
+#include <limits>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "frontend/feature_masks.h"
 #include "frontend/matching/track_file.h"
+#include "io/core/content_hash.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "sfm/run/reconstruction_run.h"
@@ -279,6 +289,204 @@ TEST(TrackCache, RefusedAmongTheInputsAndInTheOutput) {
   options.cache = dir.File("cache");  // beside it
   EXPECT_EQ(refusal(options), "");
   EXPECT_FALSE(io::PathExists(options.cache));  // checked, not created
+}
+
+// The tracks as (frame, feature) pairs, to compare two trackings.
+std::vector<std::vector<std::pair<int, int>>> Observations(const SequenceTracking& tracking) {
+  std::vector<std::vector<std::pair<int, int>>> tracks;
+  for (const frontend::Track& track : tracking.tracks.tracks) {
+    tracks.emplace_back();
+    for (const frontend::TrackObservation& obs : track.observations) {
+      tracks.back().emplace_back(obs.frame, obs.feature);
+    }
+  }
+  return tracks;
+}
+
+// The cache without the mapping: the first three example frames, Harris, default tracking.
+struct ThreeFrames {
+  io::ImageSequence sequence = [] {
+    io::ImageSequenceOptions options;
+    options.last_frame = 2;
+    return io::ImageSequence::Open(ExampleDir() + "/image_l", options);
+  }();
+  frontend::DetectorOptions detector_options = [] {
+    frontend::DetectorOptions options;
+    options.name = "harris";
+    return options;
+  }();
+  std::unique_ptr<frontend::Detector> detector = frontend::MakeDetector(detector_options);
+  SequenceReconstructionOptions options;
+  int tracked = 0;  // how many times the frames were tracked, not read
+
+  SequenceTracking Track(const std::string& folder, TrackCacheUse* use) {
+    return TrackFramesThroughCache(
+        folder, detector_options, *detector, sequence, options, [this] { ++tracked; }, {}, use);
+  }
+};
+
+// A full disk (here: a file size limit, which fails the write as ENOSPC would) while the cache
+// file is written: a warning, the tracks returned, and neither the file nor the folders the write
+// created left behind.
+TEST(TrackCache, AWriteFailureWarnsAndGoesOnLeavingNothing) {
+  ScopedTempDir dir;
+  ThreeFrames run;
+  const std::string folder = dir.File("new/cache");
+  TrackCacheUse use;
+  struct rlimit saved;
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  const auto saved_handler = std::signal(SIGXFSZ, SIG_IGN);  // EFBIG instead of the signal
+  struct rlimit limit = saved;
+  limit.rlim_cur = 1024;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limit), 0);
+  SequenceTracking tracking;
+  std::string error;
+  try {
+    tracking = run.Track(folder, &use);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, saved_handler);
+  ASSERT_EQ(error, "");
+  EXPECT_EQ(run.tracked, 1);
+  EXPECT_EQ(tracking.tracks.NumFrames(), 3u);
+  EXPECT_FALSE(tracking.tracks.tracks.empty());
+  EXPECT_FALSE(use.from_cache);
+  EXPECT_NE(use.warning.find(use.file), std::string::npos) << use.warning;
+  EXPECT_NE(use.warning.find("the tracks are not kept in --cache, the run goes on"),
+            std::string::npos)
+      << use.warning;
+  EXPECT_EQ(use.warning.find('\n'), std::string::npos) << use.warning;
+  EXPECT_FALSE(io::PathExists(dir.File("new")));  // no empty folder, no partial file
+  // Without the limit the same call keeps them.
+  EXPECT_EQ(Observations(run.Track(folder, &use)), Observations(tracking));
+  EXPECT_EQ(use.warning, "");
+  EXPECT_EQ(io::ListFiles(folder).size(), 1u);
+}
+
+// A folder that existed before keeps existing (only what the failed write made is removed).
+TEST(TrackCache, AFailedWriteRemovesOnlyTheFoldersItMade) {
+  ScopedTempDir dir;
+  ThreeFrames run;
+  fs::create_directories(dir.File("cache"));
+  io::WriteFileAtomically(dir.File("cache/other.txt"), "kept\n");
+  TrackCacheUse use;
+  // The cache file's name taken by a folder: the rename fails.
+  run.Track(dir.File("cache"), &use);
+  ASSERT_EQ(use.warning, "");
+  fs::remove(use.file);
+  fs::create_directories(use.file + "/inside");
+  run.Track(dir.File("cache"), &use);
+  EXPECT_NE(use.warning.find("the run goes on"), std::string::npos) << use.warning;
+  EXPECT_TRUE(io::IsDirectory(use.file + "/inside"));
+  EXPECT_EQ(io::ReadFileToString(dir.File("cache/other.txt")), "kept\n");
+}
+
+// Files a hand or a tool made, with a valid checksum: treated as a miss, with a warning, tracked
+// again and replaced; the next run reads the replacement.
+TEST(TrackCache, ForgedFilesAreTrackedAgainAndReplaced) {
+  ScopedTempDir dir;
+  ThreeFrames run;
+  const std::string folder = dir.File("cache");
+  TrackCacheUse use;
+  const SequenceTracking first = run.Track(folder, &use);
+  const std::string file = use.file;
+  const std::string good = io::ReadFileToString(file);
+  frontend::TrackFile decoded = frontend::DecodeTrackFile(good, file);
+  ASSERT_FALSE(decoded.tracks.features[0].empty());
+
+  std::vector<std::pair<std::string, std::string>> forgeries;  // bytes, words of the warning
+  frontend::TrackFile nan_position = decoded;
+  nan_position.tracks.features[0][0].x = std::numeric_limits<float>::quiet_NaN();
+  forgeries.push_back({frontend::EncodeTrackFile(nan_position), "feature position nan"});
+  frontend::TrackFile inf_position = decoded;
+  inf_position.tracks.features[1][0].y = std::numeric_limits<float>::infinity();
+  forgeries.push_back({frontend::EncodeTrackFile(inf_position), "inf"});
+  // Descriptors of 2^31 - 1 rows behind a valid checksum (a 256 GB matrix if allocated).
+  frontend::TrackFile described = decoded;
+  for (const frontend::FeatureSet& frame : described.tracks.features) {
+    described.tracks.descriptors.push_back(
+        cv::Mat(static_cast<int>(frame.size()), 128, CV_8UC1, cv::Scalar(7)));
+  }
+  std::string huge = frontend::EncodeTrackFile(described);
+  const int32_t rows = static_cast<int32_t>(decoded.tracks.features[0].size());
+  const int32_t columns = 128;
+  const std::string size = std::string(reinterpret_cast<const char*>(&rows), 4) +
+                           std::string(reinterpret_cast<const char*>(&columns), 4) +
+                           std::string(4, '\7');
+  const size_t at = huge.find(size);
+  ASSERT_NE(at, std::string::npos);
+  const int32_t max_rows = std::numeric_limits<int32_t>::max();
+  std::memcpy(huge.data() + at, &max_rows, 4);
+  const uint64_t checksum = io::HashBytes(huge.substr(0, huge.size() - 8));
+  std::memcpy(huge.data() + huge.size() - 8, &checksum, 8);
+  forgeries.push_back({huge, "descriptors: 2147483647 x 128"});
+
+  for (const auto& [bytes, words] : forgeries) {
+    SCOPED_TRACE(words);
+    io::WriteFileAtomically(file, bytes);
+    const int tracked = run.tracked;
+    const SequenceTracking again = run.Track(folder, &use);
+    EXPECT_FALSE(use.from_cache);
+    EXPECT_EQ(run.tracked, tracked + 1);
+    EXPECT_EQ(Observations(again), Observations(first));
+    EXPECT_NE(use.warning.find(file + ": track file is"), std::string::npos) << use.warning;
+    EXPECT_NE(use.warning.find(words), std::string::npos) << use.warning;
+    EXPECT_NE(use.warning.find("detecting and tracking again"), std::string::npos);
+    EXPECT_EQ(io::ReadFileToString(file), good);  // replaced
+  }
+  run.Track(folder, &use);
+  EXPECT_TRUE(use.from_cache);
+}
+
+// A link to /dev/zero, or a FIFO, in the cache file's place: not read (no endless read, no
+// wait), a warning, tracked again, and the entry replaced by the real file.
+TEST(TrackCache, ANonRegularCacheFileIsNotRead) {
+  ScopedTempDir dir;
+  ThreeFrames run;
+  const std::string folder = dir.File("cache");
+  TrackCacheUse use;
+  run.Track(folder, &use);
+  const std::string file = use.file;
+  const std::string good = io::ReadFileToString(file);
+  for (const std::string kind : {"link", "fifo"}) {
+    SCOPED_TRACE(kind);
+    fs::remove(file);
+    if (kind == "link") {
+      fs::create_symlink("/dev/zero", file);
+    } else {
+      ASSERT_EQ(::mkfifo(file.c_str(), 0644), 0);
+    }
+    run.Track(folder, &use);
+    EXPECT_FALSE(use.from_cache);
+    EXPECT_NE(use.warning.find(file + ": not a regular file"), std::string::npos) << use.warning;
+    EXPECT_NE(use.warning.find("detecting and tracking again"), std::string::npos);
+    EXPECT_FALSE(fs::is_symlink(fs::symlink_status(file)));
+    EXPECT_EQ(io::ReadFileToString(file), good);
+  }
+}
+
+// A read-only cache folder holding the right file: accepted up front and read. (As root, where
+// permissions do not hold, the run is the same.)
+TEST(TrackCache, AReadOnlyCacheHoldingTheTracksIsRead) {
+  ScopedTempDir dir;
+  ReconstructionRunOptions options = FiveFrames(dir);
+  options.output = dir.File("first");
+  ASSERT_TRUE(RunReconstruction(options).success());
+  fs::permissions(options.cache, fs::perms::owner_read | fs::perms::owner_exec);
+  options.output = dir.File("second");
+  EXPECT_NO_THROW(CheckRunOptions(options));
+  Events events;
+  const ReconstructionRunResult again = RunReconstruction(options, events.Callbacks());
+  fs::permissions(options.cache, fs::perms::owner_all);
+  ASSERT_TRUE(again.success()) << again.failure;
+  EXPECT_EQ(events.from_cache, 1);
+  EXPECT_EQ(events.tracking, 0);
+  EXPECT_TRUE(events.warnings.empty());
+  // A cache path that can never be a folder is still refused before any work.
+  options.cache = options.frames + "/000000.png/cache";
+  EXPECT_THROW(CheckRunOptions(options), Error);
 }
 
 }  // namespace
