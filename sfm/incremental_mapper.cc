@@ -194,7 +194,11 @@ IncrementalMapper::InitialPairSearch IncrementalMapper::EvaluateInitialPair(
   candidate.num_essential_inliers = pair->geometry.num_essential_inliers;
   candidate.num_homography_inliers = pair->geometry.num_homography_inliers;
   candidate.median_triangulation_angle_deg = pair->geometry.median_triangulation_angle_deg;
-  if (pair->geometry.configuration != TwoViewConfiguration::kCalibrated) {
+  const bool planar_with_parallax =
+      options_.init_accept_planar &&
+      pair->geometry.configuration == TwoViewConfiguration::kPlanarOrPanoramic &&
+      pair->geometry.median_triangulation_angle_deg >= options_.init_tri_angle_deg;
+  if (pair->geometry.configuration != TwoViewConfiguration::kCalibrated && !planar_with_parallax) {
     candidate.stage = Stage::kGeometry;
     // Closest to a general pose: the smallest share of inliers a homography explains; a
     // degenerate pair (too few inliers for any pose) comes after every such pair.

@@ -48,6 +48,13 @@ class IncrementalMapper {
     double init_tri_angle_deg = 4.0;
     // Initial pair: the best pair must score at least this.
     double init_min_score = 30.0;
+    // Initial pair: also a pair a homography explains (kPlanarOrPanoramic) when its median
+    // triangulation angle reaches init_tri_angle_deg: a flat scene seen from two places, not a
+    // camera turning on the spot, which gives no parallax at all. COLMAP's mapper starts from
+    // such pairs (its pose from the homography's decomposition); ours keeps the essential
+    // matrix's pose, which a plane does not make degenerate for the five-point solver. Off in the
+    // first searches, so a general pose is always preferred.
+    bool init_accept_planar = false;
     // Initial pair: frames at most this far apart (in frame index); 0 = no limit: each anchor's
     // gap grows (one frame at a time up to init_linear_gap, then by init_gap_growth) until the
     // anchor's tracks have ended, its score has passed its peak or its parallax saturates. A

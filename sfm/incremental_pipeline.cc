@@ -171,6 +171,11 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
     search_options.init_min_num_matches = std::max(5, search_options.init_min_num_matches / 2);
     search_options.init_min_num_inliers = std::max(5, search_options.init_min_num_inliers / 2);
     candidates = search({}, nullptr);
+    if (candidates.empty()) {
+      // Still nothing: a flat scene seen with parallax may start (COLMAP's mapper would).
+      search_options.init_accept_planar = true;
+      candidates = search({}, nullptr);
+    }
   }
   SeamLinking seam_linking(frame_matcher, options, &set);
   SeamLinker linker;

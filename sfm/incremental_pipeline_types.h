@@ -86,7 +86,8 @@ struct IncrementalPipelineOptions {
   // tracks and inliers (mapper.init_min_num_matches, init_min_num_inliers) halved, as COLMAP
   // relaxes its initialisation constraints. A sparsely tracked sequence (MSER on the dino ring:
   // 774 tracks) then starts a model instead of none; sequences whose strict search succeeds are
-  // unaffected.
+  // unaffected. If that finds nothing either, a third search also accepts a pair a homography
+  // explains when it has parallax (IncrementalMapper::Options::init_accept_planar).
   bool relax_initial_pair = true;
   // Models are merged into the model being grown (IncrementalMapper::MergeModel) when it stops
   // short, and once it has registered merge_overlap_frames frames of an earlier model (and again

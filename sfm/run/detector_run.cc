@@ -2,6 +2,8 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include "frontend/matching/pairing.h"
 #include "io/core/error.h"
 #include "sfm/evaluation/reconstruction_stats.h"
+#include "sfm/model_agreement.h"
 #include "sfm/run/run_report.h"
 #include "sfm/run/tracker_settings.h"
 
@@ -142,6 +145,45 @@ nlohmann::json AttemptJson(const DetectorRun& run) {
           {"registered_frames", run.run.mapping.registered_frames.size()}};
 }
 
+// Two matchers' models of one clip that each pass as a success must turn their cameras alike on
+// the frames both register: where they differ, at least one of them is wrong, and without
+// ground truth the run cannot say which, so the kept model is not called a success (the
+// self-check's reason says why). A model that failed on its own (partial, suspect) is not
+// compared: it may be wrong where the kept one is right (the patch tracker's partial model of
+// a long ordered set, whole rings turned the wrong way).
+constexpr int kMinCommonFramesCompared = 5;
+constexpr double kMaxMedianRotationDifferenceDeg = 2.0;
+
+// Compares the kept success with another matcher's success; adds the comparison to that
+// attempt's JSON and makes the kept run suspect when the two disagree.
+void CompareWithOtherMatcher(const RunInputs& inputs, const DetectorRun& other,
+                             nlohmann::json* other_json, DetectorRun* kept) {
+  IncrementalReconstruction& mapping = kept->run.mapping;
+  if (mapping.status != ReconstructionStatus::kSuccess ||
+      other.run.mapping.status != ReconstructionStatus::kSuccess) {
+    return;
+  }
+  const ModelAgreement agreement =
+      CompareModelRotations(mapping.reconstruction, other.run.mapping.reconstruction);
+  if (agreement.common_frames < kMinCommonFramesCompared) return;
+  (*other_json)["common_frames_with_kept"] = agreement.common_frames;
+  (*other_json)["median_rotation_difference_to_kept_deg"] =
+      agreement.median_rotation_difference_deg;
+  if (agreement.median_rotation_difference_deg <= kMaxMedianRotationDifferenceDeg) return;
+  std::ostringstream reason;
+  reason.setf(std::ios::fixed);
+  reason.precision(1);
+  reason << "the " << other.matcher << " matcher's model turns the cameras of the "
+         << agreement.common_frames << " frames both register "
+         << agreement.median_rotation_difference_deg << " deg away from this one's (median; "
+         << agreement.max_rotation_difference_deg << " at most)";
+  ModelSelfCheck& check = mapping.self_check;
+  check.reason = check.suspect ? check.reason + "; " + reason.str() : reason.str();
+  check.suspect = true;
+  mapping.status = ReconstructionStatus::kSuspect;
+  Evaluate(inputs, kept);
+}
+
 }  // namespace
 
 DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOptions& options,
@@ -152,6 +194,8 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
   DetectorRun result = RunDetectorWith(detector, options, inputs, attempts[0].tracker,
                                        attempts[0].image_set, callbacks);
   nlohmann::json tried = nlohmann::json::array({AttemptJson(result)});
+  std::optional<DetectorRun> other;  // the last model not kept, when a second matcher ran
+  size_t kept_index = 0, other_index = 0;
   for (size_t a = 1; a < attempts.size(); ++a) {
     if (EveryFrameInOneModel(result, inputs)) break;
     if (callbacks.note) {
@@ -164,8 +208,16 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
     DetectorRun next = RunDetectorWith(detector, options, inputs, attempts[a].tracker,
                                        attempts[a].image_set, callbacks);
     tried.push_back(AttemptJson(next));
-    if (Better(next, result)) result = std::move(next);
+    if (Better(next, result)) {
+      std::swap(next, result);
+      other_index = kept_index;
+      kept_index = a;
+    } else {
+      other_index = a;
+    }
+    other = std::move(next);
   }
+  if (other) CompareWithOtherMatcher(inputs, *other, &tried[other_index], &result);
   result.matcher_attempts = std::move(tried);
   result.report_json = DetectorReportJson(result, options, inputs, writes_outputs);
   if (callbacks.detector_finished) callbacks.detector_finished(result);

@@ -200,6 +200,31 @@ TEST(RunReconstruction, MasksLeaveNoPointObservedOnTheMovingObject) {
   EXPECT_GT(observations, 1000u);
 }
 
+// The bag clip's first 25 frames: the verified patches give a success of 24 frames, descriptors
+// then one of 25 whose cameras turn about 10 deg away from it (COLMAP's own model of these frames
+// sits within 1 deg of the patches'). Two successes that disagree cannot both be right: the kept
+// one is suspect, its reason names the other matcher, and the attempt records the comparison.
+TEST(RunReconstruction, TwoMatchersThatDisagreeMakeTheKeptModelSuspect) {
+  COMIC_REQUIRE_SHARED_DATA();
+  ReconstructionRunOptions options;
+  options.frames = test::SharedDataDir() + "/vot_bag";
+  options.sequence.last_frame = 24;
+  const ReconstructionRunResult result = RunReconstruction(options);
+  ASSERT_EQ(result.runs.size(), 1u);
+  const DetectorRun& run = result.runs.front();
+  ASSERT_EQ(run.matcher_attempts.size(), 2u);
+  EXPECT_EQ(run.matcher_attempts[0]["status"], "success");
+  EXPECT_EQ(run.matcher_attempts[1]["status"], "success");
+  EXPECT_EQ(run.run.mapping.status, ReconstructionStatus::kSuspect);
+  EXPECT_EQ(run.report_json["status"], "suspect");
+  const nlohmann::json& other = run.matcher_attempts[run.matcher == "descriptors" ? 0 : 1];
+  EXPECT_GE(other["common_frames_with_kept"].get<int>(), 20);
+  EXPECT_GT(other["median_rotation_difference_to_kept_deg"].get<double>(), 2.0);
+  EXPECT_NE(run.report.self_check.reason.find("matcher's model turns the cameras"),
+            std::string::npos)
+      << run.report.self_check.reason;
+}
+
 // Seven example frames, the fourth replaced by a grey one (no features: nothing registers it).
 // As a video matched over a window, the tracks cross it and it gets a pose interpolated between
 // its neighbours: a guess, neither registered nor counted nor in the written model (issue 47).
