@@ -21,49 +21,96 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import compare_models as c  # noqa: E402
 
-def camera(model):
-    for l in open(model + '/cameras.txt'):
-        if l.startswith('#') or not l.strip(): continue
-        v = l.split(); return float(v[4]), float(v[5]), float(v[6]), float(v[7])
+COLMAP_PAIR_ID_FACTOR = 2147483647
+MIN_PAIR_INLIERS = 30
+# TwoViewGeometry configurations with a verified geometry: calibrated, uncalibrated, planar,
+# planar or panoramic.
+VERIFIED_CONFIGS = (2, 3, 4, 6)
 
-def undistort(p, f, cx, cy, k):
-    x = (p - [cx, cy]) / f
+
+def read_camera(model):
+    """f, cx, cy, k of the model's first camera (SIMPLE_RADIAL's parameters)."""
+    with open(os.path.join(model, "cameras.txt")) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            fields = line.split()
+            return tuple(float(v) for v in fields[4:8])
+    raise ValueError(f"{model}: no camera in cameras.txt")
+
+
+def normalised(points, f, cx, cy, k):
+    """Pixel points (COLMAP's +0.5 convention on both) to undistorted normalised coordinates."""
+    x = (points - [cx, cy]) / f
     u = x.copy()
-    for _ in range(10):
-        r2 = (u ** 2).sum(1, keepdims=True); u = x / (1 + k * r2)
+    for _ in range(10):  # fixed-point inversion of x = u (1 + k |u|^2)
+        u = x / (1 + k * (u ** 2).sum(1, keepdims=True))
     return u
 
-if len(sys.argv) < 3:
-    print(__doc__.strip().splitlines()[-3].strip(), file=sys.stderr)
-    sys.exit(2)
-dbpath, models = sys.argv[1], sys.argv[2:]
-db = sqlite3.connect(dbpath)
-names = dict(db.execute('select image_id,name from images'))
-kps = {}
-for iid, rows, cols, data in db.execute('select image_id,rows,cols,data from keypoints'):
-    kps[iid] = np.frombuffer(data, dtype=np.float32).reshape(rows, cols)[:, :2].astype(float) + 0.0
-ms = [(m, c.read_images(m), camera(m)) for m in models]
-res = {m: [] for m in models}
-for pid, rows, data, cfg in db.execute('select pair_id,rows,data,config from two_view_geometries'):
-    if rows < 30 or cfg not in (2, 3, 4, 6): continue
-    i2 = pid % 2147483647; i1 = (pid - i2) // 2147483647
-    n1, n2 = names[i1], names[i2]
-    if not all(n1 in imgs and n2 in imgs for _, imgs, _ in ms): continue
-    idx = np.frombuffer(data, dtype=np.uint32).reshape(rows, 2)
-    for m, imgs, (f, cx, cy, k) in ms:
-        # COLMAP's keypoints put a pixel's centre at +0.5; the models' principal points do not.
-        p1 = undistort(kps[i1][idx[:, 0]] - 0.5, f, cx - 0.5, cy - 0.5, k)
-        p2 = undistort(kps[i2][idx[:, 1]] - 0.5, f, cx - 0.5, cy - 0.5, k)
-        R1, C1 = imgs[n1]; R2, C2 = imgs[n2]
-        R = R2 @ R1.T; t = R2 @ (C1 - C2)
-        if np.linalg.norm(t) == 0: continue
-        t = t / np.linalg.norm(t)
-        E = np.array([[0, -t[2], t[1]], [t[2], 0, -t[0]], [-t[1], t[0], 0]]) @ R
-        x1 = np.c_[p1, np.ones(len(p1))]; x2 = np.c_[p2, np.ones(len(p2))]
-        l2 = x1 @ E.T; l1 = x2 @ E
-        r = (x2 * l2).sum(1)
-        d = np.abs(r) / np.sqrt(l2[:, 0] ** 2 + l2[:, 1] ** 2 + l1[:, 0] ** 2 + l1[:, 1] ** 2)
-        res[m].append(np.median(d) * f)
-for m in models:
-    a = np.array(res[m])
-    print(f'{m}: {len(a)} pairs, median of pair medians {np.median(a):.3f} px, p90 {np.percentile(a, 90):.3f}, pairs over 2 px {np.mean(a > 2) * 100:.1f} %')
+
+def median_sampson_px(essential, x1, x2, f):
+    h1 = np.c_[x1, np.ones(len(x1))]
+    h2 = np.c_[x2, np.ones(len(x2))]
+    line2 = h1 @ essential.T
+    line1 = h2 @ essential
+    residual = (h2 * line2).sum(1)
+    denominator = np.sqrt((line2[:, :2] ** 2).sum(1) + (line1[:, :2] ** 2).sum(1))
+    return float(np.median(np.abs(residual) / denominator)) * f
+
+
+def model_essential(images, name1, name2):
+    """The essential matrix of two registered images of a model, or None without a baseline."""
+    rotation1, centre1 = images[name1]
+    rotation2, centre2 = images[name2]
+    translation = rotation2 @ (centre1 - centre2)
+    norm = np.linalg.norm(translation)
+    if norm == 0:
+        return None
+    t = translation / norm
+    cross = np.array([[0, -t[2], t[1]], [t[2], 0, -t[0]], [-t[1], t[0], 0]])
+    return cross @ rotation2 @ rotation1.T
+
+
+def main(argv):
+    if len(argv) < 2:
+        print(__doc__.strip().splitlines()[-3].strip(), file=sys.stderr)
+        return 2
+    database, models = argv[0], argv[1:]
+    db = sqlite3.connect(database)
+    names = dict(db.execute("select image_id, name from images"))
+    keypoints = {}
+    for image_id, rows, cols, data in db.execute("select image_id, rows, cols, data from keypoints"):
+        keypoints[image_id] = np.frombuffer(data, dtype=np.float32).reshape(rows, cols)[:, :2]
+    loaded = [(m, c.read_images(m), read_camera(m)) for m in models]
+    # Each image's keypoints undistorted once per model (COLMAP puts a pixel's centre at +0.5;
+    # the models' principal points, written by COLMAP's convention, too).
+    normalised_keypoints = [{} for _ in loaded]
+    results = {m: [] for m in models}
+    for pair_id, rows, data, config in db.execute(
+            "select pair_id, rows, data, config from two_view_geometries"):
+        if rows < MIN_PAIR_INLIERS or config not in VERIFIED_CONFIGS:
+            continue
+        image2 = pair_id % COLMAP_PAIR_ID_FACTOR
+        image1 = (pair_id - image2) // COLMAP_PAIR_ID_FACTOR
+        name1, name2 = names[image1], names[image2]
+        if not all(name1 in images and name2 in images for _, images, _ in loaded):
+            continue
+        matches = np.frombuffer(data, dtype=np.uint32).reshape(rows, 2)
+        for (model, images, (f, cx, cy, k)), cache in zip(loaded, normalised_keypoints):
+            essential = model_essential(images, name1, name2)
+            if essential is None:
+                continue
+            for image_id in (image1, image2):
+                if image_id not in cache:
+                    cache[image_id] = normalised(keypoints[image_id], f, cx, cy, k)
+            results[model].append(median_sampson_px(
+                essential, cache[image1][matches[:, 0]], cache[image2][matches[:, 1]], f))
+    for model in models:
+        a = np.array(results[model])
+        print(f"{model}: {len(a)} pairs, median of pair medians {np.median(a):.3f} px, "
+              f"p90 {np.percentile(a, 90):.3f}, pairs over 2 px {np.mean(a > 2) * 100:.1f} %")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -286,9 +286,9 @@ ModelSelfCheck CheckModelAgainstItsPairs(const Reconstruction& model,
   }
 
   check.pairs_checked = static_cast<int>(differences.size());
-  for (size_t p = 0; p < differences.size(); ++p) {
-    check.pairs_disagreeing += error_ratios[p] > options.max_error_ratio ? 1 : 0;
-    check.max_rotation_difference_deg = std::max(check.max_rotation_difference_deg, differences[p]);
+  check.pairs_disagreeing = static_cast<int>(check.disagreeing.size());
+  for (const double difference : differences) {
+    check.max_rotation_difference_deg = std::max(check.max_rotation_difference_deg, difference);
   }
   check.median_rotation_difference_deg = Median(differences);
   check.median_error_ratio = Median(error_ratios);

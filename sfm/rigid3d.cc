@@ -1,5 +1,6 @@
 #include "sfm/rigid3d.h"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
@@ -37,6 +38,15 @@ double RotationAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b
   // |w| of the relative rotation is cos(angle / 2); the absolute value folds q and −q together.
   const double w = std::abs((a.conjugate() * b).normalized().w());
   return 2.0 * std::acos(std::min(1.0, w)) * 180.0 / M_PI;
+}
+
+Eigen::Matrix3d ChordalMeanRotation(const std::vector<Eigen::Matrix3d>& rotations) {
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (const Eigen::Matrix3d& r : rotations) sum += r;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  return svd.matrixU() * d * svd.matrixV().transpose();
 }
 
 Rigid3d Sim3d::TransformPose(const Rigid3d& cam_from_world) const {

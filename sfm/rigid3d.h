@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 namespace comic::sfm {
 
@@ -38,6 +39,10 @@ Eigen::Vector3d ViewingDirection(const Rigid3d& cam_from_world);
 
 // Angle in degrees of the rotation taking `a` to `b` (0..180).
 double RotationAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
+
+// The rotation closest (Frobenius) to the mean of `rotations`: their chordal L2 mean (the
+// identity for none).
+Eigen::Matrix3d ChordalMeanRotation(const std::vector<Eigen::Matrix3d>& rotations);
 
 // x_b = s · R · x_a + t for b_from_a.
 struct Sim3d {

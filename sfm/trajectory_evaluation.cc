@@ -31,20 +31,6 @@ std::optional<Sim3d> EstimateSim3dUmeyama(const std::vector<Eigen::Vector3d>& sr
   return sim3;
 }
 
-namespace {
-
-// The rotation closest (Frobenius) to the mean of `rotations`: the chordal L2 mean.
-Eigen::Matrix3d ChordalMean(const std::vector<Eigen::Matrix3d>& rotations) {
-  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
-  for (const Eigen::Matrix3d& r : rotations) sum += r;
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  return svd.matrixU() * d * svd.matrixV().transpose();
-}
-
-}  // namespace
-
 std::optional<TrajectoryEvaluation> EvaluateTrajectory(
     const std::vector<std::optional<Rigid3d>>& estimated,
     const std::vector<std::optional<Rigid3d>>& ground_truth) {
@@ -70,7 +56,7 @@ std::optional<TrajectoryEvaluation> EvaluateTrajectory(
     world_rotations.push_back(ground_truth[frame]->RotationMatrix().transpose() *
                               estimated[frame]->RotationMatrix());
   }
-  const Eigen::Quaterniond gt_from_estimated_rotation(ChordalMean(world_rotations));
+  const Eigen::Quaterniond gt_from_estimated_rotation(ChordalMeanRotation(world_rotations));
   evaluation.gt_from_estimated_rotation = gt_from_estimated_rotation;
 
   double sum_squared = 0.0, sum = 0.0, sum_rotation = 0.0, sum_rotation_sim3 = 0.0;

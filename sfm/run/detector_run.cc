@@ -178,7 +178,7 @@ void CompareWithOtherMatcher(const RunInputs& inputs, const DetectorRun& other,
          << agreement.median_rotation_difference_deg << " deg away from this one's (median; "
          << agreement.max_rotation_difference_deg << " at most)";
   ModelSelfCheck& check = mapping.self_check;
-  check.reason = check.suspect ? check.reason + "; " + reason.str() : reason.str();
+  check.reason = reason.str();  // a success: its own check found nothing
   check.suspect = true;
   mapping.status = ReconstructionStatus::kSuspect;
   Evaluate(inputs, kept);
