@@ -151,8 +151,16 @@ nlohmann::json AttemptJson(const DetectorRun& run) {
 // self-check's reason says why). A model that failed on its own (partial, suspect) is not
 // compared: it may be wrong where the kept one is right (the patch tracker's partial model of
 // a long ordered set, whole rings turned the wrong way).
+//
+// The main test is from frame to frame (model_agreement.h): a model that turns its cameras too
+// far between nearby frames differs from a right one by degrees within ten frames, while two
+// right models drift apart by hundredths of a degree per frame. The absolute bound catches a
+// slow bend that is large in the end; it is looser because two right models of a long clip also
+// drift apart, by degrees over hundreds of frames.
 constexpr int kMinCommonFramesCompared = 5;
-constexpr double kMaxMedianRotationDifferenceDeg = 2.0;
+constexpr int kNeighbourIdsCompared = 10;
+constexpr double kMaxMedianRelativeRotationDifferenceDeg = 1.0;
+constexpr double kMaxMedianRotationDifferenceDeg = 5.0;
 
 // Compares the kept success with another matcher's success; adds the comparison to that
 // attempt's JSON and makes the kept run suspect when the two disagree.
@@ -163,20 +171,28 @@ void CompareWithOtherMatcher(const RunInputs& inputs, const DetectorRun& other,
       other.run.mapping.status != ReconstructionStatus::kSuccess) {
     return;
   }
-  const ModelAgreement agreement =
-      CompareModelRotations(mapping.reconstruction, other.run.mapping.reconstruction);
+  const ModelAgreement agreement = CompareModelRotations(
+      mapping.reconstruction, other.run.mapping.reconstruction, kNeighbourIdsCompared);
   if (agreement.common_frames < kMinCommonFramesCompared) return;
   (*other_json)["common_frames_with_kept"] = agreement.common_frames;
   (*other_json)["median_rotation_difference_to_kept_deg"] =
       agreement.median_rotation_difference_deg;
-  if (agreement.median_rotation_difference_deg <= kMaxMedianRotationDifferenceDeg) return;
+  (*other_json)["median_relative_rotation_difference_to_kept_deg"] =
+      agreement.median_relative_rotation_difference_deg;
+  const bool turns_apart_between_neighbours =
+      agreement.median_relative_rotation_difference_deg > kMaxMedianRelativeRotationDifferenceDeg;
+  const bool turned_apart =
+      agreement.median_rotation_difference_deg > kMaxMedianRotationDifferenceDeg;
+  if (!turns_apart_between_neighbours && !turned_apart) return;
   std::ostringstream reason;
   reason.setf(std::ios::fixed);
   reason.precision(1);
   reason << "the " << other.matcher << " matcher's model turns the cameras of the "
          << agreement.common_frames << " frames both register "
          << agreement.median_rotation_difference_deg << " deg away from this one's (median; "
-         << agreement.max_rotation_difference_deg << " at most)";
+         << agreement.max_rotation_difference_deg << " at most; "
+         << agreement.median_relative_rotation_difference_deg << " deg between frames up to "
+         << kNeighbourIdsCompared << " apart)";
   ModelSelfCheck& check = mapping.self_check;
   check.reason = reason.str();  // a success: its own check found nothing
   check.suspect = true;

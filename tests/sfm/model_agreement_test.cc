@@ -103,5 +103,59 @@ TEST(ModelAgreement, OnlyFramesBothRegisterCount) {
             0);
 }
 
+// Each camera turned a little further than the last about the same axis, as one model's
+// rotation drifts from another's along a long clip: `step_deg` more per frame.
+std::vector<Rigid3d> Drifted(const std::vector<Rigid3d>& cameras, double step_deg) {
+  std::vector<Rigid3d> drifted;
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    const Eigen::Vector3d center = cameras[i].Inverse().translation;
+    const Eigen::Quaterniond drift(
+        Eigen::AngleAxisd(step_deg * M_PI / 180 * i, Eigen::Vector3d(0.3, 1.0, 0.1).normalized()));
+    const Eigen::Quaterniond rotation = cameras[i].rotation * drift;
+    drifted.emplace_back(rotation, -(rotation * center));
+  }
+  return drifted;
+}
+
+TEST(ModelAgreement, SlowDriftOverALongClipIsSmallBetweenNeighbours) {
+  // 0.02 deg per frame over 200 frames: 4 deg from end to end.
+  const std::vector<Rigid3d> cameras = ArcCameras(200);
+  const std::vector<bool> all(200, true);
+  const ModelAgreement agreement = CompareModelRotations(
+      ModelOf(cameras, all), ModelOf(InAnotherWorld(Drifted(cameras, 0.02)), all), 10);
+  EXPECT_EQ(agreement.common_frames, 200);
+  EXPECT_GT(agreement.median_rotation_difference_deg, 0.5);
+  EXPECT_GT(agreement.max_rotation_difference_deg, 1.5);
+  // Pairs 1..10 frames apart differ by 0.02..0.2 deg; the median pair is under 0.15.
+  EXPECT_LT(agreement.median_relative_rotation_difference_deg, 0.15);
+  EXPECT_GT(agreement.median_relative_rotation_difference_deg, 0.05);
+  // 200 frames, each paired with the (at most) 10 after it.
+  EXPECT_EQ(agreement.neighbour_pairs, 190 * 10 + 45);
+}
+
+TEST(ModelAgreement, CamerasTurnedTooFarFromFrameToFrameDifferBetweenNeighbours) {
+  // 1.5 deg more per frame over 25 frames.
+  const std::vector<Rigid3d> cameras = ArcCameras(25);
+  const std::vector<bool> all(25, true);
+  const ModelAgreement agreement = CompareModelRotations(
+      ModelOf(cameras, all), ModelOf(InAnotherWorld(Drifted(cameras, 1.5)), all), 10);
+  // The median pair is several frames apart: several times 1.5 deg.
+  EXPECT_GT(agreement.median_relative_rotation_difference_deg, 4.5);
+  EXPECT_LT(agreement.median_relative_rotation_difference_deg, 15.0 + 1e-9);
+}
+
+TEST(ModelAgreement, NeighboursAreCountedByImageIdAcrossGaps) {
+  const std::vector<Rigid3d> cameras = ArcCameras(30);
+  std::vector<bool> registered(30, true);
+  for (int i = 5; i < 20; ++i) registered[i] = false;  // ids 6..20 missing
+  const ModelAgreement agreement =
+      CompareModelRotations(ModelOf(cameras, registered), ModelOf(cameras, registered), 3);
+  // Pairs at most 3 ids apart: ids 1..5 give 4 + 3 + 2 = 9, ids 21..30 give 9 + 8 + 7 = 24,
+  // and none crosses the gap of 15 ids.
+  EXPECT_EQ(agreement.common_frames, 15);
+  EXPECT_EQ(agreement.neighbour_pairs, 9 + 24);
+  EXPECT_LT(agreement.median_relative_rotation_difference_deg, 1e-6);
+}
+
 }  // namespace
 }  // namespace comic::sfm
