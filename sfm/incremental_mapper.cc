@@ -12,6 +12,7 @@
 namespace comic::sfm {
 
 void IncrementalMapper::Options::Check() const {
+  planar_ambiguity.Check();
   COMIC_CHECK(init_min_num_matches >= 5, kInvalidArgument,
               "mapper init_min_num_matches must be >= 5, got " << init_min_num_matches);
   COMIC_CHECK(init_min_num_inliers >= 5, kInvalidArgument,
@@ -222,6 +223,11 @@ IncrementalMapper::InitialPairSearch IncrementalMapper::EvaluateInitialPair(
   candidate.score = score;
   candidate.stage = score >= options_.init_min_score ? Stage::kQualified : Stage::kParallax;
   *measure = score;
+  if (candidate.stage == Stage::kQualified && options_.init_find_planar_alternative) {
+    pair->planar_alternative =
+        OtherPlanarPose(camera, camera, points1, points2, pair->geometry,
+                        options_.two_view.max_error_px, options_.planar_ambiguity);
+  }
   return candidate;
 }
 

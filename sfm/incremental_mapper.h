@@ -28,6 +28,7 @@
 #include "sfm/absolute_pose.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/camera.h"
+#include "sfm/planar_pose_ambiguity.h"
 #include "sfm/reconstruction.h"
 #include "sfm/triangulation.h"
 #include "sfm/two_view_geometry.h"
@@ -55,6 +56,11 @@ class IncrementalMapper {
     // matrix's pose, which a plane does not make degenerate for the five-point solver. Off in the
     // first searches, so a general pose is always preferred.
     bool init_accept_planar = false;
+    // Initial pair: a near-planar qualified pair also keeps the other pose its homography allows
+    // (InitialPair::planar_alternative, sfm/planar_pose_ambiguity.h), so that a model can be
+    // grown from each (IncrementalPipelineOptions::grow_planar_alternative).
+    bool init_find_planar_alternative = true;
+    PlanarAmbiguityOptions planar_ambiguity;
     // Initial pair: frames at most this far apart (in frame index); 0 = no limit: each anchor's
     // gap grows (one frame at a time up to init_linear_gap, then by init_gap_growth) until the
     // anchor's tracks have ended, its score has passed its peak or its parallax saturates. A
@@ -143,6 +149,8 @@ class IncrementalMapper {
     // Found from one of the init_num_anchors most tracked frames (the preferred group), not from
     // the anchors over the whole clip.
     bool most_tracked_anchor = false;
+    // A near-planar pair's other pose and its inliers (init_find_planar_alternative).
+    std::optional<TwoViewGeometry> planar_alternative;
   };
 
   // What an initial pair search saw, so that a failure can say which check failed and by how

@@ -30,6 +30,8 @@ struct ModelSet {
   int num_appearance_links = 0;
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;
+  int num_planar_alternatives_grown = 0;
+  int num_planar_alternatives_kept = 0;
   int num_seam_matches = 0;
   double seam_matching_cpu_time_s = 0.0;
   BundleAdjustmentTally ba;
@@ -212,10 +214,35 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
     tried.insert(pair.image_id2);
     std::vector<const IncrementalModel*> earlier;
     for (const GrownModel& model : set.models) earlier.push_back(&model.model);
+    const std::vector<KeyframeDecision> keyframes_before = set.keyframes;
     GrownModel grown = GrowModel(tracks, camera, options, pair, attempt, earlier, linker, progress,
                                  options.keyframes_only ? &set.keyframes : nullptr);
     ++set.num_attempts;
     set.ba.Add(grown.ba);
+    if (pair.planar_alternative && options.grow_planar_alternative) {
+      // A near-planar pair allows two poses (sfm/planar_pose_ambiguity.h), and a model grown from
+      // the wrong one stays self-consistent: both are grown, and the one that explains more
+      // observations of the same tracks is kept.
+      std::vector<KeyframeDecision> keyframes_first = std::move(set.keyframes);
+      set.keyframes = keyframes_before;
+      IncrementalMapper::InitialPair other_pair = pair;
+      other_pair.geometry = *pair.planar_alternative;
+      other_pair.planar_alternative.reset();
+      GrownModel other = GrowModel(tracks, camera, options, other_pair, attempt, earlier, linker,
+                                   progress, options.keyframes_only ? &set.keyframes : nullptr);
+      set.ba.Add(other.ba);
+      ++set.num_planar_alternatives_grown;
+      const bool other_better = other.status == ReconstructionStatus::kSuccess &&
+                                (grown.status != ReconstructionStatus::kSuccess ||
+                                 other.model.reconstruction.NumObservations() >
+                                     grown.model.reconstruction.NumObservations());
+      if (other_better) {
+        grown = std::move(other);
+        ++set.num_planar_alternatives_kept;
+      } else {
+        set.keyframes = std::move(keyframes_first);
+      }
+    }
     if (grown.status != ReconstructionStatus::kSuccess) {
       if (set.models.empty() && set.first_failure_frame1 < 0) {
         set.first_failure = grown.status;
@@ -372,6 +399,8 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
   result.num_seam_links = set.num_seam_links;
   result.num_appearance_links = set.num_appearance_links;
   result.num_initial_pair_searches = set.num_initial_pair_searches;
+  result.num_planar_alternatives_grown = set.num_planar_alternatives_grown;
+  result.num_planar_alternatives_kept = set.num_planar_alternatives_kept;
   result.initial_pair_search_cpu_time_s = set.initial_pair_search_cpu_time_s;
   result.num_seam_matches = set.num_seam_matches;
   result.seam_matching_cpu_time_s = set.seam_matching_cpu_time_s;

@@ -89,6 +89,13 @@ struct IncrementalPipelineOptions {
   // unaffected. If that finds nothing either, a third search also accepts a pair a homography
   // explains when it has parallax (IncrementalMapper::Options::init_accept_planar).
   bool relax_initial_pair = true;
+  // An initial pair with a planar alternative (IncrementalMapper::Options::
+  // init_find_planar_alternative) starts two models, one from each pose; the one with more
+  // observations (3-D points times the frames seeing them) is kept. On a nearly flat scene the
+  // essential matrix's pose may be the homography's wrong solution, and the model grown from it
+  // registers every frame with its cameras turned degrees away; the right one explains more of
+  // the tracks. It costs a second growth of each such model.
+  bool grow_planar_alternative = true;
   // Models are merged into the model being grown (IncrementalMapper::MergeModel) when it stops
   // short, and once it has registered merge_overlap_frames frames of an earlier model (and again
   // at each doubling of that overlap), so that a model does not grow again all an earlier one
@@ -253,6 +260,10 @@ struct IncrementalReconstruction {
   // The initial pair searches and the seam matches (FrameMatcher calls), with their CPU time.
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;
+  // Models grown a second time from their initial pair's planar alternative, and how many of
+  // those were kept instead of the first (IncrementalPipelineOptions::grow_planar_alternative).
+  int num_planar_alternatives_grown = 0;
+  int num_planar_alternatives_kept = 0;
   int num_seam_matches = 0;
   double seam_matching_cpu_time_s = 0.0;
   // Over all models grown:

@@ -87,6 +87,10 @@ TwoViewGeometry EstimateCalibratedTwoViewGeometry(const Camera& camera1, const C
   }
   geometry.num_homography_inliers =
       homography.empty() || homography_mask.empty() ? 0 : cv::countNonZero(homography_mask);
+  if (geometry.num_homography_inliers > 0 && homography.rows == 3 && homography.cols == 3) {
+    cv::cv2eigen(homography, geometry.homography);
+    if (!geometry.homography.allFinite()) geometry.homography.setZero();
+  }
 
   cv::Mat rotation_cv, translation_cv;
   cv::Mat pose_mask = essential_mask.clone();

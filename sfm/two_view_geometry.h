@@ -49,6 +49,10 @@ struct TwoViewGeometry {
   int num_inliers = 0;            // count of inlier_mask
   int num_essential_inliers = 0;  // before the cheirality check
   int num_homography_inliers = 0;
+  // The homography fitted to the correspondences in undistorted normalised coordinates (zero when
+  // none was found): a near-planar pair's second relative pose comes from its decomposition
+  // (sfm/planar_pose_ambiguity.h).
+  Eigen::Matrix3d homography = Eigen::Matrix3d::Zero();
   double median_triangulation_angle_deg = 0.0;  // over the inliers
   // The inliers triangulated in camera 1's frame (unit baseline), in the order of inlier_mask,
   // and their triangulation angles (degrees).

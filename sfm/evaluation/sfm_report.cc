@@ -105,6 +105,8 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.num_appearance_links = mapping.num_appearance_links;
   report.num_initial_pair_searches = mapping.num_initial_pair_searches;
   report.initial_pair_search_cpu_time_s = mapping.initial_pair_search_cpu_time_s;
+  report.num_planar_alternatives_grown = mapping.num_planar_alternatives_grown;
+  report.num_planar_alternatives_kept = mapping.num_planar_alternatives_kept;
   report.num_seam_matches = mapping.num_seam_matches;
   report.seam_matching_cpu_time_s = mapping.seam_matching_cpu_time_s;
   if (mapping.intrinsics_rejection.rejected) {
@@ -239,6 +241,8 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                      {"seam_links", report.num_seam_links},
                      {"appearance_links", report.num_appearance_links},
                      {"initial_pair_searches", report.num_initial_pair_searches},
+                     {"planar_alternatives_grown", report.num_planar_alternatives_grown},
+                     {"planar_alternatives_kept", report.num_planar_alternatives_kept},
                      {"seam_matches", report.num_seam_matches},
                      {"working_scale", report.working_scale}};
   if (report.keyframes_only) {

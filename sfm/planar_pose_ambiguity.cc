@@ -1,0 +1,129 @@
+#include "sfm/planar_pose_ambiguity.h"
+
+#include <algorithm>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+
+#include "io/core/error.h"
+#include "sfm/rigid3d.h"
+#include "sfm/triangulation.h"
+
+namespace comic::sfm {
+
+void PlanarAmbiguityOptions::Check() const {
+  COMIC_CHECK(
+      min_homography_share > 0 && min_homography_share <= 1, kInvalidArgument,
+      "planar ambiguity min_homography_share must be in (0, 1], got " << min_homography_share);
+  COMIC_CHECK(min_rotation_difference_deg >= 0, kInvalidArgument,
+              "planar ambiguity min_rotation_difference_deg must be >= 0, got "
+                  << min_rotation_difference_deg);
+  COMIC_CHECK(min_inlier_share > 0 && min_inlier_share <= 1, kInvalidArgument,
+              "planar ambiguity min_inlier_share must be in (0, 1], got " << min_inlier_share);
+}
+
+namespace {
+
+// `geometry`'s pose replaced by `cam2_from_cam1`, its inliers those correspondences that
+// triangulate in front of both cameras and reproject within `threshold` (normalised units) in
+// both views.
+TwoViewGeometry WithPose(const Rigid3d& cam2_from_cam1, const std::vector<Eigen::Vector2d>& n1,
+                         const std::vector<Eigen::Vector2d>& n2, double threshold,
+                         const TwoViewGeometry& geometry) {
+  TwoViewGeometry other = geometry;
+  other.cam2_from_cam1 = cam2_from_cam1;
+  other.inlier_mask.assign(n1.size(), 0);
+  other.points3D.clear();
+  other.triangulation_angles_deg.clear();
+  const Rigid3d identity;
+  const Eigen::Vector3d center2 = ProjectionCenter(cam2_from_cam1);
+  for (size_t i = 0; i < n1.size(); ++i) {
+    const auto point = TriangulatePointDlt({identity, cam2_from_cam1}, {n1[i], n2[i]});
+    if (!point || point->z() <= 0) continue;
+    const Eigen::Vector3d in2 = cam2_from_cam1 * *point;
+    if (in2.z() <= 0) continue;
+    if ((point->hnormalized() - n1[i]).norm() > threshold ||
+        (in2.hnormalized() - n2[i]).norm() > threshold) {
+      continue;
+    }
+    other.inlier_mask[i] = 1;
+    other.points3D.push_back(*point);
+    other.triangulation_angles_deg.push_back(
+        TriangulationAngleDeg(Eigen::Vector3d::Zero(), center2, *point));
+  }
+  other.num_inliers = static_cast<int>(other.points3D.size());
+  other.median_triangulation_angle_deg = 0.0;
+  if (!other.triangulation_angles_deg.empty()) {
+    std::vector<double> angles = other.triangulation_angles_deg;
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
+    other.median_triangulation_angle_deg = angles[angles.size() / 2];
+  }
+  return other;
+}
+
+}  // namespace
+
+std::optional<TwoViewGeometry> OtherPlanarPose(const Camera& camera1, const Camera& camera2,
+                                               const std::vector<Eigen::Vector2d>& points1,
+                                               const std::vector<Eigen::Vector2d>& points2,
+                                               const TwoViewGeometry& geometry, double max_error_px,
+                                               const PlanarAmbiguityOptions& options) {
+  options.Check();
+  COMIC_CHECK(points1.size() == points2.size() && points1.size() == geometry.inlier_mask.size(),
+              kInvalidArgument, "planar ambiguity: inconsistent correspondences");
+  if (geometry.configuration == TwoViewConfiguration::kDegenerate || geometry.homography.isZero() ||
+      geometry.num_essential_inliers <= 0) {
+    return std::nullopt;
+  }
+  const double homography_share = static_cast<double>(geometry.num_homography_inliers) /
+                                  static_cast<double>(geometry.num_essential_inliers);
+  if (homography_share < options.min_homography_share) return std::nullopt;
+
+  std::vector<Eigen::Vector2d> n1, n2;
+  for (size_t i = 0; i < points1.size(); ++i) {
+    n1.push_back(camera1.CamFromImage(points1[i]));
+    n2.push_back(camera2.CamFromImage(points2[i]));
+  }
+  const double mean_focal = (camera1.fx + camera1.fy + camera2.fx + camera2.fy) / 4.0;
+  const double threshold = max_error_px / mean_focal;
+
+  // Up to four decompositions (R, t/d, n); the two with t and n flipped put the points behind a
+  // camera and keep no inliers below.
+  cv::Mat homography_cv;
+  cv::eigen2cv(geometry.homography, homography_cv);
+  std::vector<cv::Mat> rotations, translations, normals;
+  cv::decomposeHomographyMat(homography_cv, cv::Mat::eye(3, 3, CV_64F), rotations, translations,
+                             normals);
+  // The two physically valid solutions keep (nearly) every point in front of both cameras; the
+  // other two, t and n flipped, keep few. Of the two, the one nearer the essential matrix's pose
+  // is that pose again; the other is the alternative.
+  struct Solution {
+    TwoViewGeometry geometry;
+    double difference_deg = 0.0;  // rotation from the essential matrix's pose
+  };
+  std::vector<Solution> solutions;
+  for (size_t s = 0; s < rotations.size(); ++s) {
+    Eigen::Matrix3d rotation;
+    Eigen::Vector3d translation;
+    cv::cv2eigen(rotations[s], rotation);
+    cv::cv2eigen(translations[s], translation);
+    if (!rotation.allFinite() || !translation.allFinite() || translation.norm() < 1e-12) continue;
+    const Rigid3d pose(Eigen::Quaterniond(rotation).normalized(), translation.normalized());
+    solutions.push_back({WithPose(pose, n1, n2, threshold, geometry),
+                         RotationAngleDeg(pose.rotation, geometry.cam2_from_cam1.rotation)});
+  }
+  // Most inliers first; ties (exact data) by the order OpenCV returned them.
+  std::stable_sort(solutions.begin(), solutions.end(), [](const Solution& a, const Solution& b) {
+    return a.geometry.num_inliers > b.geometry.num_inliers;
+  });
+  if (solutions.size() < 2) return std::nullopt;
+  Solution& other =
+      solutions[0].difference_deg >= solutions[1].difference_deg ? solutions[0] : solutions[1];
+  if (other.difference_deg < options.min_rotation_difference_deg ||
+      other.geometry.num_inliers < options.min_inlier_share * geometry.num_inliers) {
+    return std::nullopt;
+  }
+  std::optional<TwoViewGeometry> best = std::move(other.geometry);
+  return best;
+}
+
+}  // namespace comic::sfm
