@@ -203,6 +203,15 @@ TEST(SequenceRenderer, AMovingObjectIsDrawnWhereItsVelocityPutsItAtEachFrame) {
   ASSERT_EQ(columns.size(), 3u);
   EXPECT_GT(columns[0], columns[1] + 20);
   EXPECT_GT(columns[1], columns[2] + 10);
+  // Built again from the same file and seed, blurred by its own motion too: the same bytes.
+  SensorOptions blurred;
+  blurred.shutter = 0.5;
+  blurred.blur_samples = 3;
+  const RenderedFrame once = RenderFrame(moving, rasterizer, 11, blurred, 4);
+  const RenderedFrame again =
+      RenderFrame(StreetWithBox(6, center, velocity), rasterizer, 11, blurred, 4);
+  EXPECT_EQ(cv::norm(once.image, again.image, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(once.view.depth, again.view.depth, cv::NORM_INF), 0.0);
 }
 
 TEST(SequenceRenderer, BadOptionsFailBeforeAnythingIsWritten) {
