@@ -101,6 +101,9 @@ int Run(int argc, char** argv) {
                    &options.sensor.shutter);
   parser.AddOption("blur-samples", "N", "sub-frames averaged for motion blur",
                    &options.sensor.blur_samples);
+  parser.AddOption("blur-every", "N",
+                   "blur only every Nth frame (index % N == N-1), the others sharp (1: all)",
+                   &options.sensor.blur_every);
   parser.AddOption("depth-format", "F", "png (16-bit millimetres, saturates at 65.5 m) or pfm",
                    &options.depth_format);
   parser.AddOption("occlusion-band", "PX",

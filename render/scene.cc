@@ -7,11 +7,39 @@
 namespace comic::render {
 
 int Scene::AddObject(const std::string& kind, bool foreground) {
-  objects.push_back({kind, foreground});
+  objects.push_back({kind, foreground, ObjectMotion()});
   return static_cast<int>(objects.size());
 }
 
+bool Scene::HasMotion() const {
+  for (const SceneObject& object : objects) {
+    if (object.motion.Moves()) return true;
+  }
+  return false;
+}
+
+Scene Scene::At(double time) const {
+  Scene moved = *this;
+  if (!HasMotion()) return moved;
+  for (Piece& piece : moved.pieces) {
+    const ObjectMotion& motion = objects.at(piece.object_id - 1).motion;
+    if (!motion.Moves()) continue;
+    piece.origin = motion.PointAt(piece.origin, time);
+    piece.s_axis = motion.DirectionAt(piece.s_axis, time);
+    piece.t_axis = motion.DirectionAt(piece.t_axis, time);
+  }
+  return moved;
+}
+
 void Scene::Check() const {
+  for (size_t k = 0; k < objects.size(); ++k) {
+    try {
+      objects[k].motion.Check();
+    } catch (const Error& e) {
+      throw Error(ErrorKind::kInvalidArgument,
+                  "object " + std::to_string(k + 1) + " (" + objects[k].kind + "): " + e.what());
+    }
+  }
   for (size_t p = 0; p < pieces.size(); ++p) {
     const Piece& piece = pieces[p];
     COMIC_CHECK(piece.texture >= 0 && piece.texture < static_cast<int>(textures.size()),

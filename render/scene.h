@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/alpha_mask.h"
+#include "render/object_motion.h"
 #include "render/texture.h"
 
 namespace comic::render {
@@ -42,6 +43,8 @@ struct Piece {
 struct SceneObject {
   std::string kind;         // "ground", "facade", "box", "pole", "tree", "fence", "background"...
   bool foreground = false;  // stands in front of the ground and background (the object masks)
+  // Its pieces are placed at time 0; Scene::At moves them.
+  ObjectMotion motion;
 };
 
 struct Scene {
@@ -55,8 +58,14 @@ struct Scene {
 
   // Adds an object and returns its id (1-based).
   int AddObject(const std::string& kind, bool foreground);
-  // Throws comic::Error(kInvalidArgument) naming the piece: indices out of range, degenerate
-  // (parallel or zero) axes, an empty texture rectangle.
+  // Whether any object moves.
+  bool HasMotion() const;
+  // The scene at `time` (frames): every moving object's pieces where its motion puts them then.
+  // The same pieces in the same order, so piece indices and object ids mean the same at every
+  // time (the truth images). Textures are shared, not copied.
+  Scene At(double time) const;
+  // Throws comic::Error(kInvalidArgument) naming the piece or object: indices out of range,
+  // degenerate (parallel or zero) axes, an empty texture rectangle, a bad motion.
   void Check() const;
 };
 

@@ -157,6 +157,32 @@ void AddAlongTrack(Scene* scene, const TexturePicker& picker, Random& random, co
   }
 }
 
+// "velocity" (metres per frame) and "yaw_rate_deg" (degrees per frame): the objects from
+// `first_object` on move so, each turning about the vertical through the centre of its pieces.
+void SetMotion(Scene* scene, size_t first_object, const JsonFields& f) {
+  ObjectMotion motion;
+  motion.velocity = f.Vector3("velocity", Eigen::Vector3d::Zero());
+  for (int k = 0; k < 3; ++k) {
+    // Written so that NaN fails too.
+    if (!(std::abs(motion.velocity[k]) <= 100.0)) {
+      f.Fail("velocity", "each component must be within -100..100 metres per frame");
+    }
+  }
+  motion.yaw_rate = f.BoundedNumber("yaw_rate_deg", 0.0, -180.0, 180.0) * kDeg;
+  if (!motion.Moves()) return;
+  for (size_t object = first_object; object < scene->objects.size(); ++object) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (const Piece& piece : scene->pieces) {
+      if (piece.object_id != static_cast<int>(object) + 1) continue;
+      sum += piece.PointAt(0.5, 0.5);
+      ++count;
+    }
+    scene->objects[object].motion = motion;
+    if (count > 0) scene->objects[object].motion.pivot = sum / count;
+  }
+}
+
 // Elements at given places: box, tree, pole, fence, wall, box_field, background, ground.
 void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const JsonFields& f,
                const std::string& type, const Eigen::Vector2d& scene_center) {
@@ -182,7 +208,10 @@ void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const 
                 "tile",
                 "photos",
                 "tint",
-                "texels_per_metre"});
+                "texels_per_metre",
+                "velocity",
+                "yaw_rate_deg"});
+  const size_t first_object = scene->objects.size();
   const ElementStyle style =
       ParseStyle(f, type == "tree" ? cv::Vec3f(0.55f, 0.95f, 0.6f) : cv::Vec3f(1.0f, 1.0f, 1.0f));
   const double yaw = f.Number("yaw_deg", 0.0) * kDeg;
@@ -229,6 +258,7 @@ void AddPlaced(Scene* scene, const TexturePicker& picker, Random& random, const 
                "\" (ground, background, facades, poles, trees, fences, boxes, box, tree, pole, "
                "fence, wall, box_field)");
   }
+  SetMotion(scene, first_object, f);
 }
 
 Lens ParseLens(const JsonFields& f) {
@@ -375,14 +405,20 @@ BuiltScene BuildScene(const std::string& scene_file, const std::vector<std::stri
 
 nlohmann::json DescribeScene(const Scene& scene) {
   nlohmann::json objects = nlohmann::json::array();
-  for (size_t k = 0; k < scene.objects.size(); ++k) {
-    objects.push_back({{"id", k + 1},
-                       {"kind", scene.objects[k].kind},
-                       {"foreground", scene.objects[k].foreground}});
-  }
   const auto vec = [](const Eigen::Vector3d& v) {
     return std::vector<double>{v.x(), v.y(), v.z()};
   };
+  for (size_t k = 0; k < scene.objects.size(); ++k) {
+    const SceneObject& object = scene.objects[k];
+    nlohmann::json described = {
+        {"id", k + 1}, {"kind", object.kind}, {"foreground", object.foreground}};
+    if (object.motion.Moves()) {
+      described["velocity"] = vec(object.motion.velocity);
+      described["yaw_rate"] = object.motion.yaw_rate;
+      described["pivot"] = vec(object.motion.pivot);
+    }
+    objects.push_back(described);
+  }
   nlohmann::json pieces = nlohmann::json::array();
   for (const Piece& piece : scene.pieces) {
     const cv::Rect2d& r = piece.texture_rect;

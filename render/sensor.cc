@@ -22,6 +22,12 @@ void SensorOptions::Check() const {
               "shutter must be in 0..1 (fraction of the frame interval), got " << shutter);
   COMIC_CHECK(blur_samples >= 2 && blur_samples <= 64, kInvalidArgument,
               "blur samples must be in 2..64, got " << blur_samples);
+  COMIC_CHECK(blur_every >= 1 && blur_every <= 100000, kInvalidArgument,
+              "blur every must be in 1..100000 frames, got " << blur_every);
+}
+
+double SensorOptions::ShutterOf(int frame) const {
+  return frame % blur_every == blur_every - 1 ? shutter : 0.0;
 }
 
 double ExposureGain(const SensorOptions& options, uint64_t seed, double time) {

@@ -24,8 +24,14 @@ struct SensorOptions {
   // the frame's time (0: no blur), sampled by `blur_samples` sub-frames.
   double shutter = 0.0;
   int blur_samples = 5;
+  // Only every `blur_every`-th frame is blurred (frames whose index % blur_every is
+  // blur_every - 1), the others are sharp: what a camera does whose exposure time jumps between
+  // frames, and a sequence whose frames alternate sharp and smeared (2). 1: every frame.
+  int blur_every = 1;
 
   void Check() const;
+  // The shutter of frame `frame`: `shutter` on the frames blur_every picks, 0 on the others.
+  double ShutterOf(int frame) const;
 };
 
 // The exposure gain at `time` (frames).

@@ -31,6 +31,7 @@ nlohmann::json RenderOptionsToJson(const SequenceRenderOptions& o) {
           {"exposure_period", o.sensor.exposure_period},
           {"shutter", o.sensor.shutter},
           {"blur_samples", o.sensor.blur_samples},
+          {"blur_every", o.sensor.blur_every},
           {"boundary_depth_ratio", o.boundary.depth_ratio},
           {"boundary_band_px", o.boundary.band_px},
           {"depth_format", o.depth_format}};
@@ -82,15 +83,18 @@ RenderedFrame RenderFrame(const BuiltScene& built, const Rasterizer& rasterizer,
                           const SensorOptions& sensor, int frame) {
   RenderedFrame out;
   out.cam_from_world = built.path.At(frame);
-  out.view = rasterizer.Render(built.scene, out.cam_from_world);
+  out.scene = built.scene.At(frame);
+  out.view = rasterizer.Render(out.scene, out.cam_from_world);
   cv::Mat color = out.view.color;
-  if (sensor.shutter > 0.0) {
-    // Sub-frames spread over the open shutter, centred on the frame's time.
+  const double shutter = sensor.ShutterOf(frame);
+  if (shutter > 0.0) {
+    // Sub-frames spread over the open shutter, centred on the frame's time; the camera and the
+    // moving objects both where they are at each.
     color = cv::Mat::zeros(color.size(), color.type());
     for (int k = 0; k < sensor.blur_samples; ++k) {
       const double time =
-          frame + sensor.shutter * (static_cast<double>(k) / (sensor.blur_samples - 1) - 0.5);
-      color += rasterizer.RenderColor(built.scene, built.path.At(time));
+          frame + shutter * (static_cast<double>(k) / (sensor.blur_samples - 1) - 0.5);
+      color += rasterizer.RenderColor(built.scene.At(time), built.path.At(time));
     }
     color /= static_cast<double>(sensor.blur_samples);
   }
@@ -114,11 +118,11 @@ SequenceRenderSummary RenderSequence(const BuiltScene& built, uint64_t seed,
     outputs.image = rendered.image;
     outputs.depth = rendered.view.depth;
     if (options.write_boundaries) {
-      outputs.boundaries = OcclusionBoundaryMask(built.scene, rendered.cam_from_world, rasterizer,
-                                                 rendered.view, options.boundary);
+      outputs.boundaries = OcclusionBoundaryMask(rendered.scene, rendered.cam_from_world,
+                                                 rasterizer, rendered.view, options.boundary);
     }
-    if (options.write_masks) outputs.masks = ForegroundMask(built.scene, rendered.view);
-    if (options.write_ids) outputs.ids = ObjectIds(built.scene, rendered.view);
+    if (options.write_masks) outputs.masks = ForegroundMask(rendered.scene, rendered.view);
+    if (options.write_ids) outputs.ids = ObjectIds(rendered.scene, rendered.view);
     const double rendered_at = ThreadCpuSeconds();
     summary.render_cpu_s += rendered_at - start;
     WriteFrameOutputs(folder, frame, outputs, options);

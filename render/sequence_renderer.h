@@ -46,11 +46,12 @@ struct SequenceRenderSummary {
 using RenderProgress = std::function<void(int, int)>;
 
 // One frame: the 8-bit image and its truth (the view at the frame's time; with motion blur the
-// colour averages sub-frames around it).
+// colour averages sub-frames around it, on the frames sensor.blur_every picks).
 struct RenderedFrame {
   cv::Mat image;  // CV_8UC3
   RenderedView view;
   Pose cam_from_world;
+  Scene scene;  // the scene at the frame's time: moving objects where they are then
 };
 RenderedFrame RenderFrame(const BuiltScene& built, const Rasterizer& rasterizer, uint64_t seed,
                           const SensorOptions& sensor, int frame);

@@ -35,14 +35,15 @@ void WriteStereoPair(const BuiltScene& built, const Rasterizer& rasterizer, uint
   const Pose left = built.path.At(frame);
   Pose right = left;
   right.translation.x() -= options.baseline;  // centre moved by +baseline along the camera's x
-  const RenderedView left_view = rasterizer.Render(built.scene, left);
-  const RenderedView right_view = rasterizer.Render(built.scene, right);
+  const Scene scene = built.scene.At(frame);
+  const RenderedView left_view = rasterizer.Render(scene, left);
+  const RenderedView right_view = rasterizer.Render(scene, right);
   const uint64_t sensor_seed = MixSeed(seed, kStereoSensor);
   const cv::Mat left_image = ExposeFrame(left_view.color, sensor, sensor_seed, frame);
   const cv::Mat right_image =
       ExposeFrame(right_view.color, sensor, sensor_seed, frame + kRightFrameOffset);
   const cv::Mat boundary =
-      OcclusionBoundaryMask(built.scene, left, rasterizer, left_view, options.boundary);
+      OcclusionBoundaryMask(scene, left, rasterizer, left_view, options.boundary);
 
   cv::Mat disparity = cv::Mat::zeros(left_view.depth.size(), CV_8UC1);
   cv::Mat nonocc = cv::Mat::zeros(left_view.depth.size(), CV_8UC1);

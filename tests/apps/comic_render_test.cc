@@ -23,8 +23,9 @@ TEST(ComicRender, HelpDocumentsEveryOption) {
   EXPECT_EQ(result.exit_code, 0);
   for (const char* option :
        {"--photos", "--seed", "--frames", "--output", "--supersampling", "--noise", "--shot-noise",
-        "--exposure-drift", "--shutter", "--blur-samples", "--depth-format", "--occlusion-band",
-        "--occlusion-depth-ratio", "--frames-only", "--stereo-pairs", "--stereo-baseline"}) {
+        "--exposure-drift", "--shutter", "--blur-samples", "--blur-every", "--depth-format",
+        "--occlusion-band", "--occlusion-depth-ratio", "--frames-only", "--stereo-pairs",
+        "--stereo-baseline"}) {
     EXPECT_NE(result.output.find(option), std::string::npos) << option;
   }
 }

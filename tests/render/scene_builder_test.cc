@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <map>
 
@@ -167,6 +168,67 @@ TEST(SceneBuilder, ValuesThatCrashOrNeverEndAreRefused) {
   EXPECT_NE(error([](nlohmann::json* s) {
               (*s)["description"] = {{"nested", {1, 2}}};
             }).find("\"description\": expected a string"),
+            std::string::npos);
+}
+
+TEST(SceneBuilder, APlacedElementMovesAsItsVelocityAndYawRateSay) {
+  nlohmann::json spec = nlohmann::json::parse(kStreet);
+  spec["elements"][7]["velocity"] = {0.5, 0, -0.25};
+  spec["elements"][7]["yaw_rate_deg"] = 2;
+  const BuiltScene built = Build(spec.dump(), 7);
+  ASSERT_TRUE(built.scene.HasMotion());
+  const SceneObject& box = built.scene.objects.back();
+  EXPECT_EQ(box.kind, "box");
+  EXPECT_EQ(box.motion.velocity, Eigen::Vector3d(0.5, 0, -0.25));
+  EXPECT_NEAR(box.motion.yaw_rate, 2 * M_PI / 180, 1e-15);
+  // It turns about the vertical through its own centre, [0, 30] on the ground.
+  EXPECT_NEAR(box.motion.pivot.x(), 0.0, 1e-9);
+  EXPECT_NEAR(box.motion.pivot.z(), 30.0, 1e-9);
+  for (size_t k = 0; k + 1 < built.scene.objects.size(); ++k) {
+    EXPECT_FALSE(built.scene.objects[k].motion.Moves()) << k;
+  }
+  // scene.json says so, and only for what moves.
+  const nlohmann::json& objects = built.resolved["scene"]["objects"];
+  EXPECT_EQ(objects.back()["velocity"], nlohmann::json({0.5, 0.0, -0.25}));
+  EXPECT_FALSE(objects.front().contains("velocity"));
+  // The same file and seed: the same motion.
+  EXPECT_EQ(Build(spec.dump(), 7).resolved.dump(), built.resolved.dump());
+  EXPECT_FALSE(Build(kStreet, 7).scene.HasMotion());
+}
+
+TEST(SceneBuilder, BadMotionIsRefusedNamingTheKey) {
+  const auto error = [](const std::function<void(nlohmann::json*)>& edit) {
+    nlohmann::json spec = nlohmann::json::parse(kStreet);
+    edit(&spec);
+    try {
+      BuildSceneFromJson(spec, "scene.json", ".", Photos(), {"a", "b", "c"}, 1,
+                         SceneBuildOptions());
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][7]["velocity"] = {std::nan(""), 0, 0};
+            }).find("elements[7]: \"velocity\": each component must be within -100..100"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][7]["velocity"] = {1e12, 0, 0};
+            }).find("\"velocity\": each component must be within -100..100"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][7]["velocity"] = "fast";
+            }).find("\"velocity\": expected three numbers"),
+            std::string::npos);
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][7]["yaw_rate_deg"] = 1000;
+            }).find("\"yaw_rate_deg\": must be in [-180, 180], got 1000"),
+            std::string::npos);
+  // Elements strewn along the track do not move.
+  EXPECT_NE(error([](nlohmann::json* s) {
+              (*s)["elements"][6]["velocity"] = {1, 0, 0};
+            }).find("elements[6]: \"velocity\": unknown key"),
             std::string::npos);
 }
 

@@ -64,5 +64,25 @@ TEST(Sensor, ExposureDriftStaysWithinItsBoundsAndMovesSmoothly) {
   EXPECT_THROW(options.Check(), Error);
 }
 
+TEST(Sensor, BlurEveryNthFramePicksTheLastOfEachN) {
+  SensorOptions options;
+  options.shutter = 0.6;
+  for (int frame = 0; frame < 5; ++frame) EXPECT_EQ(options.ShutterOf(frame), 0.6) << frame;
+  options.blur_every = 2;
+  EXPECT_EQ(options.ShutterOf(0), 0.0);
+  EXPECT_EQ(options.ShutterOf(1), 0.6);
+  EXPECT_EQ(options.ShutterOf(2), 0.0);
+  EXPECT_EQ(options.ShutterOf(3), 0.6);
+  options.blur_every = 3;
+  EXPECT_EQ(options.ShutterOf(1), 0.0);
+  EXPECT_EQ(options.ShutterOf(2), 0.6);
+  EXPECT_EQ(options.ShutterOf(5), 0.6);
+  options.Check();
+  options.blur_every = 0;
+  EXPECT_THROW(options.Check(), Error);
+  options.blur_every = -2;
+  EXPECT_THROW(options.Check(), Error);
+}
+
 }  // namespace
 }  // namespace comic::render

@@ -5,7 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
 #include "io/core/error.h"
+#include "io/core/file_utils.h"
+#include "io/image/image_io.h"
 #include "render/scene_builder.h"
 #include "render/sequence_renderer.h"
 #include "tests/test_support.h"
@@ -55,6 +61,87 @@ TEST(RenderedBenchmark, OneDetectorOnTheTestStreet) {
   // The table and JSON hold the row.
   EXPECT_EQ(result.Table().NumRows(), 1u);
   EXPECT_EQ(result.ToJson()["runs"][0]["detector"], "harris");
+}
+
+// The test street with `extra` elements, `frames` frames.
+render::BuiltScene TestStreet(const std::vector<nlohmann::json>& extra, int frames) {
+  nlohmann::json spec =
+      nlohmann::json::parse(io::ReadFileToString(test::SourceDir() + "/scenes/test_street.json"));
+  for (const nlohmann::json& element : extra) spec["elements"].push_back(element);
+  const std::string photo = test::ExampleDir() + "/image_l/000000.png";
+  render::SceneBuildOptions build;
+  build.num_frames = frames;
+  return render::BuildSceneFromJson(spec, "test_street.json", test::SourceDir() + "/scenes",
+                                    {io::LoadImage(photo).color}, {photo}, 3, build);
+}
+
+// Harris's ordinary run (no masks) on `built` rendered through `sensor`.
+ModelSummary MapRendered(const render::BuiltScene& built, const render::SensorOptions& sensor) {
+  test::ScopedTempDir dir;
+  render::SequenceRenderOptions render_options;
+  render_options.sensor = sensor;
+  render::RenderSequence(built, 3, render_options, dir.path());
+  RenderedBenchmarkOptions options;
+  options.detectors = {"harris"};
+  options.without_boundary_tracks = false;
+  options.without_sliding_tracks = false;
+  const RenderedBenchmark result = RunRenderedBenchmark(dir.path(), options);
+  EXPECT_EQ(result.num_frames, built.num_frames);
+  const ModelSummary& model = result.detectors.at(0).model;
+  std::cout << model.status << ": " << model.num_registered << "/" << built.num_frames
+            << " frames registered, ATE " << (model.ate_rmse ? *model.ate_rmse : -1.0) << " m, "
+            << model.num_points << " points" << std::endl;
+  return model;
+}
+
+TEST(RenderedBenchmark, HeavyMotionBlurOnEveryOtherFrameStillRegistersEveryFrame) {
+  // The shutter open the whole interval: every odd frame smeared over the 0.8 m the camera drives
+  // between frames, the even frames sharp.
+  render::SensorOptions sensor;
+  sensor.shutter = 1.0;
+  sensor.blur_samples = 8;
+  sensor.blur_every = 2;
+  const ModelSummary model = MapRendered(TestStreet({}, 12), sensor);
+  EXPECT_EQ(model.status, "success");
+  EXPECT_EQ(model.num_registered, 12);
+  ASSERT_TRUE(model.ate_rmse.has_value());
+  EXPECT_LT(*model.ate_rmse, 0.05);
+}
+
+// Disabled: the pipeline does not yet pass it. Measured: without the truck success, 12/12 frames,
+// ATE 0.0035 m; with it the model is "suspect" (its own frame pairs contradict it), so no frame
+// counts as registered and there is no ATE. comic_sfm (harris, its defaults) on the same scene
+// rendered by comic_render calls it a success but with ATE 0.042 m and 0.61 deg rotation error
+// (0.0037 m without the truck, 0.0093 m with the truck and --masks).
+TEST(RenderedBenchmark, DISABLED_AnObjectMovingThroughTheViewKeepsTheTrajectoryError) {
+  // A truck-sized box (4 m wide, 3 m high) 8 m ahead and 3.5 m to the right of the first camera,
+  // moving away at 0.5 m per frame while it crosses to the left at 0.5 m per frame: nearer at each
+  // frame (the camera drives 0.8 m per frame), a large part of every view. No masks: the run has
+  // to tell its features from the street's.
+  constexpr int kFrames = 12;
+  const render::BuiltScene street = TestStreet({}, kFrames);
+  const render::Pose start = street.path.At(0);
+  const Eigen::Vector3d forward = start.rotation.transpose() * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d right = start.rotation.transpose() * Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d center = start.Center() + 8.0 * forward + 3.5 * right;
+  const Eigen::Vector3d velocity = 0.5 * forward - 0.5 * right;
+  const nlohmann::json truck = {{"type", "box"},
+                                {"center", {center.x(), center.z()}},
+                                {"size", {4.0, 3.0, 2.0}},
+                                {"yaw_deg", std::atan2(right.z(), right.x()) * 180.0 / M_PI},
+                                {"velocity", {velocity.x(), 0.0, velocity.z()}}};
+  const render::BuiltScene with_truck = TestStreet({truck}, kFrames);
+  ASSERT_TRUE(with_truck.scene.HasMotion());
+
+  const ModelSummary without = MapRendered(street, render::SensorOptions());
+  const ModelSummary with = MapRendered(with_truck, render::SensorOptions());
+  ASSERT_EQ(without.status, "success");
+  ASSERT_TRUE(without.ate_rmse.has_value());
+  EXPECT_EQ(with.status, "success");
+  EXPECT_EQ(with.num_registered, kFrames);
+  ASSERT_TRUE(with.ate_rmse.has_value());
+  // Within half as much again as without it, plus 5 mm.
+  EXPECT_LT(*with.ate_rmse, 1.5 * *without.ate_rmse + 0.005);
 }
 
 TEST(RenderedBenchmark, AFolderWithoutTruthOrABadDetectorIsAnError) {
