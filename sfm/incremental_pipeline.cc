@@ -145,6 +145,40 @@ std::set<image_t> ExcludedFrames(const ModelSet& set, const std::set<image_t>& t
   return excluded;
 }
 
+// A near-planar initial pair allows two poses (sfm/planar_pose_ambiguity.h), and a model grown
+// from the wrong one stays self-consistent. Each pose grows a trial model of
+// planar_trial_frames frames (silently, on its own copy of the keyframe decisions); the pose
+// whose trial explains more observations of the same tracks starts the model.
+IncrementalMapper::InitialPair ChoosePlanarPose(const frontend::FeatureTracks& tracks,
+                                                const Camera& camera,
+                                                const IncrementalPipelineOptions& options,
+                                                const IncrementalMapper::InitialPair& pair,
+                                                const std::vector<KeyframeDecision>& keyframes,
+                                                ModelSet* set) {
+  IncrementalPipelineOptions trial_options = options;
+  trial_options.max_registered_frames = options.planar_trial_frames;
+  trial_options.merge_models = false;
+  trial_options.close_loops = false;
+  IncrementalMapper::InitialPair other = pair;
+  other.geometry = *pair.planar_alternative;
+  other.planar_alternative.reset();
+  const auto trial = [&](const IncrementalMapper::InitialPair& start) {
+    std::vector<KeyframeDecision> trial_keyframes = keyframes;
+    GrownModel grown = GrowModel(tracks, camera, trial_options, start, /*attempt=*/0, {}, {}, {},
+                                 options.keyframes_only ? &trial_keyframes : nullptr);
+    set->ba.Add(grown.ba);
+    return grown.status == ReconstructionStatus::kSuccess
+               ? grown.model.reconstruction.NumObservations()
+               : 0;
+  };
+  const size_t essential_observations = trial(pair);
+  const size_t other_observations = trial(other);
+  ++set->num_planar_alternatives_grown;
+  if (other_observations <= essential_observations) return pair;
+  ++set->num_planar_alternatives_kept;
+  return other;
+}
+
 // Grows models one after another (COLMAP's IncrementalMapperController): each from the best
 // initial pair among the frames no standing model holds, until every frame is in a model, no
 // pair qualifies or max_num_models were started. A model that merges earlier ones replaces them.
@@ -214,35 +248,14 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
     tried.insert(pair.image_id2);
     std::vector<const IncrementalModel*> earlier;
     for (const GrownModel& model : set.models) earlier.push_back(&model.model);
-    const std::vector<KeyframeDecision> keyframes_before = set.keyframes;
-    GrownModel grown = GrowModel(tracks, camera, options, pair, attempt, earlier, linker, progress,
+    IncrementalMapper::InitialPair start = pair;
+    if (pair.planar_alternative && options.grow_planar_alternative) {
+      start = ChoosePlanarPose(tracks, camera, options, pair, set.keyframes, &set);
+    }
+    GrownModel grown = GrowModel(tracks, camera, options, start, attempt, earlier, linker, progress,
                                  options.keyframes_only ? &set.keyframes : nullptr);
     ++set.num_attempts;
     set.ba.Add(grown.ba);
-    if (pair.planar_alternative && options.grow_planar_alternative) {
-      // A near-planar pair allows two poses (sfm/planar_pose_ambiguity.h), and a model grown from
-      // the wrong one stays self-consistent: both are grown, and the one that explains more
-      // observations of the same tracks is kept.
-      std::vector<KeyframeDecision> keyframes_first = std::move(set.keyframes);
-      set.keyframes = keyframes_before;
-      IncrementalMapper::InitialPair other_pair = pair;
-      other_pair.geometry = *pair.planar_alternative;
-      other_pair.planar_alternative.reset();
-      GrownModel other = GrowModel(tracks, camera, options, other_pair, attempt, earlier, linker,
-                                   progress, options.keyframes_only ? &set.keyframes : nullptr);
-      set.ba.Add(other.ba);
-      ++set.num_planar_alternatives_grown;
-      const bool other_better = other.status == ReconstructionStatus::kSuccess &&
-                                (grown.status != ReconstructionStatus::kSuccess ||
-                                 other.model.reconstruction.NumObservations() >
-                                     grown.model.reconstruction.NumObservations());
-      if (other_better) {
-        grown = std::move(other);
-        ++set.num_planar_alternatives_kept;
-      } else {
-        set.keyframes = std::move(keyframes_first);
-      }
-    }
     if (grown.status != ReconstructionStatus::kSuccess) {
       if (set.models.empty() && set.first_failure_frame1 < 0) {
         set.first_failure = grown.status;

@@ -90,12 +90,19 @@ struct IncrementalPipelineOptions {
   // explains when it has parallax (IncrementalMapper::Options::init_accept_planar).
   bool relax_initial_pair = true;
   // An initial pair with a planar alternative (IncrementalMapper::Options::
-  // init_find_planar_alternative) starts two models, one from each pose; the one with more
-  // observations (3-D points times the frames seeing them) is kept. On a nearly flat scene the
-  // essential matrix's pose may be the homography's wrong solution, and the model grown from it
-  // registers every frame with its cameras turned degrees away; the right one explains more of
-  // the tracks. It costs a second growth of each such model.
+  // init_find_planar_alternative) is started from whichever of its two poses explains more
+  // observations (3-D points times the frames seeing them) in a trial growth. On a nearly flat
+  // scene the essential matrix's pose may be the homography's wrong solution, and the model
+  // grown from it registers every frame with its cameras turned degrees away; the right one
+  // explains more of the tracks.
   bool grow_planar_alternative = true;
+  // The two poses are compared on trial growths of this many frames each (no progress reports,
+  // no merging, no loops), and only the pose kept grows the model: near the initial pair the
+  // two models differ by the ambiguity alone, while over a long clip a wrong start can bend
+  // into a model that holds more observations than the right one.
+  int planar_trial_frames = 20;
+  // A growth stops once this many frames are registered (0: no limit); the trial growths above.
+  int max_registered_frames = 0;
   // Models are merged into the model being grown (IncrementalMapper::MergeModel) when it stops
   // short, and once it has registered merge_overlap_frames frames of an earlier model (and again
   // at each doubling of that overlap), so that a model does not grow again all an earlier one

@@ -62,6 +62,7 @@ class ModelGrower {
   GrownModel Run(const IncrementalMapper::InitialPair& pair) {
     if (!Start(pair)) return Finish(ReconstructionStatus::kTooFewPoints);
     while (true) {
+      if (TrialComplete()) break;
       if (RegisterNextFrame()) continue;
       // Stopped short of some frames: adjust everything, complete the tracks and retry the
       // frames left out once more before giving up on them (a weakly textured stretch of video
@@ -95,6 +96,13 @@ class ModelGrower {
   }
 
  private:
+  // A trial growth (IncrementalPipelineOptions::max_registered_frames) has its frames.
+  bool TrialComplete() const {
+    return options_.max_registered_frames > 0 &&
+           static_cast<int>(mapper_.reconstruction().NumRegisteredImages()) >=
+               options_.max_registered_frames;
+  }
+
   // Registers the pair and adjusts it; false if it keeps too few points.
   bool Start(const IncrementalMapper::InitialPair& pair) {
     result_.model.initial_frame1 = IncrementalMapper::FrameOfImageId(pair.image_id1);
