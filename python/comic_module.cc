@@ -1068,7 +1068,7 @@ PYBIND11_MODULE(_core, m) {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const comic::Error& e) {
       const std::string message =
-          comic::io::PrintableOneLine(comic::sfm::WithUserOptionNames(e.what()));
+          comic::io::PrintableMessage(comic::sfm::WithUserOptionNames(e.what()));
       if (e.kind() == comic::ErrorKind::kInvalidArgument) {
         PyErr_SetString(PyExc_ValueError, message.c_str());
       } else {

@@ -220,8 +220,20 @@ std::string ArgParser::Help() const {
 
 void PrintWarning(const std::string& program, const std::string& text) {
   if (text.empty()) return;
-  std::cerr << program << ": warning: " << io::PrintableOneLine(text) << std::endl;
+  std::cerr << program << ": warning: " << io::PrintableMessage(text) << std::endl;
 }
+
+namespace {
+
+// What a user can do about it: every app's work grows with the pixels and the frames.
+int PrintOutOfMemory(const std::string& program) {
+  std::cerr << program
+            << ": error: out of memory; free memory or work smaller (--max-pixels, "
+               "--resize-height, fewer frames)\n";
+  return 1;
+}
+
+}  // namespace
 
 int RunMain(const std::string& program, const std::function<int()>& body) {
   // One line, ours: OpenCV's own log stays quiet, and every message is made one printable line
@@ -231,20 +243,19 @@ int RunMain(const std::string& program, const std::function<int()>& body) {
     return body();
   } catch (const Error& e) {
     // Options by the flags' names, not the library fields' (sfm/option_vocabulary.h).
-    std::cerr << program << ": error: " << io::PrintableOneLine(sfm::WithUserOptionNames(e.what()))
+    std::cerr << program << ": error: " << io::PrintableMessage(sfm::WithUserOptionNames(e.what()))
               << "\n";
     return e.kind() == ErrorKind::kInvalidArgument ? 2 : 1;
   } catch (const cv::Exception& e) {
+    // OpenCV's allocator reports running out of memory as its own exception, not bad_alloc.
+    if (e.code == cv::Error::StsNoMem) return PrintOutOfMemory(program);
     std::cerr << program << ": error: OpenCV: " << io::PrintableOneLine(e.err) << " (" << e.func
               << ")\n";
     return 1;
   } catch (const std::bad_alloc&) {
-    std::cerr << program
-              << ": error: out of memory; free memory or work smaller (--max-pixels, "
-                 "--resize-height, fewer frames)\n";
-    return 1;
+    return PrintOutOfMemory(program);
   } catch (const std::exception& e) {
-    std::cerr << program << ": error: " << io::PrintableOneLine(e.what()) << "\n";
+    std::cerr << program << ": error: " << io::PrintableMessage(e.what()) << "\n";
     return 1;
   }
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <mutex>
 #include <set>
+#include <system_error>
 #include <thread>
 
 namespace comic::io {
@@ -43,17 +44,9 @@ sigset_t InterruptSignals() {
   return signals;
 }
 
-}  // namespace
-
-void InstallInterruptCleanup() {
-  TempPathRegistry& registry = Registry();
-  {
-    const std::lock_guard<std::mutex> lock(registry.mutex);
-    if (registry.installed) return;
-    registry.installed = true;
-  }
-  const sigset_t signals = InterruptSignals();
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+// A thread that waits for SIGINT or SIGTERM, removes every registered temp path and dies of the
+// signal as the process would have.
+void StartInterruptWatcher(const sigset_t& signals) {
   std::thread([signals] {
     int signal_number = 0;
     if (sigwait(&signals, &signal_number) != 0) return;
@@ -65,6 +58,27 @@ void InstallInterruptCleanup() {
     pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);
     ::raise(signal_number);
   }).detach();
+}
+
+}  // namespace
+
+void InstallInterruptCleanup() {
+  TempPathRegistry& registry = Registry();
+  {
+    const std::lock_guard<std::mutex> lock(registry.mutex);
+    if (registry.installed) return;
+    registry.installed = true;
+  }
+  const sigset_t signals = InterruptSignals();
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  // Out of memory or threads, the system refuses the watcher (std::system_error, before RunMain
+  // could turn it into our line): the run goes on without the cleanup, interruptible as usual,
+  // and meets the shortage again where its one line says what to do.
+  try {
+    StartInterruptWatcher(signals);
+  } catch (const std::system_error&) {
+    pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);
+  }
 }
 
 ScopedTempPath::ScopedTempPath(std::string path) : path_(std::move(path)) {

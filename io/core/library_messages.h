@@ -11,13 +11,15 @@
 namespace comic::io {
 
 // Sets OpenCV's own log level to silent ("[ WARN:0@0.1] global cap_gstreamer.cpp ..."). FFmpeg's
-// messages (OpenCV leaves them at AV_LOG_ERROR) are not silenced but captured around each video
-// call (CaptureLibraryMessages): they say where a stream breaks. Idempotent; called by the apps'
-// main and before this library opens a video.
+// lines (OpenCV leaves them at AV_LOG_ERROR) say where a stream breaks, so they are not dropped
+// but kept from stderr at their source (FFmpeg's log callback), whichever decoding thread writes
+// them and whenever, and handed to the next CaptureLibraryMessages. Idempotent; called by the
+// apps' main and before this library opens a video.
 void SilenceLibraryLogging();
 
 // Runs `body` with the process's stderr (file descriptor 2) redirected to an anonymous temporary
-// file and returns what was written there meanwhile, as one printable line (empty if nothing).
+// file and returns what was written there meanwhile, with FFmpeg's lines kept since the last
+// call, as one printable line (empty if nothing).
 // Calls are serialised (fd 2 is one per process); exceptions from `body` propagate after stderr
 // is restored. Used around decoders whose libraries print instead of reporting.
 std::string CaptureLibraryMessages(const std::function<void()>& body);

@@ -38,9 +38,7 @@ size_t PrintableUtf8Length(const std::string& text, size_t at) {
   return control ? 0 : length;
 }
 
-}  // namespace
-
-std::string PrintableOneLine(const std::string& text, size_t max_length) {
+std::string Printable(const std::string& text, size_t max_length, bool join_lines) {
   std::string out;
   out.reserve(std::min(text.size(), max_length) + 3);
   for (size_t at = 0; at < text.size();) {
@@ -49,7 +47,7 @@ std::string PrintableOneLine(const std::string& text, size_t max_length) {
       break;
     }
     const unsigned char byte = static_cast<unsigned char>(text[at]);
-    if (byte == '\n' || byte == '\r' || byte == '\t') {
+    if (join_lines && (byte == '\n' || byte == '\r' || byte == '\t')) {
       if (!out.empty() && out.back() != ' ') out += ' ';
       ++at;
     } else if (byte >= 0x20 && byte < 0x7f) {
@@ -66,6 +64,18 @@ std::string PrintableOneLine(const std::string& text, size_t max_length) {
   }
   while (!out.empty() && out.back() == ' ') out.pop_back();
   return out;
+}
+
+}  // namespace
+
+std::string PrintableOneLine(const std::string& text, size_t max_length) {
+  return Printable(text, max_length, /*join_lines=*/true);
+}
+
+std::string PrintableMessage(const std::string& text, size_t max_length) {
+  const size_t end = text.find_last_not_of("\r\n");
+  return Printable(end == std::string::npos ? "" : text.substr(0, end + 1), max_length,
+                   /*join_lines=*/false);
 }
 
 }  // namespace comic::io

@@ -1,11 +1,13 @@
 #include "io/datasets/rendered_truth.h"
 
+#include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
 
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/image/depth_map.h"
+#include "io/image/image_header.h"
 #include "io/image/image_io.h"
 
 namespace comic::io {
@@ -16,14 +18,27 @@ std::string Stem(const std::string& name) {
   return dot == std::string::npos ? name : name.substr(0, dot);
 }
 
+// A map of another size than the camera's cannot be laid over the frames: refused naming it.
+void CheckMapSize(const std::string& path, int64_t width, int64_t height,
+                  const CameraCalibration& camera) {
+  COMIC_CHECK(width == camera.width && height == camera.height, kInvalidData,
+              path << ": " << width << "x" << height << ", but the frames are " << camera.width
+                   << "x" << camera.height);
+}
+
 }  // namespace
 
 std::string RenderedTruth::ImagesFolder() const { return JoinPaths(folder, "images"); }
 
+std::string RenderedTruth::DepthPath(size_t frame) const {
+  return JoinPaths(folder, "depth/" + Stem(frame_names[frame]) + "." + depth_extension);
+}
+
 cv::Mat RenderedTruth::Depth(size_t frame) const {
   COMIC_CHECK(frame < frame_names.size(), kInvalidArgument, "frame " << frame << " out of range");
-  cv::Mat depth =
-      ReadDepthMap(JoinPaths(folder, "depth/" + Stem(frame_names[frame]) + "." + depth_extension));
+  const std::string path = DepthPath(frame);
+  cv::Mat depth = ReadDepthMap(path);
+  CheckMapSize(path, depth.cols, depth.rows, camera);
   if (composite) depth.setTo(std::numeric_limits<float>::quiet_NaN(), Foreground(frame));
   return depth;
 }
@@ -32,9 +47,7 @@ cv::Mat RenderedTruth::ReadMask(const std::string& subfolder, size_t frame) cons
   COMIC_CHECK(frame < frame_names.size(), kInvalidArgument, "frame " << frame << " out of range");
   const std::string path = JoinPaths(folder, subfolder + "/" + Stem(frame_names[frame]) + ".png");
   const cv::Mat mask = ToGray8(ReadImageUnchanged(path));
-  COMIC_CHECK(mask.cols == camera.width && mask.rows == camera.height, kInvalidData,
-              path << ": " << mask.cols << "x" << mask.rows << ", but the frames are "
-                   << camera.width << "x" << camera.height);
+  CheckMapSize(path, mask.cols, mask.rows, camera);
   return mask;
 }
 
@@ -67,6 +80,14 @@ RenderedTruth OpenRenderedTruth(const std::string& folder) {
   }
   COMIC_CHECK(!truth.depth_extension.empty(), kNotFound,
               folder << "/depth: no " << first << ".png or .pfm");
+  // Every depth map's size from its header, before any tracking: a wrong one found while judging
+  // the tracks would cost the whole run.
+  for (size_t frame = 0; frame < truth.frame_names.size(); ++frame) {
+    const std::string path = truth.DepthPath(frame);
+    COMIC_CHECK(PathExists(path), kNotFound, path << ": no such depth map");
+    const ImageHeader header = RequireImageHeader(path);
+    CheckMapSize(path, header.width, header.height, truth.camera);
+  }
   const std::string scene = JoinPaths(folder, "scene.json");
   if (PathExists(scene)) {
     try {

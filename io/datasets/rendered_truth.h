@@ -38,8 +38,9 @@ struct RenderedTruth {
   // CV_32F metres, 0 = no surface, +inf beyond a PNG, NaN = unknown: a composite's object, also
   // from a 16-bit PNG (which stores it as 0, no surface, and would make it sky).
   cv::Mat Depth(size_t frame) const;
-  cv::Mat Boundaries(size_t frame) const;  // CV_8UC1, 255 = occlusion-boundary band
-  cv::Mat Foreground(size_t frame) const;  // CV_8UC1, 255 = foreground object
+  std::string DepthPath(size_t frame) const;  // depth/NNNNNN.png|pfm
+  cv::Mat Boundaries(size_t frame) const;     // CV_8UC1, 255 = occlusion-boundary band
+  cv::Mat Foreground(size_t frame) const;     // CV_8UC1, 255 = foreground object
 
  private:
   cv::Mat ReadMask(const std::string& subfolder, size_t frame) const;
@@ -47,7 +48,8 @@ struct RenderedTruth {
 
 // Opens a folder written by comic_render. Throws comic::Error: kNotFound for a missing folder
 // or part (images/, poses.txt, colmap/cameras.txt, depth/, boundaries/), kInvalidData when the
-// parts disagree (a pose count other than the frame count, a camera of another size).
+// parts disagree (a pose count other than the frame count, a camera of another size, a depth
+// map missing or of another size than the camera's, read from its header).
 RenderedTruth OpenRenderedTruth(const std::string& folder);
 
 }  // namespace comic::io

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -106,15 +107,23 @@ cv::Mat ReadImageUnchanged(const std::string& path, int64_t max_pixels) {
   CheckPixelBudget(path, header.width, header.height, max_pixels);
   cv::Mat image;
   std::string opencv_error;
+  bool out_of_memory = false;
   // libpng and libjpeg print to stderr instead of reporting (a truncated JPEG even decodes, grey
   // below the cut): their words are captured and become part of our one line.
   const std::string library_message = CaptureLibraryMessages([&] {
     try {
       image = cv::imread(path, cv::IMREAD_UNCHANGED);
     } catch (const cv::Exception& e) {
+      out_of_memory = e.code == cv::Error::StsNoMem;
       opencv_error = e.err;
+    } catch (const std::bad_alloc&) {
+      out_of_memory = true;
     }
   });
+  // Memory running out for the pixels is no fault of the file: said so, with what to do.
+  COMIC_CHECK(!out_of_memory, kIo,
+              path << ": out of memory for its " << header.width << "x" << header.height
+                   << " pixels; free memory or work smaller (--max-pixels, --resize-height)");
   const std::string detail = !library_message.empty() ? library_message : opencv_error;
   COMIC_CHECK(!image.empty(), kInvalidData,
               path << ": cannot decode image (corrupt, truncated or not an image"

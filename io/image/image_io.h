@@ -53,7 +53,8 @@ cv::Size CheckImageHeaderBudget(const std::string& path, int resize_height, int6
 // at `resize_height` (0 = original size). Throws comic::Error: kNotFound for a missing file,
 // kInvalidData for a file that is not a decodable image or has an unsupported depth, or whose size
 // after resizing exceeds `max_pixels` (io/core/pixel_budget.h; checked on the header before
-// decoding, and again before resizing), naming the file.
+// decoding, and again before resizing), naming the file; kIo when memory runs out for the
+// pixels.
 LoadedImage LoadImage(const std::string& path, int resize_height = 0,
                       int64_t max_pixels = kDefaultMaxPixels);
 

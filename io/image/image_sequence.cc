@@ -1,6 +1,7 @@
 #include "io/image/image_sequence.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <opencv2/videoio.hpp>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "io/core/file_utils.h"
 #include "io/core/input_file.h"
 #include "io/core/library_messages.h"
+#include "io/image/image_header.h"
 #include "io/image/image_io.h"
 
 namespace comic::io {
@@ -48,6 +50,15 @@ std::vector<int> SelectIndices(int count, const ImageSequenceOptions& options) {
   const int last = options.last_frame < 0 ? count - 1 : std::min(options.last_frame, count - 1);
   for (int i = options.first_frame; i <= last; i += options.stride) indices.push_back(i);
   return indices;
+}
+
+// A frame stored lower or narrower than the smallest --resize-height holds no detector's window
+// (resized to a height, one a pixel wide would be no pixels wide): refused naming it.
+void CheckFrameNotTooSmall(const std::string& what, int64_t width, int64_t height) {
+  COMIC_CHECK(width >= kMinResizeHeight && height >= kMinResizeHeight, kInvalidData,
+              what << ": frames of " << width << "x" << height
+                   << " pixels (as stored) are too small to reconstruct (at least "
+                   << kMinResizeHeight << "x" << kMinResizeHeight << ")");
 }
 
 }  // namespace
@@ -157,10 +168,17 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
     for (int index : sequence.source_indices_) sequence.names_.push_back(VideoFrameName(index));
   }
 
-  // Read the first frame: it fixes the frame size and validates the source early.
+  // Read the first frame: it fixes the frame size and validates the source early. An image's
+  // size is checked on its header first, before the budget of its size resized to a height.
+  if (!sequence.is_video_) {
+    const std::string first = JoinPaths(sequence.folder_, sequence.names_[0]);
+    const ImageHeader header = RequireImageHeader(first);
+    CheckFrameNotTooSmall(first, header.width, header.height);
+  }
   std::string what;
   const cv::Mat raw = sequence.ReadRaw(0, &what);
   sequence.source_size_ = raw.size();
+  CheckFrameNotTooSmall(what, raw.cols, raw.rows);
   CheckPixelBudget(what, ResizedSize(raw.size(), options.resize_height), options.max_pixels);
   sequence.frame_size_ = sequence.MakeFrame(raw, 0, what).gray.size();
   if (!sequence.is_video_) sequence.CheckFrameHeaders();

@@ -54,7 +54,7 @@ class ImageSequence {
   // declared frame size is held to the budget before any frame is decoded.
   // Throws comic::Error naming the path and the problem: missing path (kNotFound), folder
   // without images or a range selecting no frame (kInvalidArgument), corrupt first image or
-  // video that cannot be opened (kInvalidData).
+  // video that cannot be opened, frames lower or narrower than kMinResizeHeight (kInvalidData).
   static ImageSequence Open(const std::string& path, const ImageSequenceOptions& options = {});
 
   ImageSequence(ImageSequence&&) noexcept;

@@ -11,7 +11,6 @@
 #include "io/core/protected_inputs.h"
 #include "io/core/staged_folder.h"
 #include "io/image/frame_export.h"
-#include "io/image/image_io.h"
 #include "sfm/run/run_outputs.h"
 
 namespace comic::sfm {
@@ -116,19 +115,6 @@ void CheckFramesOption(const ReconstructionRunOptions& options, const RunInputs&
               "--write-frames: " << options.frames
                                  << " is a folder of images already (COLMAP reads them there); "
                                     "--write-frames is for a video");
-}
-
-// A frame stored lower or narrower than the smallest --resize-height holds no detector's window
-// (and no picture for the report page): refused naming the first frame, before any work.
-void CheckFrameSize(const RunInputs& inputs) {
-  const io::ImageSequence& sequence = *inputs.sequence;
-  const cv::Size size = sequence.SourceFrameSize();
-  COMIC_CHECK(size.width >= io::kMinResizeHeight && size.height >= io::kMinResizeHeight,
-              kInvalidData,
-              (sequence.IsVideo() ? sequence.path() : sequence.FramePath(0))
-                  << ": frames of " << size.width << "x" << size.height
-                  << " pixels (as stored) are too small to reconstruct (at least "
-                  << io::kMinResizeHeight << "x" << io::kMinResizeHeight << ")");
 }
 
 // Each detector in turn: its run, then its outputs.
@@ -258,7 +244,6 @@ ReconstructionRunResult RunReconstruction(const ReconstructionRunOptions& option
   ReconstructionRunResult result;
   result.inputs = ResolveRunInputs(options);
   CheckFramesOption(options, result.inputs);
-  CheckFrameSize(result.inputs);
   // A frame name no COLMAP model can hold fails now, not after the reconstruction (issue 29).
   for (const std::string& name : result.inputs.sequence->FrameNames()) {
     io::CheckColmapImageName(name, options.frames);

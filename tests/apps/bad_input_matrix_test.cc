@@ -43,6 +43,8 @@ struct Case {
   const char* args;
   int exit_code;
   std::vector<const char*> words;
+  // Above 0: the row runs under `ulimit -v` of this many MB, so that its work runs out of memory.
+  int memory_limit_mb = 0;
 };
 
 // clang-format off
@@ -413,6 +415,28 @@ const std::vector<Case> kCases = {
   {"comic_bench", "{d}/good.png --keep 1000", 2, {"--keep", "--perturbations"}},
   {"comic_bench", "{d}/good.png --json {d}/good.png", 2, {"--json is the input IMAGE"}},
   {"comic_bench", "{d}/good.png --resize-height 2", 2, {"--resize-height", "got 2"}},
+  // Smaller things. FFmpeg decodes in threads of its own: the damage of a frame decoded ahead is
+  // reported after the call that started it returned, and must still not reach stderr.
+  {"comic_sfm", "{d}/damaged.mp4 --output {d}/out", 1, {"damaged.mp4", "stops decoding"}},
+  {"comic_track_eval", "{d}/damaged.mp4 --output {d}/out", 1, {"damaged.mp4", "stops decoding"}},
+  {"comic_export_colmap", "{d}/damaged.mp4 --colmap-db {d}/a.db", 1,
+   {"damaged.mp4", "stops decoding"}},
+  {"comic_inspect", "{d}/damaged.mp4", 1, {"damaged.mp4", "stops decoding"}},
+  // A tab or a line break in a name is escaped as \xNN, never shown as a space.
+  {"comic_detect", "'{d}/tab\tname.png'", 1, {"{d}/tab\\x09name.png: no such file"}},
+  {"comic_detect", "'{d}/line\nname.png'", 1, {"{d}/line\\x0aname.png: no such file"}},
+  {"comic_sfm", "'{d}/cr\rframes' --output {d}/out", 1, {"{d}/cr\\x0dframes", "no such file"}},
+  // Frames too small for a detector's window, in every app that tracks them.
+  {"comic_track_eval", "{d}/thin --output {d}/out", 1, {"thin/000000.png", "2000x1"}},
+  {"comic_export_colmap", "{d}/thin --colmap-db {d}/a.db", 1, {"thin/000000.png", "2000x1"}},
+  {"comic_sfm", "{d}/tall --output {d}/out", 1, {"tall/000000.png", "1x2000"}},
+  // Out of memory: one line naming the image, with what to do (a PNG whose pixels, 900 MB as
+  // declared, are allowed by --max-pixels, run under a 700 MB address-space limit).
+  {"comic_detect", "{d}/oom.png --max-pixels 1000000000 --threads 1", 1,
+   {"oom.png: out of memory for its 30000x30000 pixels", "--max-pixels"}, 700},
+  // A rendered truth whose depth map has another size than its frames: refused before tracking.
+  {"comic_render_eval", "{d}/rendered --output {d}/out", 1,
+   {"rendered/depth/000001.pfm: 80x60, but the frames are 160x120"}},
 };
 // clang-format on
 
@@ -582,6 +606,66 @@ void MakeSceneFixture(const std::string& dir) {
   WriteBytes(dir + "/scene_deep.json", "{\"description\": " + deep + "}");
 }
 
+// PNG's chunk checksum (CRC-32, ISO 3309), which libpng checks on the critical chunks.
+uint32_t PngCrc(const std::string& bytes) {
+  uint32_t crc = 0xffffffffu;
+  for (const char c : bytes) {
+    crc ^= static_cast<unsigned char>(c);
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+// Smaller things: an MPEG-4 video damaged in its middle (FFmpeg's decoder threads report it), a
+// frame 1 pixel wide, a PNG whose header libpng accepts declaring 30000x30000 (its image data
+// starts but is cut: the decoder allocates the pixels before it reads them), and a rendered truth
+// (comic_render's output) with a depth map of the wrong size.
+void MakeSmallerFixture(const std::string& dir) {
+  const auto chunk = [](const std::string& type, const std::string& data) {
+    return BigEndian32(static_cast<uint32_t>(data.size())) + type + data +
+           BigEndian32(PngCrc(type + data));
+  };
+  const std::string ihdr =
+      BigEndian32(30000) + BigEndian32(30000) + std::string("\x08\x00\x00\x00\x00", 5);
+  WriteBytes(dir + "/oom.png", std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
+                                   chunk("IDAT", std::string("\x78\x9c", 2)));
+  const std::string video = dir + "/damaged_full.mp4";
+  {
+    cv::VideoWriter writer(video, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), 10,
+                           cv::Size(320, 240));
+    ASSERT_TRUE(writer.isOpened());
+    cv::RNG rng(1);
+    cv::Mat noise(240, 320, CV_8UC3);
+    for (int k = 0; k < 20; ++k) {
+      rng.fill(noise, cv::RNG::UNIFORM, 0, 64);
+      writer.write(TexturedFrame(320, 240, k) + noise);
+    }
+  }
+  std::string bytes = ReadBytes(video);
+  fs::remove(video);
+  std::mt19937 random(1);
+  for (int k = 0; k < 200; ++k) {
+    bytes[bytes.size() / 5 + random() % (bytes.size() * 3 / 5)] = static_cast<char>(random());
+  }
+  WriteBytes(dir + "/damaged.mp4", bytes);
+  fs::create_directories(dir + "/tall");
+  for (const char* name : {"/tall/000000.png", "/tall/000001.png"}) {
+    cv::imwrite(dir + name, cv::Mat(2000, 1, CV_8UC1, cv::Scalar(128)));
+  }
+  const std::string rendered = dir + "/rendered";
+  for (const char* part : {"images", "depth", "boundaries", "colmap"}) {
+    fs::create_directories(rendered + "/" + part);
+  }
+  for (const char* name : {"000000", "000001"}) {
+    cv::imwrite(rendered + "/images/" + name + ".png", TexturedFrame(160, 120, 0));
+    cv::imwrite(rendered + "/boundaries/" + name + ".png", cv::Mat(120, 160, CV_8UC1, 0.0));
+  }
+  cv::imwrite(rendered + "/depth/000000.pfm", cv::Mat(120, 160, CV_32FC1, 5.0));
+  cv::imwrite(rendered + "/depth/000001.pfm", cv::Mat(60, 80, CV_32FC1, 5.0));
+  WriteBytes(rendered + "/colmap/cameras.txt", "1 PINHOLE 160 120 100 100 80 60\n");
+  WriteBytes(rendered + "/poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0.1 0 1 0 0 0 0 1 0\n");
+}
+
 // The fixture: every bad input the rows refer to, in one folder.
 void MakeFixture(const std::string& dir) {
   const std::string good = ExampleDir() + "/image_l/000000.png";
@@ -639,6 +723,7 @@ void MakeFixture(const std::string& dir) {
   MakeHeaderFixture(dir);
   MakeProjectFixture(dir);
   MakeSceneFixture(dir);
+  MakeSmallerFixture(dir);
   fs::create_directories(dir + "/thin");
   for (const char* name : {"/thin/000000.png", "/thin/000001.png"}) {
     cv::imwrite(dir + name, cv::Mat(1, 2000, CV_8UC1, cv::Scalar(128)));
@@ -729,10 +814,13 @@ TEST_F(BadInputMatrix, EveryRowFailsWithOneLineOfOursAndLeavesTheFilesAsTheyWere
     SCOPED_TRACE(std::string(row.app) + " " + args);
     const auto before = Snapshot(dir);
     // A row that hangs (a FIFO opened) ends after the timeout with 124, a failure, not a hang.
-    const int status =
-        std::system(("timeout -k 5 " + std::to_string(kRowTimeoutSeconds) + " " + AppPath(row.app) +
-                     " " + args + " >" + out_file + " 2>" + err_file + " </dev/null")
-                        .c_str());
+    const std::string limit = row.memory_limit_mb > 0
+                                  ? "ulimit -v " + std::to_string(row.memory_limit_mb * 1024) + "; "
+                                  : "";
+    const int status = std::system((limit + "timeout -k 5 " + std::to_string(kRowTimeoutSeconds) +
+                                    " " + AppPath(row.app) + " " + args + " >" + out_file + " 2>" +
+                                    err_file + " </dev/null")
+                                       .c_str());
     ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal";
     ASSERT_NE(WEXITSTATUS(status), 124) << "hung: still running after the timeout";
     EXPECT_EQ(WEXITSTATUS(status), row.exit_code);

@@ -41,6 +41,20 @@ TEST(PrintableOneLine, KeepsWellFormedUtf8AndEscapesTheRest) {
   EXPECT_EQ(PrintableOneLine("\xe2\x80\xa8"), "\\xe2\\x80\\xa8");
 }
 
+// A name holding a tab or a line break reads unambiguously in a message: "a\tb.png" is not the
+// file "a b.png". The line break that ends a message is no part of it.
+TEST(PrintableMessage, EscapesTabsAndLineBreaksLikeOtherControlBytes) {
+  EXPECT_EQ(PrintableMessage("a\tb.png: no such file"), "a\\x09b.png: no such file");
+  EXPECT_EQ(PrintableMessage("x\ny\rz.png"), "x\\x0ay\\x0dz.png");
+  EXPECT_EQ(PrintableMessage(std::string("x\x1b[31my\x01\xff", 9)), "x\\x1b[31my\\x01\\xff");
+  EXPECT_EQ(PrintableMessage("one line\n"), "one line");
+  EXPECT_EQ(PrintableMessage("stra\xc3\x9f"
+                             "e.png"),
+            "stra\xc3\x9f"
+            "e.png");
+  EXPECT_EQ(PrintableMessage(std::string(1000, 'z'), 10), std::string(10, 'z') + "...");
+}
+
 TEST(PrintableOneLine, CutsLongText) {
   const std::string cut = PrintableOneLine(std::string(1000, 'z'), 10);
   EXPECT_EQ(cut, std::string(10, 'z') + "...");

@@ -111,5 +111,24 @@ TEST(RenderedTruth, MissingOrDisagreeingPartsAreNamed) {
   }
 }
 
+// A depth map of another size than the frames, in either format, is named when the folder is
+// opened (from its header, before any evaluation reads it) and by Depth() itself.
+TEST(RenderedTruth, ADepthMapOfAnotherSizeIsNamedAtOpen) {
+  for (const std::string extension : {"pfm", "png"}) {
+    SCOPED_TRACE(extension);
+    test::ScopedTempDir dir;
+    MakeFolder(dir.path(), 3, extension);
+    const std::string wrong = dir.File("depth/000002." + extension);
+    WriteDepthMap(wrong, cv::Mat(15, 20, CV_32F, cv::Scalar(2.0)));
+    try {
+      OpenRenderedTruth(dir.path());
+      FAIL() << "a 20x15 depth map beside 40x30 frames was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kInvalidData);
+      EXPECT_EQ(std::string(e.what()), wrong + ": 20x15, but the frames are 40x30");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace comic::io
