@@ -6,7 +6,7 @@
 // wrong one stays consistent (every later frame registers, every pair fits) while its cameras are
 // turned degrees away from the truth. The other solution is returned here so that the mapper can
 // grow a model from each and keep the one that explains more of the tracks
-// (IncrementalPipelineOptions::try_planar_alternative).
+// (IncrementalPipelineOptions::grow_planar_alternative, off by default).
 //
 //   if (const auto other = OtherPlanarPose(camera, camera, points1, points2, geometry, options))
 //     ... grow from *other as well ...
