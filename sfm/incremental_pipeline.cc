@@ -192,6 +192,8 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
   // frame's features again) lives only during a search: kept, it doubled the mapper's memory
   // on long video (docs/long_video.md); the search depends on nothing but the tracks.
   IncrementalMapper::Options search_options = options.mapper;
+  // A planar alternative is only worth its decomposition and triangulations when it is grown.
+  search_options.init_find_planar_alternative &= options.grow_planar_alternative;
   const auto search = [&](const std::set<image_t>& excluded,
                           IncrementalMapper::InitialPairSearch* seen) {
     const double cpu_start = ProcessCpuSeconds();
