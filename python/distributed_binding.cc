@@ -10,8 +10,10 @@
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/image/image_sequence.h"
+#include "io/report/html_page.h"
 #include "sfm/chunk_model_merging.h"
 #include "sfm/colmap/colmap_model_conversion.h"
+#include "sfm/run/distributed_run_page.h"
 
 namespace py = pybind11;
 
@@ -97,6 +99,21 @@ void BindDistributed(py::module_& module) {
       "frame_names",
       [](const std::string& path) { return io::ImageSequence::Open(path).FrameNames(); },
       py::arg("path"));
+  // report.html of the run from its report.json's text (sfm/run/distributed_run_page.h), written
+  // atomically as comic_sfm writes its page.
+  module.def(
+      "write_distributed_run_page",
+      [](const std::string& path, const std::string& report_json) {
+        nlohmann::json report;
+        try {
+          report = nlohmann::json::parse(report_json);
+        } catch (const nlohmann::json::exception& e) {
+          COMIC_CHECK(false, kInvalidArgument,
+                      "write_distributed_run_page: report_json is not JSON: " << e.what());
+        }
+        io::WriteHtmlPage(path, sfm::DistributedRunPage(report));
+      },
+      py::arg("path"), py::arg("report_json"));
   module.def("merge_chunk_models", &MergeChunkModels, py::arg("paths"), py::arg("name_prefixes"),
              py::arg("output"), py::arg("global_ba_max_images"));
 }

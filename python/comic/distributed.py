@@ -11,10 +11,11 @@ deterministic: the result does not depend on threads or on the worker). The merg
 (sfm/chunk_model_merging.h, through comic._core) runs as one more task: a similarity per chunk
 from the points its shared frames give both models, then a bounded bundle adjustment. OUTPUT gets
 the merged model as comic_sfm writes one (cameras.txt, images.txt, points3D.txt, sparse/0/*.bin,
-points.ply; further models in sparse/1 ...) and report.json: each chunk's frames, time, worker,
-attempts, registered frames and status, and the run's status (`success` when the first model
-holds at least 95 % of the frames and no chunk failed, else `partial`, naming the frames of the
-chunks that failed for good). docs/distributed.md.
+points.ply; further models in sparse/1 ...), report.json (each chunk's frames, time, worker,
+registered frames, status and merge, and the run's status: `success` when the first model holds
+at least 95 % of the frames and no chunk failed, else `partial`, naming the frames of the chunks
+that failed for good) and report.html, the same as a page (sfm/run/distributed_run_page.h).
+docs/distributed.md.
 """
 
 import argparse
@@ -179,7 +180,7 @@ def merge_chunks(records, output, global_ba_max_images):
 
 
 def _write_outputs(output, staging, summary, records, specs, started):
-    """The merged models as comic_sfm writes its model, and report.json."""
+    """The merged models as comic_sfm writes its model, report.json and report.html."""
     models = summary["models"]
     first_model = set(Reconstruction(models[0]["path"]).images["name"]) if models else set()
     for k, model in enumerate(models):
@@ -223,6 +224,11 @@ def _write_outputs(output, staging, summary, records, specs, started):
         json.dump(report, out, indent=2)
         out.write("\n")
     os.replace(staged_report, os.path.join(output, "report.json"))
+    # The page comic_sfm's report.html is made of, drawn from the same JSON (so it says what
+    # report.json says), written atomically by the library.
+    _core.write_distributed_run_page(
+        os.path.join(output, "report.html"), json.dumps(report, sort_keys=True)
+    )
     return report
 
 
@@ -314,8 +320,9 @@ def main(argv=None):
         prog="python3 -m comic.distributed",
         description="Reconstruct a video or image folder (or several clips) as overlapping chunks "
         "on a Dask cluster and merge them into one model by their shared frames. Writes "
-        "OUTPUT/cameras.txt, images.txt, points3D.txt, sparse/0, points.ply and report.json (each "
-        "chunk's time, worker and registered frames; status success or partial); the chunks' own "
+        "OUTPUT/cameras.txt, images.txt, points3D.txt, sparse/0, points.ply, report.json and "
+        "report.html (each chunk's time, worker and registered frames; status success or "
+        "partial); the chunks' own "
         "models stay in OUTPUT/chunks/.",
         epilog="example: python3 -m comic.distributed frames/ -o out/run --chunk-size 500 "
         "--overlap 50 --workers 2. Exit code 0 for success, 1 for partial. docs/distributed.md",

@@ -1,10 +1,12 @@
 """comic.distributed on a Dask LocalCluster with the bundled KITTI example (12 frames): the chunks
 merged into one model of every frame, byte for byte the same on a second run, after a chunk task
 that failed and was retried, and after a worker process that died mid-chunk; a chunk that fails
-for good gives `partial` naming its frames."""
+for good gives `partial` naming its frames; report.html shows each chunk's worker, time,
+registered frames and merge, and the merged model's counts."""
 
 import json
 import os
+import re
 
 import pytest
 
@@ -39,6 +41,33 @@ def client():
     with distributed.Client(cluster) as dask_client:
         yield dask_client
     cluster.close()
+
+
+PAGE_DATA = re.compile(r'<script type="application/json" id="comic-page-data">(.*?)</script>', re.S)
+
+
+def page_data(path):
+    """report.html's data: the JSON its page is drawn from ({title, subtitle, sections})."""
+    text = path.read_text(encoding="utf-8")
+    assert text.startswith("<!DOCTYPE html>")
+    # Self-contained: nothing is fetched from elsewhere.
+    assert not re.search(r'<(script|link|img)[^>]+(src|href)="(https?:)?//', text)
+    match = PAGE_DATA.search(text)
+    assert match, "report.html holds no page data"
+    return json.loads(match.group(1))
+
+
+def section(data, title):
+    found = [s for s in data["sections"] if s.get("title") == title]
+    assert len(found) == 1, "report.html has %d sections '%s'" % (len(found), title)
+    return found[0]
+
+
+def table_rows(data, title):
+    """The rows of the page's table `title` as dicts keyed by its columns."""
+    table = section(data, title)
+    assert table["type"] == "table"
+    return [dict(zip(table["columns"], row)) for row in table["rows"]]
 
 
 def run_example(client, output, **kwargs):
@@ -179,3 +208,71 @@ def test_worker_killed_mid_chunk_gives_the_same_model(first_run, tmp_path):
     assert report["status"] == "success"
     assert model_bytes(tmp_path / "killed") == model_bytes(output)
     assert not [n for n in os.listdir(tmp_path / "killed" / "chunks") if ".tmp-" in n]
+
+
+def test_report_page_shows_every_chunk_and_the_merged_model(first_run):
+    output, report = first_run
+    data = page_data(output / "report.html")
+    facts = {f["label"]: f for f in section(data, "Summary")["facts"]}
+    assert facts["status"]["value"] == "success" and facts["status"]["tone"] == "good"
+    assert facts["registered"]["value"].startswith("12 of 12 frames")
+    assert facts["chunks"]["value"] == "3 (0 failed)"
+    assert facts["first model"]["value"] == "12 frames, %d 3-D points" % (
+        report["models"][0]["num_points3D"]
+    )
+    assert report["merge"]["worker"] in facts["merge"]["value"]
+    rows = table_rows(data, "Chunks")
+    assert len(rows) == len(report["chunks"]) == 3
+    for row, chunk in zip(rows, report["chunks"]):
+        assert row["chunk"] == str(chunk["index"])
+        assert row["clip"] == "0"
+        assert row["frames"] == "%d–%d (%d frames)" % (
+            chunk["first"],
+            chunk["last"],
+            chunk["last"] - chunk["first"] + 1,
+        )
+        assert row["worker"] == chunk["worker"]
+        assert float(row["time (s)"]) == pytest.approx(chunk["time_s"], abs=0.006)
+        assert row["status"] == "success"
+        assert row["registered"] == str(chunk["num_registered"])
+        merged = "began model 0" if chunk["index"] == 0 else "joined model 0 through 1 shared frame"
+        assert row["merge"].startswith(merged)
+    # Each row links to the chunk's own comic_sfm page, which is there.
+    links = section(data, "Chunks")["links"]
+    assert links == ["chunks/%04d/report.html" % i for i in range(3)]
+    assert all((output / link).is_file() for link in links)
+    models = table_rows(data, "Merged models")
+    assert models == [
+        {
+            "model": "0",
+            "folder": ". and sparse/0",
+            "frames": "12",
+            "3-D points": str(report["models"][0]["num_points3D"]),
+        }
+    ]
+    # The page embeds the report.json it was drawn from.
+    on_disk = json.loads((output / "report.json").read_text())
+    assert section(data, "report.json")["document"] == on_disk
+    assert not [n for n in os.listdir(output) if ".tmp" in n]
+
+
+def test_report_page_of_a_partial_run_names_the_failed_chunk(client, tmp_path):
+    hook = {"chunk": 1, "marker": str(tmp_path / "failed_once"), "how": "raise"}
+    output = tmp_path / "failed"
+    report = comic_distributed.run(
+        FRAMES, str(output), client, intrinsics=CALIB, retries=0, failure_hook=hook, **CHUNKING
+    )
+    assert report["status"] == "partial"
+    data = page_data(output / "report.html")
+    facts = {f["label"]: f for f in section(data, "Summary")["facts"]}
+    assert facts["status"]["value"] == "partial" and facts["status"]["tone"] == "warning"
+    assert facts["chunks"]["value"] == "3 (1 failed)"
+    notice = section(data, "Chunks that failed for good")
+    assert notice["tone"] == "bad" and "Chunk 1 (clip 0, frames 4–8" in notice["text"]
+    assert "simulated failure" in notice["text"]
+    rows = table_rows(data, "Chunks")
+    assert [r["status"] for r in rows] == ["success", "failed", "success"]
+    assert rows[1]["registered"] == "0" and rows[1]["merge"] == "not merged: the chunk failed"
+    # Chunk 2 shares no frame with chunk 0: it begins a model of its own, and says why.
+    assert rows[2]["merge"].startswith("began model 1: ")
+    assert [m["frames"] for m in table_rows(data, "Merged models")] == ["5", "4"]
