@@ -57,8 +57,8 @@ class IncrementalMapper {
     // first searches, so a general pose is always preferred.
     bool init_accept_planar = false;
     // Initial pair: a near-planar qualified pair also keeps the other pose its homography allows
-    // (InitialPair::planar_alternative, sfm/planar_pose_ambiguity.h), so that a model can be
-    // grown from each (IncrementalPipelineOptions::grow_planar_alternative).
+    // (InitialPair::planar_alternative, sfm/planar_pose_ambiguity.h), so that the pipeline can
+    // choose between the two (IncrementalPipelineOptions::choose_planar_pose).
     bool init_find_planar_alternative = true;
     PlanarAmbiguityOptions planar_ambiguity;
     // Initial pair: frames at most this far apart (in frame index); 0 = no limit: each anchor's

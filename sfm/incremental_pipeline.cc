@@ -7,6 +7,7 @@
 
 #include "io/core/error.h"
 #include "sfm/model_growth.h"
+#include "sfm/planar_pose_ambiguity.h"
 #include "sfm/pose_gap_filling.h"
 #include "sfm/unregistered_ranges.h"
 #include "sfm/working_resolution.h"
@@ -30,8 +31,7 @@ struct ModelSet {
   int num_appearance_links = 0;
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;
-  int num_planar_alternatives_grown = 0;
-  int num_planar_alternatives_kept = 0;
+  std::vector<PlanarPoseChoice> planar_pose_choices;
   int num_seam_matches = 0;
   double seam_matching_cpu_time_s = 0.0;
   BundleAdjustmentTally ba;
@@ -146,36 +146,31 @@ std::set<image_t> ExcludedFrames(const ModelSet& set, const std::set<image_t>& t
 }
 
 // A near-planar initial pair allows two poses (sfm/planar_pose_ambiguity.h), and a model grown
-// from the wrong one stays self-consistent. Each pose grows a trial model of
-// planar_trial_frames frames (silently, on its own copy of the keyframe decisions); the pose
-// whose trial explains more observations of the same tracks starts the model.
+// from the wrong one stays self-consistent. The clip's other frames choose: the pose whose
+// two-view points they see nearer their reprojections starts the model.
 IncrementalMapper::InitialPair ChoosePlanarPose(const frontend::FeatureTracks& tracks,
                                                 const Camera& camera,
                                                 const IncrementalPipelineOptions& options,
                                                 const IncrementalMapper::InitialPair& pair,
-                                                const std::vector<KeyframeDecision>& keyframes,
                                                 ModelSet* set) {
-  IncrementalPipelineOptions trial_options = options;
-  trial_options.max_registered_frames = options.planar_trial_frames;
-  trial_options.merge_models = false;
-  trial_options.close_loops = false;
+  const int frame1 = IncrementalMapper::FrameOfImageId(pair.image_id1);
+  const int frame2 = IncrementalMapper::FrameOfImageId(pair.image_id2);
+  const ThirdViewComparison comparison =
+      CompareByThirdViews(tracks, camera, frame1, frame2, pair.track_ids, pair.geometry,
+                          *pair.planar_alternative, options.planar_third_views);
+  PlanarPoseChoice choice;
+  choice.frame1 = frame1;
+  choice.frame2 = frame2;
+  choice.num_points = comparison.num_points;
+  choice.num_third_frames = static_cast<int>(comparison.frames.size());
+  choice.median_error_essential_px = comparison.median_error_first_px;
+  choice.median_error_alternative_px = comparison.median_error_second_px;
+  choice.kept_alternative = comparison.prefers_second;
+  set->planar_pose_choices.push_back(choice);
+  if (!comparison.prefers_second) return pair;
   IncrementalMapper::InitialPair other = pair;
   other.geometry = *pair.planar_alternative;
   other.planar_alternative.reset();
-  const auto trial = [&](const IncrementalMapper::InitialPair& start) {
-    std::vector<KeyframeDecision> trial_keyframes = keyframes;
-    GrownModel grown = GrowModel(tracks, camera, trial_options, start, /*attempt=*/0, {}, {}, {},
-                                 options.keyframes_only ? &trial_keyframes : nullptr);
-    set->ba.Add(grown.ba);
-    return grown.status == ReconstructionStatus::kSuccess
-               ? grown.model.reconstruction.NumObservations()
-               : 0;
-  };
-  const size_t essential_observations = trial(pair);
-  const size_t other_observations = trial(other);
-  ++set->num_planar_alternatives_grown;
-  if (other_observations <= essential_observations) return pair;
-  ++set->num_planar_alternatives_kept;
   return other;
 }
 
@@ -192,8 +187,8 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
   // frame's features again) lives only during a search: kept, it doubled the mapper's memory
   // on long video (docs/long_video.md); the search depends on nothing but the tracks.
   IncrementalMapper::Options search_options = options.mapper;
-  // A planar alternative is only worth its decomposition and triangulations when it is grown.
-  search_options.init_find_planar_alternative &= options.grow_planar_alternative;
+  // A planar alternative is only worth its decomposition and triangulations when it is compared.
+  search_options.init_find_planar_alternative &= options.choose_planar_pose;
   const auto search = [&](const std::set<image_t>& excluded,
                           IncrementalMapper::InitialPairSearch* seen) {
     const double cpu_start = ProcessCpuSeconds();
@@ -251,8 +246,8 @@ ModelSet GrowModels(const frontend::FeatureTracks& tracks, const Camera& camera,
     std::vector<const IncrementalModel*> earlier;
     for (const GrownModel& model : set.models) earlier.push_back(&model.model);
     IncrementalMapper::InitialPair start = pair;
-    if (pair.planar_alternative && options.grow_planar_alternative) {
-      start = ChoosePlanarPose(tracks, camera, options, pair, set.keyframes, &set);
+    if (pair.planar_alternative && options.choose_planar_pose) {
+      start = ChoosePlanarPose(tracks, camera, options, pair, &set);
     }
     GrownModel grown = GrowModel(tracks, camera, options, start, attempt, earlier, linker, progress,
                                  options.keyframes_only ? &set.keyframes : nullptr);
@@ -414,8 +409,7 @@ IncrementalReconstruction ReconstructIncrementally(const frontend::FeatureTracks
   result.num_seam_links = set.num_seam_links;
   result.num_appearance_links = set.num_appearance_links;
   result.num_initial_pair_searches = set.num_initial_pair_searches;
-  result.num_planar_alternatives_grown = set.num_planar_alternatives_grown;
-  result.num_planar_alternatives_kept = set.num_planar_alternatives_kept;
+  result.planar_pose_choices = set.planar_pose_choices;
   result.initial_pair_search_cpu_time_s = set.initial_pair_search_cpu_time_s;
   result.num_seam_matches = set.num_seam_matches;
   result.seam_matching_cpu_time_s = set.seam_matching_cpu_time_s;

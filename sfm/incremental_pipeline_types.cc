@@ -84,8 +84,7 @@ IncrementalPipelineOptions::IncrementalPipelineOptions() {
 
 void IncrementalPipelineOptions::Check() const {
   mapper.Check();
-  COMIC_CHECK(planar_trial_frames >= 3, kInvalidArgument,
-              "pipeline planar_trial_frames must be >= 3, got " << planar_trial_frames);
+  planar_third_views.Check();
   COMIC_CHECK(max_registered_frames >= 0, kInvalidArgument,
               "pipeline max_registered_frames must be >= 0, got " << max_registered_frames);
   local_ba.Check();

@@ -18,6 +18,7 @@
 #include "sfm/keyframe_selection.h"
 #include "sfm/loop_closure.h"
 #include "sfm/model_self_check.h"
+#include "sfm/planar_pose_ambiguity.h"
 #include "sfm/reconstruction.h"
 #include "sfm/rigid3d.h"
 
@@ -90,19 +91,13 @@ struct IncrementalPipelineOptions {
   // explains when it has parallax (IncrementalMapper::Options::init_accept_planar).
   bool relax_initial_pair = true;
   // An initial pair with a planar alternative (IncrementalMapper::Options::
-  // init_find_planar_alternative) is started from whichever of its two poses explains more
-  // observations (3-D points times the frames seeing them) in a trial growth. On a nearly flat
-  // scene the essential matrix's pose may be the homography's wrong solution, and the model
-  // grown from it registers every frame with its cameras turned degrees away. Off: the count
-  // of observations picked the right pose on the bag clip's first frames but the wrong one on
-  // a rendered street with motion blur (docs/sfm.md), so it is not yet a rule to run by default.
-  bool grow_planar_alternative = false;
-  // The two poses are compared on trial growths of this many frames each (no progress reports,
-  // no merging, no loops), and only the pose kept grows the model: near the initial pair the
-  // two models differ by the ambiguity alone, while over a long clip a wrong start can bend
-  // into a model that holds more observations than the right one.
-  int planar_trial_frames = 20;
-  // A growth stops once this many frames are registered (0: no limit); the trial growths above.
+  // init_find_planar_alternative) is started from the pose the clip's other frames side with
+  // (CompareByThirdViews, sfm/planar_pose_ambiguity.h): on a nearly flat scene the essential
+  // matrix's pose may be the homography's wrong solution, and a model grown from it registers
+  // every frame with its cameras turned degrees away. Off: always the essential matrix's pose.
+  bool choose_planar_pose = true;
+  ThirdViewOptions planar_third_views;
+  // A growth stops once this many frames are registered (0: no limit).
   int max_registered_frames = 0;
   // Models are merged into the model being grown (IncrementalMapper::MergeModel) when it stops
   // short, and once it has registered merge_overlap_frames frames of an earlier model (and again
@@ -268,10 +263,9 @@ struct IncrementalReconstruction {
   // The initial pair searches and the seam matches (FrameMatcher calls), with their CPU time.
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;
-  // Models grown a second time from their initial pair's planar alternative, and how many of
-  // those were kept instead of the first (IncrementalPipelineOptions::grow_planar_alternative).
-  int num_planar_alternatives_grown = 0;
-  int num_planar_alternatives_kept = 0;
+  // Each initial pair whose two planar poses were compared (choose_planar_pose), in the order
+  // the models were started.
+  std::vector<PlanarPoseChoice> planar_pose_choices;
   int num_seam_matches = 0;
   double seam_matching_cpu_time_s = 0.0;
   // Over all models grown:

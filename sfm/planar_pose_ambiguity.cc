@@ -1,10 +1,12 @@
 #include "sfm/planar_pose_ambiguity.h"
 
 #include <algorithm>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
 #include "io/core/error.h"
+#include "sfm/absolute_pose.h"
 #include "sfm/rigid3d.h"
 #include "sfm/triangulation.h"
 
@@ -19,6 +21,17 @@ void PlanarAmbiguityOptions::Check() const {
                   << min_rotation_difference_deg);
   COMIC_CHECK(min_inlier_share > 0 && min_inlier_share <= 1, kInvalidArgument,
               "planar ambiguity min_inlier_share must be in (0, 1], got " << min_inlier_share);
+}
+
+void ThirdViewOptions::Check() const {
+  COMIC_CHECK(min_shared_points >= 6, kInvalidArgument,
+              "third view min_shared_points must be >= 6, got " << min_shared_points);
+  COMIC_CHECK(max_views >= 1, kInvalidArgument,
+              "third view max_views must be >= 1, got " << max_views);
+  COMIC_CHECK(max_error_px > 0, kInvalidArgument,
+              "third view max_error_px must be > 0, got " << max_error_px);
+  COMIC_CHECK(min_error_reduction >= 0 && min_error_reduction < 1, kInvalidArgument,
+              "third view min_error_reduction must be in [0, 1), got " << min_error_reduction);
 }
 
 namespace {
@@ -124,6 +137,124 @@ std::optional<TwoViewGeometry> OtherPlanarPose(const Camera& camera1, const Came
   }
   std::optional<TwoViewGeometry> best = std::move(other.geometry);
   return best;
+}
+
+namespace {
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// Each inlier's 3-D point by correspondence index (nullptr for an outlier).
+std::vector<const Eigen::Vector3d*> PointsByCorrespondence(const TwoViewGeometry& geometry) {
+  std::vector<const Eigen::Vector3d*> points(geometry.inlier_mask.size(), nullptr);
+  size_t next = 0;
+  for (size_t i = 0; i < geometry.inlier_mask.size() && next < geometry.points3D.size(); ++i) {
+    if (geometry.inlier_mask[i]) points[i] = &geometry.points3D[next++];
+  }
+  return points;
+}
+
+// The feature of `track` in `frame`, or nullptr.
+const frontend::Feature* FeatureInFrame(const frontend::FeatureTracks& tracks,
+                                        const frontend::Track& track, int frame) {
+  const auto it =
+      std::lower_bound(track.observations.begin(), track.observations.end(), frame,
+                       [](const frontend::TrackObservation& obs, int f) { return obs.frame < f; });
+  if (it == track.observations.end() || it->frame != frame) return nullptr;
+  return &tracks.FeatureOf(*it);
+}
+
+}  // namespace
+
+ThirdViewComparison CompareByThirdViews(const frontend::FeatureTracks& tracks, const Camera& camera,
+                                        int frame1, int frame2, const std::vector<int>& track_ids,
+                                        const TwoViewGeometry& first, const TwoViewGeometry& second,
+                                        const ThirdViewOptions& options) {
+  options.Check();
+  COMIC_CHECK(
+      first.inlier_mask.size() == track_ids.size() && second.inlier_mask.size() == track_ids.size(),
+      kInvalidArgument, "third view comparison: inconsistent correspondences");
+  ThirdViewComparison result;
+  const auto first_points = PointsByCorrespondence(first);
+  const auto second_points = PointsByCorrespondence(second);
+  std::vector<size_t> shared;  // correspondences both poses triangulated
+  for (size_t i = 0; i < track_ids.size(); ++i) {
+    if (first_points[i] && second_points[i]) shared.push_back(i);
+  }
+  result.num_points = static_cast<int>(shared.size());
+
+  // The third frames: those seeing the most shared points.
+  std::vector<int> seen_by_frame(tracks.NumFrames(), 0);
+  for (size_t i : shared) {
+    for (const auto& obs : tracks.tracks[track_ids[i]].observations) ++seen_by_frame[obs.frame];
+  }
+  std::vector<int> candidates;
+  for (int f = 0; f < static_cast<int>(tracks.NumFrames()); ++f) {
+    if (f != frame1 && f != frame2 && seen_by_frame[f] >= options.min_shared_points) {
+      candidates.push_back(f);
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [&](int a, int b) { return seen_by_frame[a] > seen_by_frame[b]; });
+  if (static_cast<int>(candidates.size()) > options.max_views) candidates.resize(options.max_views);
+  std::sort(candidates.begin(), candidates.end());
+
+  AbsolutePoseOptions pnp;
+  pnp.max_error_px = options.max_error_px;
+  pnp.min_num_inliers = 6;
+  pnp.min_inlier_ratio = 0.0;
+  std::vector<double> pooled_first, pooled_second;
+  for (int frame : candidates) {
+    std::vector<Eigen::Vector2d> pixels;
+    std::vector<Eigen::Vector3d> in_first, in_second;
+    for (size_t i : shared) {
+      const frontend::Feature* feature = FeatureInFrame(tracks, tracks.tracks[track_ids[i]], frame);
+      if (!feature) continue;
+      pixels.emplace_back(feature->x, feature->y);
+      in_first.push_back(*first_points[i]);
+      in_second.push_back(*second_points[i]);
+    }
+    const auto pose_first = EstimateAbsolutePose(camera, pixels, in_first, pnp);
+    const auto pose_second = EstimateAbsolutePose(camera, pixels, in_second, pnp);
+    result.frames.push_back(frame);
+    const auto median_error = [&](const std::optional<AbsolutePose>& pose,
+                                  const std::vector<Eigen::Vector3d>& points,
+                                  std::vector<double>* pooled) {
+      if (!pose) {
+        pooled->insert(pooled->end(), points.size(), std::numeric_limits<double>::infinity());
+        return -1.0;
+      }
+      std::vector<double> errors;
+      for (size_t k = 0; k < points.size(); ++k) {
+        const Eigen::Vector3d in_camera = pose->cam_from_world * points[k];
+        if (in_camera.z() <= 0) {
+          errors.push_back(1e9);
+          continue;
+        }
+        errors.push_back((camera.ImageFromCam(in_camera.hnormalized()) - pixels[k]).norm());
+      }
+      pooled->insert(pooled->end(), errors.begin(), errors.end());
+      return Median(errors);
+    };
+    result.frame_median_error_first_px.push_back(median_error(pose_first, in_first, &pooled_first));
+    result.frame_median_error_second_px.push_back(
+        median_error(pose_second, in_second, &pooled_second));
+    result.frame_inliers_first.push_back(pose_first ? pose_first->num_inliers : 0);
+    result.frame_inliers_second.push_back(pose_second ? pose_second->num_inliers : 0);
+    result.inliers_first += result.frame_inliers_first.back();
+    result.inliers_second += result.frame_inliers_second.back();
+  }
+  if (!result.frames.empty()) {
+    result.median_error_first_px = Median(pooled_first);
+    result.median_error_second_px = Median(pooled_second);
+  }
+  result.prefers_second = !result.frames.empty() &&
+                          result.median_error_second_px <
+                              (1.0 - options.min_error_reduction) * result.median_error_first_px;
+  return result;
 }
 
 }  // namespace comic::sfm

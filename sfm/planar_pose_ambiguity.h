@@ -4,18 +4,20 @@
 // essential matrix of a scene that is nearly flat inherits the ambiguity: the five-point solver
 // and RANSAC pick one of the two by the few points off the plane, and a model grown from the
 // wrong one stays consistent (every later frame registers, every pair fits) while its cameras are
-// turned degrees away from the truth. The other solution is returned here so that the mapper can
-// grow a model from each and keep the one that explains more of the tracks
-// (IncrementalPipelineOptions::grow_planar_alternative, off by default).
+// turned degrees away from the truth. The other solution is returned here, and the clip's other
+// frames choose between the two (CompareByThirdViews; IncrementalPipelineOptions::
+// choose_planar_pose).
 //
-//   if (const auto other = OtherPlanarPose(camera, camera, points1, points2, geometry, options))
-//     ... grow from *other as well ...
+//   if (const auto other = OtherPlanarPose(camera, camera, points1, points2, geometry, 4.0, {}))
+//     if (CompareByThirdViews(tracks, camera, f1, f2, track_ids, geometry, *other, {})
+//             .prefers_second) ... start from *other ...
 #pragma once
 
 #include <Eigen/Core>
 #include <optional>
 #include <vector>
 
+#include "frontend/matching/track.h"
 #include "sfm/camera.h"
 #include "sfm/two_view_geometry.h"
 
@@ -46,5 +48,70 @@ std::optional<TwoViewGeometry> OtherPlanarPose(const Camera& camera1, const Came
                                                const std::vector<Eigen::Vector2d>& points2,
                                                const TwoViewGeometry& geometry, double max_error_px,
                                                const PlanarAmbiguityOptions& options);
+
+// Which of a near-planar pair's two poses the other frames of the clip side with. Each pose's
+// points (triangulated from the pair alone, never adjusted) locate every third frame that sees
+// enough of them (PnP RANSAC, then the reprojection error of every shared point). A view of a
+// plane from a third place is the pair's first view mapped by a homography whose decomposition
+// shares only the true plane normal, so the wrong pose's plane leaves the third frames'
+// features off their reprojections, more so the farther the frame is from the pair; the points
+// off the plane add to it. The points are fixed, so no adjustment can bend a wrong start into
+// agreement (growing a model from each pose and counting what it holds could, and did).
+struct ThirdViewOptions {
+  // A third frame takes part when it sees at least this many of the points both poses
+  // triangulated.
+  int min_shared_points = 30;
+  // At most this many third frames, those sharing the most points (ties: the earlier frame).
+  int max_views = 20;
+  // Inlier threshold of the third frames' PnP, pixels.
+  double max_error_px = 4.0;
+  // The second pose is preferred only when its median third-view reprojection error is below the
+  // first's by at least this share of the first's (near the pair both poses explain the frames
+  // alike; a wrong plane shows only in the frames farther off).
+  double min_error_reduction = 0.1;
+
+  // Throws comic::Error(kInvalidArgument) naming the bad field.
+  void Check() const;
+};
+
+struct ThirdViewComparison {
+  int num_points = 0;       // points both poses triangulated (the comparison's points)
+  std::vector<int> frames;  // the third frames used
+  // Per pose, summed over the third frames: PnP inliers among the shared points (0 for a frame
+  // the pose cannot locate).
+  long long inliers_first = 0;
+  long long inliers_second = 0;
+  std::vector<int> frame_inliers_first;  // per third frame, in the order of `frames`
+  std::vector<int> frame_inliers_second;
+  std::vector<double> frame_median_error_first_px;  // over the frame's shared points
+  std::vector<double> frame_median_error_second_px;
+  // Per pose, the median reprojection error of every shared point in every third frame after
+  // that frame's PnP (a frame the pose cannot locate counts its points as unexplained).
+  double median_error_first_px = 0.0;
+  double median_error_second_px = 0.0;
+  // Whether `second` explains the third frames clearly better than `first`
+  // (min_error_reduction).
+  bool prefers_second = false;
+};
+
+// What the mapper decided for one near-planar initial pair (report.json's
+// mapping.planar_pose_choices).
+struct PlanarPoseChoice {
+  int frame1 = -1;
+  int frame2 = -1;
+  int num_points = 0;        // ThirdViewComparison::num_points
+  int num_third_frames = 0;  // ThirdViewComparison::frames.size()
+  double median_error_essential_px = 0.0;
+  double median_error_alternative_px = 0.0;
+  bool kept_alternative = false;
+};
+
+// Compares two relative poses of the pair (frame1, frame2) of `tracks` by the third frames, as
+// above. `track_ids` are the pair's correspondences in the order of both geometries'
+// inlier_mask; each geometry's points3D are in frame1's camera frame. Deterministic.
+ThirdViewComparison CompareByThirdViews(const frontend::FeatureTracks& tracks, const Camera& camera,
+                                        int frame1, int frame2, const std::vector<int>& track_ids,
+                                        const TwoViewGeometry& first, const TwoViewGeometry& second,
+                                        const ThirdViewOptions& options);
 
 }  // namespace comic::sfm

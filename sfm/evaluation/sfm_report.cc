@@ -105,8 +105,7 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
   report.num_appearance_links = mapping.num_appearance_links;
   report.num_initial_pair_searches = mapping.num_initial_pair_searches;
   report.initial_pair_search_cpu_time_s = mapping.initial_pair_search_cpu_time_s;
-  report.num_planar_alternatives_grown = mapping.num_planar_alternatives_grown;
-  report.num_planar_alternatives_kept = mapping.num_planar_alternatives_kept;
+  report.planar_pose_choices = mapping.planar_pose_choices;
   report.num_seam_matches = mapping.num_seam_matches;
   report.seam_matching_cpu_time_s = mapping.seam_matching_cpu_time_s;
   if (mapping.intrinsics_rejection.rejected) {
@@ -146,6 +145,19 @@ SfmRunReport MakeRunReport(const SequenceReconstruction& run, const Reconstructi
 }
 
 namespace {
+
+nlohmann::json PlanarPoseChoicesJson(const std::vector<PlanarPoseChoice>& choices) {
+  nlohmann::json json = nlohmann::json::array();
+  for (const PlanarPoseChoice& choice : choices) {
+    json.push_back({{"initial_pair", {choice.frame1, choice.frame2}},
+                    {"points", choice.num_points},
+                    {"third_frames", choice.num_third_frames},
+                    {"median_error_essential_px", choice.median_error_essential_px},
+                    {"median_error_alternative_px", choice.median_error_alternative_px},
+                    {"kept", choice.kept_alternative ? "alternative" : "essential"}});
+  }
+  return json;
+}
 
 nlohmann::json PointSetToJson(const PointSetStats& stats) {
   return {{"points", stats.num_points},
@@ -241,8 +253,7 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                      {"seam_links", report.num_seam_links},
                      {"appearance_links", report.num_appearance_links},
                      {"initial_pair_searches", report.num_initial_pair_searches},
-                     {"planar_alternatives_grown", report.num_planar_alternatives_grown},
-                     {"planar_alternatives_kept", report.num_planar_alternatives_kept},
+                     {"planar_pose_choices", PlanarPoseChoicesJson(report.planar_pose_choices)},
                      {"seam_matches", report.num_seam_matches},
                      {"working_scale", report.working_scale}};
   if (report.keyframes_only) {

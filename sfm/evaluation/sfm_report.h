@@ -64,8 +64,7 @@ struct SfmRunReport {
   int num_appearance_links = 0;
   int num_initial_pair_searches = 0;
   double initial_pair_search_cpu_time_s = 0.0;
-  int num_planar_alternatives_grown = 0;
-  int num_planar_alternatives_kept = 0;
+  std::vector<PlanarPoseChoice> planar_pose_choices;
   int num_seam_matches = 0;
   double seam_matching_cpu_time_s = 0.0;
   // A self-calibrated camera reset to its prior (empty reason: kept or never refined).
