@@ -92,6 +92,15 @@ IncrementalMapper::IncrementalMapper(const frontend::FeatureTracks& tracks, cons
 
 namespace {
 
+// An initial pair's parallax score: Σ over its inliers of min(angle / full_angle_deg, 1).
+double ParallaxScore(const TwoViewGeometry& geometry, double full_angle_deg) {
+  double score = 0.0;
+  for (double angle : geometry.triangulation_angles_deg) {
+    score += std::min(angle / full_angle_deg, 1.0);
+  }
+  return score;
+}
+
 // The feature of `track` in `frame`, or −1 (observations are sorted by frame).
 int FeatureInFrame(const frontend::Track& track, int frame) {
   const auto it =
@@ -215,10 +224,7 @@ IncrementalMapper::InitialPairSearch IncrementalMapper::EvaluateInitialPair(
     *measure = candidate.num_inliers;
     return candidate;
   }
-  double score = 0.0;
-  for (double angle : pair->geometry.triangulation_angles_deg) {
-    score += std::min(angle / options_.init_tri_angle_deg, 1.0);
-  }
+  const double score = ParallaxScore(pair->geometry, options_.init_tri_angle_deg);
   pair->score = score;
   candidate.score = score;
   candidate.stage = score >= options_.init_min_score ? Stage::kQualified : Stage::kParallax;
@@ -227,6 +233,14 @@ IncrementalMapper::InitialPairSearch IncrementalMapper::EvaluateInitialPair(
     pair->planar_alternative =
         OtherPlanarPose(camera, camera, points1, points2, pair->geometry,
                         options_.two_view.max_error_px, options_.planar_ambiguity);
+    // The alternative must qualify as the pair did: a pose whose points lie nearly at infinity
+    // (little parallax) triangulates none, and would explain the third frames as turns alone.
+    if (pair->planar_alternative &&
+        (pair->planar_alternative->num_inliers < options_.init_min_num_inliers ||
+         ParallaxScore(*pair->planar_alternative, options_.init_tri_angle_deg) <
+             options_.init_min_score)) {
+      pair->planar_alternative.reset();
+    }
   }
   return candidate;
 }
