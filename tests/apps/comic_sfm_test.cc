@@ -143,7 +143,7 @@ TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {
   // One progress line per registered frame (the initial pair's two included).
   EXPECT_EQ(CountOccurrences(result.output, "[harris] registered "), 12) << result.output;
   EXPECT_NE(result.output.find("12/12 frames registered"), std::string::npos) << result.output;
-  // Issue 44: the last line, the summary, ends with where the page is, and the page is there.
+  // The last line, the summary, ends with where the page is, and the page is there.
   const std::string last = LastLine(result.output);
   EXPECT_EQ(last.rfind("[harris] success: 12/12 frames registered", 0), 0u) << last;
   EXPECT_TRUE(EndsWith(last, "; page: " + dir.File("a") + "/report.html")) << last;
@@ -266,7 +266,7 @@ TEST(ComicSfm, CompareWritesOneTable) {
   EXPECT_EQ(json["runs"].size(), 2u);
   EXPECT_TRUE(comic::io::IsRegularFile(dir.File("harris/report.json")));
   EXPECT_TRUE(comic::io::IsRegularFile(dir.File("fast/report.json")));
-  // Issue 44: each detector's summary line ends with its page, the last line with the table's.
+  // Each detector's summary line ends with its page, the last line with the table's.
   EXPECT_NE(result.output.find("; page: " + dir.File("harris") + "/report.html\n"),
             std::string::npos)
       << result.output;

@@ -52,7 +52,7 @@ DetectorRun FailedRun(const std::string& page_path) {
   return run;
 }
 
-// Issue 44: the line a user reads after a run ends with where its page is, and says nothing of a
+// The line a user reads after a run ends with where its page is, and says nothing of a
 // page when there is none (no --output: the Python door without an output folder).
 TEST(RunMessages, DetectorSummaryLineEndsWithThePagePath) {
   EXPECT_EQ(DetectorSummaryLine(FailedRun("out/x/report.html")),

@@ -221,7 +221,7 @@ TEST(RunPage, IsWrittenIntoEveryOutputAndOneForCompare) {
 }
 
 // A synthetic run on `num_frames` hard-linked frames in `dir`: the largest model holds frames
-// `largest`, a second model `other` (issue 44: the page drew the largest alone and called the
+// `largest`, a second model `other` (the page once drew the largest alone and called the
 // other's frames unregistered).
 struct TwoModelRun {
   RunInputs inputs;
