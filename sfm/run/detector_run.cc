@@ -12,6 +12,7 @@
 #include "io/core/error.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/model_agreement.h"
+#include "sfm/run/run_outputs.h"
 #include "sfm/run/run_report.h"
 #include "sfm/run/tracker_settings.h"
 
@@ -236,6 +237,7 @@ DetectorRun RunDetector(const std::string& detector, const ReconstructionRunOpti
   if (other) CompareWithOtherMatcher(inputs, *other, &tried[other_index], &result);
   result.matcher_attempts = std::move(tried);
   result.report_json = DetectorReportJson(result, options, inputs, writes_outputs);
+  if (writes_outputs) result.page_path = DetectorPagePath(options, detector);
   if (callbacks.detector_finished) callbacks.detector_finished(result);
   return result;
 }

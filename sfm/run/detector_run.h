@@ -72,6 +72,8 @@ struct DetectorRun {
   std::optional<RotationOnlyPath> rotation_only;
   // report.json as written (without an output folder: without "outputs").
   nlohmann::json report_json;
+  // Where its report.html will be (DetectorPagePath; empty without --output).
+  std::string page_path;
 
   // A model (status success or partial: HasModel).
   bool success() const { return HasModel(run.mapping.status); }

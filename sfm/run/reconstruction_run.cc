@@ -177,9 +177,11 @@ std::string FailureLine(const ReconstructionRunOptions& options,
                         const ReconstructionRunResult& result) {
   if (options.compare) return "";
   const DetectorRun& run = result.runs.front();
-  const std::string report =
-      options.output.empty() ? std::string()
-                             : " (report: " + io::JoinPaths(options.output, "report.json") + ")";
+  // The error line is a failed run's last line: it names the page too.
+  const std::string report = options.output.empty()
+                                 ? std::string()
+                                 : " (report: " + io::JoinPaths(options.output, "report.json") +
+                                       ", page: " + run.page_path + ")";
   if (run.success() && run.report.self_check.suspect) {
     // A model its own frame pairs contradict is written but never passed off as a result.
     return "suspect model: " + run.report.self_check.reason +

@@ -127,6 +127,8 @@ std::string DetectorSummaryLine(const DetectorRun& run) {
   if (report.stats.num_registered > 0 && !report.unregistered_ranges.empty()) {
     line << "; unregistered frames: " << DescribeUnregisteredRanges(report.unregistered_ranges);
   }
+  // Last, so that the line a user reads first after a run says where to look next.
+  if (!run.page_path.empty()) line << "; page: " << run.page_path;
   return line.str();
 }
 
@@ -169,7 +171,14 @@ std::vector<std::string> RunOutcomeLines(const ReconstructionRunResult& result,
     }
     lines.push_back(line);
   }
-  if (result.comparison) lines.push_back(WithoutFinalNewline(result.comparison->ToMarkdown()));
+  if (result.comparison) {
+    lines.push_back(WithoutFinalNewline(result.comparison->ToMarkdown()));
+    // The table is the last thing printed: the comparison's page is named after it.
+    if (!output.empty()) {
+      lines.push_back(program + ": page: " + io::JoinPaths(output, "report.html") +
+                      " (each detector's in its folder)");
+    }
+  }
   return lines;
 }
 

@@ -29,12 +29,13 @@ std::string AdjustmentProgressLine(const std::string& detector,
 // the models, points, track length, reprojection error, the trajectory error with ground truth,
 // time, the camera of the model (in the input's pixels; held at the prior and why, when
 // self-calibration left the plausible range) and the unregistered frames in ranges with the check
-// that failed ("40-47 registration/visible_points").
+// that failed ("40-47 registration/visible_points"); last, "; page: out/x/report.html" when the
+// run writes its page (DetectorRun::page_path).
 std::string DetectorSummaryLine(const DetectorRun& run);
 
 // After the run, in order: where a video's frames went (unless `quiet`), the --colmap-db
 // database and the command to run on it, the --compare-colmap table, what a failed run found
-// and the --compare table. `output` is --output.
+// and the --compare table followed by the path of its page. `output` is --output.
 std::vector<std::string> RunOutcomeLines(const ReconstructionRunResult& result,
                                          const std::string& output, const std::string& program,
                                          bool quiet);

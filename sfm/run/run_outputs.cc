@@ -169,6 +169,13 @@ std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
   return files;
 }
 
+std::string DetectorPagePath(const ReconstructionRunOptions& options, const std::string& detector) {
+  if (options.output.empty()) return "";
+  const std::string folder =
+      options.compare ? io::JoinPaths(options.output, detector) : options.output;
+  return io::JoinPaths(folder, "report.html");
+}
+
 namespace {
 
 // What a detector's folder may receive, whatever the run's outcome.

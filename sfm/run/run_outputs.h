@@ -34,6 +34,11 @@ ModelSetWriteOptions ModelWriteOptions(const DetectorRun& run,
 std::vector<std::string> DetectorOutputFiles(const DetectorRun& run,
                                              const ReconstructionRunOptions& options);
 
+// Where `detector`'s report.html will be once the run is committed, as the user named --output
+// ("out/x/report.html", or "out/x/harris/report.html" with --compare); empty without --output.
+// The summary line ends with it, so that a user sees where to look.
+std::string DetectorPagePath(const ReconstructionRunOptions& options, const std::string& detector);
+
 // Every file and folder a run of `options` may write, before any work, each named by the option
 // that writes it (--output, --colmap-db, --write-frames): what DetectorOutputFiles can list for
 // any outcome (every model's sparse/ tree, a failed run's files), --compare's and the COLMAP

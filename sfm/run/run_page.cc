@@ -49,6 +49,11 @@ std::vector<io::PageFact> CameraFacts(const DetectorRun& run, const RunInputs& i
                                      {"intrinsics from", inputs.camera.source}};
   if (!has_model) {
     facts.push_back({"refined by the run", "no model"});
+  } else if (!run.report.intrinsics_rejection.empty()) {
+    // In the summary line's words: self-calibration moved them out of the plausible range.
+    facts.push_back({"refined by the run",
+                     "no: held at the prior (" + run.report.intrinsics_rejection + ")",
+                     io::PageTone::kWarning});
   } else if (run.run.mapping.intrinsics_refined) {
     facts.push_back({"refined by the run", "from the prior " + CameraWords(inputs.camera.camera),
                      io::PageTone::kWarning});
@@ -65,6 +70,14 @@ io::PageSection SummarySection(const DetectorRun& run, const ReconstructionRunOp
   const SfmRunReport& report = run.report;
   const size_t frames = report.num_frames;
   const size_t registered = report.stats.num_registered;
+  const std::vector<const Reconstruction*> models = RunModels(run);
+  size_t in_others = 0;
+  for (size_t m = 1; m < models.size(); ++m) in_others += models[m]->NumRegisteredImages();
+  const std::string others = models.size() > 1
+                                 ? " in the largest model, " + std::to_string(in_others) +
+                                       " more in the " + std::to_string(models.size() - 1) +
+                                       " other model" + (models.size() > 2 ? "s" : "")
+                                 : "";
   std::vector<io::PageFact> facts = {
       {"status", report.status, StatusTone(report.status)},
       {"detector", run.detector},
@@ -73,10 +86,10 @@ io::PageSection SummarySection(const DetectorRun& run, const ReconstructionRunOp
                      std::to_string(inputs.sequence->FrameSize().height) + " px"},
       {"registered",
        std::to_string(registered) + " of " + std::to_string(frames) + " frames (" +
-           Format("%.0f", frames ? 100.0 * registered / frames : 0.0) + " %)",
+           Format("%.0f", frames ? 100.0 * registered / frames : 0.0) + " %)" + others,
        registered == frames ? io::PageTone::kGood
                             : (registered == 0 ? io::PageTone::kBad : io::PageTone::kWarning)},
-      {"models", std::to_string(RunModels(run).size())},
+      {"models", std::to_string(models.size())},
       {"3-D points", std::to_string(report.stats.all.num_points) + " · mean track length " +
                          Format("%.2f", report.stats.all.mean_track_length) +
                          " · mean reprojection error " +

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sfm/colmap/model_set_writer.h"
+
 namespace comic::sfm {
 
 namespace {
@@ -50,7 +52,9 @@ std::vector<io::TimelineNote> UnregisteredNotes(const DetectorRun& run,
 
 std::vector<const Reconstruction*> RunModels(const DetectorRun& run) {
   if (!run.success()) return {};
-  return {&run.run.mapping.reconstruction};
+  // Every model, numbered as sparse/<k> is written: a page of the largest alone called the
+  // frames of the others unregistered.
+  return ModelsLargestFirst(run.run.mapping);
 }
 
 std::string ModelColor(int index) {

@@ -34,6 +34,19 @@ int CountOccurrences(const std::string& text, const std::string& what) {
   return count;
 }
 
+// The last line of a command's output (without its newline).
+std::string LastLine(const std::string& text) {
+  std::string trimmed = text;
+  while (!trimmed.empty() && trimmed.back() == '\n') trimmed.pop_back();
+  const size_t start = trimmed.rfind('\n');
+  return start == std::string::npos ? trimmed : trimmed.substr(start + 1);
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 TEST(ComicSfm, HelpDocumentsEveryOption) {
   const auto result = RunCommand(AppPath("comic_sfm") + " --help");
   EXPECT_EQ(result.exit_code, 0);
@@ -130,6 +143,11 @@ TEST(ComicSfm, ReconstructsTheBundledExampleRepeatably) {
   // One progress line per registered frame (the initial pair's two included).
   EXPECT_EQ(CountOccurrences(result.output, "[harris] registered "), 12) << result.output;
   EXPECT_NE(result.output.find("12/12 frames registered"), std::string::npos) << result.output;
+  // The last line, the summary, ends with where the page is, and the page is there.
+  const std::string last = LastLine(result.output);
+  EXPECT_EQ(last.rfind("[harris] success: 12/12 frames registered", 0), 0u) << last;
+  EXPECT_TRUE(EndsWith(last, "; page: " + dir.File("a") + "/report.html")) << last;
+  EXPECT_TRUE(comic::io::IsRegularFile(dir.File("a/report.html")));
 
   const comic::io::ColmapTextModel model = comic::io::ReadColmapTextModel(dir.File("a"));
   ASSERT_EQ(model.cameras.size(), 1u);
@@ -248,6 +266,16 @@ TEST(ComicSfm, CompareWritesOneTable) {
   EXPECT_EQ(json["runs"].size(), 2u);
   EXPECT_TRUE(comic::io::IsRegularFile(dir.File("harris/report.json")));
   EXPECT_TRUE(comic::io::IsRegularFile(dir.File("fast/report.json")));
+  // Each detector's summary line ends with its page, the last line with the table's.
+  EXPECT_NE(result.output.find("; page: " + dir.File("harris") + "/report.html\n"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("; page: " + dir.File("fast") + "/report.html\n"), std::string::npos)
+      << result.output;
+  EXPECT_EQ(LastLine(result.output),
+            "comic_sfm: page: " + dir.File("report.html") + " (each detector's in its folder)");
+  EXPECT_TRUE(comic::io::IsRegularFile(dir.File("report.html")));
+  EXPECT_TRUE(comic::io::IsRegularFile(dir.File("harris/report.html")));
 }
 
 // Issue 16: --matching auto calls the bundled clip a video (sequential, as before) and the same

@@ -152,6 +152,11 @@ TEST(RunReconstruction, AFailedRunIsAResultWithItsReportAndTracks) {
   EXPECT_FALSE(result.success());
   EXPECT_NE(result.failure.find("; try "), std::string::npos) << result.failure;
   EXPECT_NE(result.failure.find(dir.File("out") + "/report.json"), std::string::npos);
+  // The error line is the run's last: it ends with where the page is, and the page is there.
+  const std::string page = ", page: " + dir.File("out") + "/report.html)";
+  ASSERT_GE(result.failure.size(), page.size());
+  EXPECT_EQ(result.failure.substr(result.failure.size() - page.size()), page) << result.failure;
+  EXPECT_TRUE(io::PathExists(dir.File("out/report.html")));
   const DetectorRun& run = result.runs.front();
   EXPECT_TRUE(run.diagnosis.failed);
   EXPECT_TRUE(run.keeps_tracks);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
@@ -217,6 +218,107 @@ TEST(RunPage, IsWrittenIntoEveryOutputAndOneForCompare) {
   EXPECT_EQ(bars[0]["charts"][1]["series"][1]["name"], "fast");
   EXPECT_TRUE(bars[1].value(kDurationsKey, false));  // time per detector
   EXPECT_EQ(Sections(page, "timeline").size(), 2u);
+}
+
+// A synthetic run on `num_frames` hard-linked frames in `dir`: the largest model holds frames
+// `largest`, a second model `other` (the page once drew the largest alone and called the
+// other's frames unregistered).
+struct TwoModelRun {
+  RunInputs inputs;
+  DetectorRun run;
+};
+
+TwoModelRun MakeTwoModelRun(const ScopedTempDir& dir, int num_frames,
+                            const std::vector<int>& largest, const std::vector<int>& other) {
+  const std::string frames = dir.File("frames");
+  std::filesystem::create_directory(frames);
+  cv::imwrite(dir.File("tiny.png"), cv::Mat(48, 64, CV_8UC3, cv::Scalar(90, 120, 150)));
+  for (int f = 0; f < num_frames; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "/%05d.png", f);
+    EXPECT_EQ(::link(dir.File("tiny.png").c_str(), (frames + name).c_str()), 0);
+  }
+  TwoModelRun result;
+  result.inputs.sequence = std::make_unique<io::ImageSequence>(io::ImageSequence::Open(frames));
+  result.inputs.camera.camera = Camera::FromImageSize(64, 48);
+  result.inputs.camera.source = "synthetic";
+  DetectorRun& run = result.run;
+  run.detector = "synthetic";
+  run.run.input_size = cv::Size(64, 48);
+  run.run.frame_size = cv::Size(64, 48);
+  const auto fill = [&](const std::vector<int>& registered, Reconstruction* model) {
+    const camera_t camera = model->AddCamera(result.inputs.camera.camera);
+    for (int f = 0; f < num_frames; ++f) {
+      Image image;
+      image.camera_id = camera;
+      image.name = result.inputs.sequence->FrameNames()[f];
+      image.cam_from_world.translation = Eigen::Vector3d(-0.1 * f, 0, 0);
+      image.points2D.resize(2);
+      model->AddImage(image);
+    }
+    for (int f : registered) model->RegisterImage(static_cast<image_t>(f + 1));
+    for (size_t k = 0; k + 1 < registered.size(); ++k) {
+      const image_t a = static_cast<image_t>(registered[k] + 1);
+      model->AddPoint3D(Eigen::Vector3d(0.1 * k, 0, 5.0), {{a, 0}, {a + 1, 1}}, {200, 100, 50});
+    }
+  };
+  IncrementalReconstruction& mapping = run.run.mapping;
+  fill(largest, &mapping.reconstruction);
+  mapping.registered_frames = largest;
+  mapping.other_models.emplace_back();
+  fill(other, &mapping.other_models.back().reconstruction);
+  mapping.other_models.back().registered_frames = other;
+  mapping.status = ReconstructionStatus::kPartial;
+  run.report =
+      MakeRunReport(run.run, ComputeReconstructionStats(mapping.reconstruction), std::nullopt);
+  run.report.num_frames = num_frames;  // MakeRunReport counts the tracks' frames: none here
+  return result;
+}
+
+// Every model on the timeline in its colour, the true count of models and of the frames they
+// hold; the frames in no model alone called unregistered.
+TEST(RunPage, ShowsEveryModelWithTrueCounts) {
+  ScopedTempDir dir;
+  TwoModelRun two = MakeTwoModelRun(dir, 10, {0, 1, 2, 3, 4}, {6, 7, 8});
+  ReconstructionRunOptions options;
+  options.frames = dir.File("frames");
+  two.run.report_json = DetectorReportJson(two.run, options, two.inputs, true);
+  const std::vector<const Reconstruction*> models = RunModels(two.run);
+  ASSERT_EQ(models.size(), 2u);
+  EXPECT_EQ(models[1], &two.run.run.mapping.other_models[0].reconstruction);
+
+  const io::HtmlPage page = RunPage(two.run, options, two.inputs);
+  const nlohmann::json summary = Sections(page, "facts").at(0);
+  EXPECT_EQ(Fact(summary, "models"), "2");
+  EXPECT_EQ(Fact(summary, "registered"),
+            "5 of 10 frames (50 %) in the largest model, 3 more in the 1 other model");
+  const nlohmann::json timeline = Sections(page, "timeline").at(0);
+  EXPECT_EQ(timeline["frame_groups"], nlohmann::json({0, 0, 0, 0, 0, -1, 1, 1, 1, -1}));
+  EXPECT_EQ(timeline["groups"].size(), 2u);
+  EXPECT_EQ(timeline["groups"][1]["label"], "model 2 (sparse/1)");
+  EXPECT_EQ(timeline["groups"][1]["color"], ModelColor(1));
+  EXPECT_EQ(timeline["note"], "8 of 10 frames registered in 2 models.");
+  ASSERT_EQ(timeline["notes"].size(), 2u);  // frame 5 and frame 9, nothing else
+  EXPECT_EQ(timeline["notes"][0]["first"], 5);
+  EXPECT_EQ(timeline["notes"][0]["last"], 5);
+  EXPECT_EQ(timeline["notes"][1]["first"], 9);
+}
+
+// The intrinsics' fate in the summary line's words: a refused self-calibration is not "the motion
+// did not constrain them".
+TEST(RunPage, SaysTheSelfCalibrationWasRefused) {
+  ScopedTempDir dir;
+  TwoModelRun two = MakeTwoModelRun(dir, 4, {0, 1, 2, 3}, {});
+  two.run.run.mapping.other_models.clear();
+  two.inputs.camera.refine_intrinsics = true;
+  two.run.report.intrinsics_rejection = "focal length 2363 px is 3.08x the prior (at most 3x)";
+  ReconstructionRunOptions options;
+  options.frames = dir.File("frames");
+  two.run.report_json = DetectorReportJson(two.run, options, two.inputs, true);
+  const nlohmann::json summary = Sections(RunPage(two.run, options, two.inputs), "facts").at(0);
+  EXPECT_EQ(Fact(summary, "refined by the run"),
+            "no: held at the prior (focal length 2363 px is 3.08x the prior (at most 3x))");
+  EXPECT_EQ(Fact(summary, "models"), "1");
 }
 
 // A 10 000-frame run with 300 000 points (each seen by two frames) and ground truth: the page
