@@ -86,6 +86,11 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
                  "misses some of them (on by default: the new point must explain more views within "
                  "2 px)",
                  &o->no_retriangulate);
+  parser.AddFlag("no-planar-pose-choice",
+                 "start a near-planar initial pair from the essential matrix's pose, without "
+                 "asking the other frames which of the plane's two poses they side with (on by "
+                 "default; docs/sfm.md)",
+                 &o->no_planar_pose_choice);
   parser.AddFlag("two-view-tracks",
                  "also triangulate tracks seen in only two frames in a video (image sets matched "
                  "across several frames always keep them; video leaves them out by default, as "

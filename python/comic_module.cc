@@ -838,6 +838,7 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"refine_principal_point", Field(&o->refine_principal_point)},
                        {"refine_distortion", Field(&o->refine_distortion)},
                        {"no_retriangulate", Field(&o->no_retriangulate)},
+                       {"no_planar_pose_choice", Field(&o->no_planar_pose_choice)},
                        {"two_view_tracks", Field(&o->two_view_tracks)},
                        {"local_ba_images", Field(&o->local_ba_images)},
                        {"global_ba_growth", Field(&o->global_ba_growth)},

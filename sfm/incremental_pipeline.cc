@@ -165,6 +165,8 @@ IncrementalMapper::InitialPair ChoosePlanarPose(const frontend::FeatureTracks& t
   choice.num_third_frames = static_cast<int>(comparison.frames.size());
   choice.median_error_essential_px = comparison.median_error_first_px;
   choice.median_error_alternative_px = comparison.median_error_second_px;
+  choice.votes_essential = comparison.votes_first;
+  choice.votes_alternative = comparison.votes_second;
   choice.kept_alternative = comparison.prefers_second;
   set->planar_pose_choices.push_back(choice);
   if (!comparison.prefers_second) return pair;

@@ -30,8 +30,16 @@ void ThirdViewOptions::Check() const {
               "third view max_views must be >= 1, got " << max_views);
   COMIC_CHECK(max_error_px > 0, kInvalidArgument,
               "third view max_error_px must be > 0, got " << max_error_px);
-  COMIC_CHECK(min_error_reduction >= 0 && min_error_reduction < 1, kInvalidArgument,
-              "third view min_error_reduction must be in [0, 1), got " << min_error_reduction);
+  COMIC_CHECK(min_pooled_error_reduction >= 0 && min_pooled_error_reduction < 1, kInvalidArgument,
+              "third view min_pooled_error_reduction must be in [0, 1), got "
+                  << min_pooled_error_reduction);
+  COMIC_CHECK(
+      min_frame_error_reduction >= 0 && min_frame_error_reduction < 1, kInvalidArgument,
+      "third view min_frame_error_reduction must be in [0, 1), got " << min_frame_error_reduction);
+  COMIC_CHECK(min_votes >= 1, kInvalidArgument,
+              "third view min_votes must be >= 1, got " << min_votes);
+  COMIC_CHECK(min_vote_ratio >= 1, kInvalidArgument,
+              "third view min_vote_ratio must be >= 1, got " << min_vote_ratio);
 }
 
 namespace {
@@ -251,9 +259,32 @@ ThirdViewComparison CompareByThirdViews(const frontend::FeatureTracks& tracks, c
     result.median_error_first_px = Median(pooled_first);
     result.median_error_second_px = Median(pooled_second);
   }
-  result.prefers_second = !result.frames.empty() &&
-                          result.median_error_second_px <
-                              (1.0 - options.min_error_reduction) * result.median_error_first_px;
+  // A frame one pose cannot locate (error -1) votes for the other.
+  const double keep = 1.0 - options.min_frame_error_reduction;
+  for (size_t v = 0; v < result.frames.size(); ++v) {
+    const double first_error = result.frame_median_error_first_px[v];
+    const double second_error = result.frame_median_error_second_px[v];
+    if (first_error < 0 && second_error < 0) continue;
+    if (first_error < 0 || (second_error >= 0 && second_error < keep * first_error)) {
+      ++result.votes_second;
+    } else if (second_error < 0 || first_error < keep * second_error) {
+      ++result.votes_first;
+    }
+  }
+  const auto pooled_clear = [&](double error, double other_error) {
+    return !result.frames.empty() &&
+           error < (1.0 - options.min_pooled_error_reduction) * other_error;
+  };
+  const auto votes_clear = [&](int votes, int other_votes) {
+    return votes >= options.min_votes && votes >= options.min_vote_ratio * other_votes;
+  };
+  const bool for_second =
+      pooled_clear(result.median_error_second_px, result.median_error_first_px) ||
+      votes_clear(result.votes_second, result.votes_first);
+  const bool for_first =
+      pooled_clear(result.median_error_first_px, result.median_error_second_px) ||
+      votes_clear(result.votes_first, result.votes_second);
+  result.prefers_second = for_second && !for_first;
   return result;
 }
 

@@ -65,10 +65,18 @@ struct ThirdViewOptions {
   int max_views = 20;
   // Inlier threshold of the third frames' PnP, pixels.
   double max_error_px = 4.0;
-  // The second pose is preferred only when its median third-view reprojection error is below the
-  // first's by at least this share of the first's (near the pair both poses explain the frames
-  // alike; a wrong plane shows only in the frames farther off).
-  double min_error_reduction = 0.1;
+  // Two judgements, each clear or silent. (1) The pooled median reprojection error of one pose
+  // is below the other's by at least min_pooled_error_reduction of it (weighs the frames by
+  // the points they see). (2) A sign test over the third frames: a frame votes for the pose
+  // whose median error there is lower by at least min_frame_error_reduction of the other's (a
+  // frame near the pair, which both poses explain alike, abstains), and the votes are clear
+  // with at least min_votes for one pose and min_vote_ratio times the other's (weighs every
+  // frame alike; their errors differ in scale with the two-view points' depth noise). The
+  // second pose is preferred when either judgement is clear for it and neither for the first.
+  double min_pooled_error_reduction = 0.1;
+  double min_frame_error_reduction = 0.05;
+  int min_votes = 3;
+  double min_vote_ratio = 2.0;
 
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
@@ -89,8 +97,10 @@ struct ThirdViewComparison {
   // that frame's PnP (a frame the pose cannot locate counts its points as unexplained).
   double median_error_first_px = 0.0;
   double median_error_second_px = 0.0;
-  // Whether `second` explains the third frames clearly better than `first`
-  // (min_error_reduction).
+  // Third frames voting for each pose (min_frame_error_reduction).
+  int votes_first = 0;
+  int votes_second = 0;
+  // Whether the third frames side with `second` (the two judgements above).
   bool prefers_second = false;
 };
 
@@ -103,6 +113,8 @@ struct PlanarPoseChoice {
   int num_third_frames = 0;  // ThirdViewComparison::frames.size()
   double median_error_essential_px = 0.0;
   double median_error_alternative_px = 0.0;
+  int votes_essential = 0;  // third frames voting for each pose
+  int votes_alternative = 0;
   bool kept_alternative = false;
 };
 

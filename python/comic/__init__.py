@@ -453,8 +453,8 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
                   ("patches", "descriptors", "auto"), max_features,
                   search_radius, unpredicted_radius, prediction, coarse_radius, match_window,
                   track_conflicts, verify_min_gap, match_turned, max_cost, threads.
-      mapping:    no_retriangulate, two_view_tracks, local_ba_images, global_ba_growth,
-                  global_ba_max_images, init_angle, init_max_gap, keyframes,
+      mapping:    no_retriangulate, no_planar_pose_choice, two_view_tracks, local_ba_images,
+                  global_ba_growth, global_ba_max_images, init_angle, init_max_gap, keyframes,
                   loop_closure, loop_closure_max_move.
       outputs:    output (a folder: written as comic_sfm writes it, all or nothing; default None:
                   nothing written, unlike comic_sfm's out/sfm), model_format, ply_format,

@@ -154,6 +154,8 @@ nlohmann::json PlanarPoseChoicesJson(const std::vector<PlanarPoseChoice>& choice
                     {"third_frames", choice.num_third_frames},
                     {"median_error_essential_px", choice.median_error_essential_px},
                     {"median_error_alternative_px", choice.median_error_alternative_px},
+                    {"votes_essential", choice.votes_essential},
+                    {"votes_alternative", choice.votes_alternative},
                     {"kept", choice.kept_alternative ? "alternative" : "essential"}});
   }
   return json;

@@ -114,6 +114,7 @@ SequenceReconstructionOptions MakeSequenceReconstructionOptions(
   options.mapper.global_ba.refine_principal_point = run.refine_principal_point;
   options.mapper.global_ba.refine_extra_params = run.refine_distortion || refine_intrinsics;
   options.mapper.mapper.retriangulate_incomplete_tracks = !run.no_retriangulate;
+  options.mapper.choose_planar_pose = !run.no_planar_pose_choice;
   // Two-view tracks are left out of video (frame-to-frame tracks are long; the two-frame ones
   // are the unchecked leftovers) but kept for image sets matched across several frames, where a
   // track of two views is often all a sparse ring has (docs/sfm.md "Two-view tracks and the

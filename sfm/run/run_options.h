@@ -71,6 +71,9 @@ struct ReconstructionRunOptions {
   bool refine_principal_point = false;
   bool refine_distortion = false;  // on anyway for a self-calibrated camera
   bool no_retriangulate = false;
+  // --no-planar-pose-choice: a near-planar initial pair keeps the essential matrix's pose
+  // (IncrementalPipelineOptions::choose_planar_pose off).
+  bool no_planar_pose_choice = false;
   bool two_view_tracks = false;
   int local_ba_images = IncrementalPipelineOptions().local_ba_num_images;
   double global_ba_growth = 1.5;

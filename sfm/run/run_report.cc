@@ -149,6 +149,7 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
           {"ignore_gt_intrinsics", options.camera.ignore_gt_intrinsics},
           {"camera_model", options.camera.camera_model},
           {"retriangulate", !options.no_retriangulate},
+          {"planar_pose_choice", !options.no_planar_pose_choice},
           {"two_view_tracks", options.two_view_tracks || tracker.match_window > 1 || unordered},
           {"local_ba_images", options.local_ba_images},
           {"global_ba_growth", options.global_ba_growth},

@@ -210,7 +210,13 @@ TEST(PlanarPoseAmbiguity, BadOptionsAreRefused) {
   options.min_rotation_difference_deg = -1;
   EXPECT_THROW(options.Check(), Error);
   ThirdViewOptions third;
-  third.min_error_reduction = 1.0;
+  third.min_pooled_error_reduction = 1.0;
+  EXPECT_THROW(third.Check(), Error);
+  third = {};
+  third.min_frame_error_reduction = -0.1;
+  EXPECT_THROW(third.Check(), Error);
+  third = {};
+  third.min_vote_ratio = 0.5;
   EXPECT_THROW(third.Check(), Error);
   third = {};
   third.max_views = 0;

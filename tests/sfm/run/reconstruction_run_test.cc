@@ -209,11 +209,15 @@ TEST(RunReconstruction, MasksLeaveNoPointObservedOnTheMovingObject) {
 // then one of 25 whose cameras turn about 10 deg away from it (COLMAP's own model of these frames
 // sits within 1 deg of the patches'). Two successes that disagree cannot both be right: the kept
 // one is suspect, its reason names the other matcher, and the attempt records the comparison.
+// The bag's first 25 frames: a nearly flat scene whose initial pairs allow two poses. Left to the
+// essential matrix (--no-planar-pose-choice), the two matchers' models turn apart and the kept
+// one is suspect; by default the other frames choose each pair's pose and the two agree.
 TEST(RunReconstruction, TwoMatchersThatDisagreeMakeTheKeptModelSuspect) {
   COMIC_REQUIRE_SHARED_DATA();
   ReconstructionRunOptions options;
   options.frames = test::SharedDataDir() + "/vot_bag";
   options.sequence.last_frame = 24;
+  options.no_planar_pose_choice = true;
   const ReconstructionRunResult result = RunReconstruction(options);
   ASSERT_EQ(result.runs.size(), 1u);
   const DetectorRun& run = result.runs.front();
@@ -228,6 +232,27 @@ TEST(RunReconstruction, TwoMatchersThatDisagreeMakeTheKeptModelSuspect) {
   EXPECT_NE(run.report.self_check.reason.find("matcher's model turns the cameras"),
             std::string::npos)
       << run.report.self_check.reason;
+}
+
+TEST(RunReconstruction, TheOtherFramesChooseAPlanarPairsPoseAndTheMatchersAgree) {
+  COMIC_REQUIRE_SHARED_DATA();
+  ReconstructionRunOptions options;
+  options.frames = test::SharedDataDir() + "/vot_bag";
+  options.sequence.last_frame = 24;
+  const ReconstructionRunResult result = RunReconstruction(options);
+  ASSERT_EQ(result.runs.size(), 1u);
+  const DetectorRun& run = result.runs.front();
+  ASSERT_EQ(run.matcher_attempts.size(), 2u);
+  EXPECT_EQ(run.run.mapping.status, ReconstructionStatus::kSuccess);
+  EXPECT_EQ(run.report_json["status"], "success");
+  const nlohmann::json& other = run.matcher_attempts[run.matcher == "descriptors" ? 0 : 1];
+  EXPECT_GE(other["common_frames_with_kept"].get<int>(), 20);
+  EXPECT_LT(other["median_rotation_difference_to_kept_deg"].get<double>(), 1.0);
+  EXPECT_LT(other["median_relative_rotation_difference_to_kept_deg"].get<double>(), 0.5);
+  // The kept model's pair was compared by its third frames, and the report says how.
+  const nlohmann::json& choices = run.report_json["mapping"]["planar_pose_choices"];
+  ASSERT_FALSE(choices.empty());
+  EXPECT_GE(choices[0]["third_frames"].get<int>(), 10);
 }
 
 // Seven example frames, the fourth replaced by a grey one (no features: nothing registers it).
