@@ -250,10 +250,6 @@ ThirdViewComparison CompareByThirdViews(const frontend::FeatureTracks& tracks, c
     result.frame_median_error_first_px.push_back(median_error(pose_first, in_first, &pooled_first));
     result.frame_median_error_second_px.push_back(
         median_error(pose_second, in_second, &pooled_second));
-    result.frame_inliers_first.push_back(pose_first ? pose_first->num_inliers : 0);
-    result.frame_inliers_second.push_back(pose_second ? pose_second->num_inliers : 0);
-    result.inliers_first += result.frame_inliers_first.back();
-    result.inliers_second += result.frame_inliers_second.back();
   }
   if (!result.frames.empty()) {
     result.median_error_first_px = Median(pooled_first);

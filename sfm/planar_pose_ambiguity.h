@@ -85,13 +85,9 @@ struct ThirdViewOptions {
 struct ThirdViewComparison {
   int num_points = 0;       // points both poses triangulated (the comparison's points)
   std::vector<int> frames;  // the third frames used
-  // Per pose, summed over the third frames: PnP inliers among the shared points (0 for a frame
-  // the pose cannot locate).
-  long long inliers_first = 0;
-  long long inliers_second = 0;
-  std::vector<int> frame_inliers_first;  // per third frame, in the order of `frames`
-  std::vector<int> frame_inliers_second;
-  std::vector<double> frame_median_error_first_px;  // over the frame's shared points
+  // Per pose and third frame (in the order of `frames`), the median reprojection error of the
+  // frame's shared points after its PnP; -1 where the pose cannot locate the frame.
+  std::vector<double> frame_median_error_first_px;
   std::vector<double> frame_median_error_second_px;
   // Per pose, the median reprojection error of every shared point in every third frame after
   // that frame's PnP (a frame the pose cannot locate counts its points as unexplained).
