@@ -101,14 +101,6 @@ double ParallaxScore(const TwoViewGeometry& geometry, double full_angle_deg) {
   return score;
 }
 
-// The feature of `track` in `frame`, or −1 (observations are sorted by frame).
-int FeatureInFrame(const frontend::Track& track, int frame) {
-  const auto it =
-      std::lower_bound(track.observations.begin(), track.observations.end(), frame,
-                       [](const frontend::TrackObservation& obs, int f) { return obs.frame < f; });
-  return it != track.observations.end() && it->frame == frame ? it->feature : -1;
-}
-
 // The frames (not excluded) ordered by tracked features, most first, ties by frame index.
 std::vector<int> ByTrackedFeatures(const std::vector<int>& num_tracked,
                                    const std::set<image_t>& excluded) {
@@ -176,9 +168,9 @@ IncrementalMapper::InitialPairSearch IncrementalMapper::EvaluateInitialPair(
   pair->image_id2 = ImageIdOfFrame(frame2);
   std::vector<Eigen::Vector2d> points1, points2;
   for (int t : anchor_tracks) {
-    const int feature2 = FeatureInFrame(tracks_->tracks[t], frame2);
+    const int feature2 = tracks_->tracks[t].FeatureInFrame(frame2);
     if (feature2 < 0) continue;
-    const int feature1 = FeatureInFrame(tracks_->tracks[t], frame1);
+    const int feature1 = tracks_->tracks[t].FeatureInFrame(frame1);
     pair->track_ids.push_back(t);
     pair->point2D_idxs1.push_back(static_cast<point2D_t>(feature1));
     pair->point2D_idxs2.push_back(static_cast<point2D_t>(feature2));

@@ -302,13 +302,22 @@ void FillGaps(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
 }
 
 // The result from the grown models, largest first (frames registered from observations; ties by
-// the order they were started).
+// the order they were started), unless the self-check prefers a nearly as large one.
 void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOptions& options,
               std::vector<GrownModel*> models, bool no_initial_pair_left,
               IncrementalReconstruction* result) {
   std::stable_sort(models.begin(), models.end(), [](const GrownModel* a, const GrownModel* b) {
     return a->model.NumObservedFrames() > b->model.NumObservedFrames();
   });
+  if (options.self_check) {
+    std::vector<const Reconstruction*> reconstructions;
+    for (const GrownModel* model : models) reconstructions.push_back(&model->model.reconstruction);
+    KeptModelChoice kept = ChooseKeptModel(reconstructions, tracks, options.self_check_options,
+                                           options.self_check_yield_fraction);
+    std::rotate(models.begin(), models.begin() + static_cast<long>(kept.index),
+                models.begin() + static_cast<long>(kept.index) + 1);
+    result->self_check = std::move(kept.check);
+  }
   GrownModel& largest = *models.front();
   for (size_t m = 1; m < models.size(); ++m) {
     result->other_models.push_back(std::move(models[m]->model));
@@ -343,11 +352,7 @@ void Assemble(const frontend::FeatureTracks& tracks, const IncrementalPipelineOp
       observed >= options.success_min_registered_fraction * static_cast<double>(tracks.NumFrames())
           ? ReconstructionStatus::kSuccess
           : ReconstructionStatus::kPartial;
-  if (options.self_check) {
-    result->self_check =
-        CheckModelAgainstItsPairs(result->reconstruction, tracks, options.self_check_options);
-    if (result->self_check.suspect) result->status = ReconstructionStatus::kSuspect;
-  }
+  if (result->self_check.suspect) result->status = ReconstructionStatus::kSuspect;
 }
 
 // Every model back in the input's pixels (the work ran at `scale` of them).

@@ -113,6 +113,8 @@ void IncrementalPipelineOptions::Check() const {
               "pipeline seam_max_frame_gap must be >= 1, got " << seam_max_frame_gap);
   COMIC_CHECK(max_interpolated_gap >= 0, kInvalidArgument,
               "pipeline max_interpolated_gap must be >= 0");
+  COMIC_CHECK(self_check_yield_fraction > 0 && self_check_yield_fraction <= 1, kInvalidArgument,
+              "pipeline self_check_yield_fraction must be in (0, 1]");
   COMIC_CHECK(success_min_registered_fraction >= 0 && success_min_registered_fraction <= 1,
               kInvalidArgument, "pipeline success_min_registered_fraction must be in [0, 1]");
   plausible_intrinsics.Check();

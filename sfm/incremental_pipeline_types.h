@@ -129,6 +129,9 @@ struct IncrementalPipelineOptions {
   // called kSuspect when they contradict it.
   bool self_check = true;
   ModelSelfCheckOptions self_check_options;
+  // When the largest model is suspect, a model holding at least this fraction of its frames
+  // that its own pairs do not contradict is returned first instead (ChooseKeptModel).
+  double self_check_yield_fraction = 0.8;
   // The plausible range of a self-calibrated camera (sfm/intrinsics_plausibility.h): outside it
   // the camera is reset to its prior, held fixed and the model adjusted again.
   IntrinsicsPlausibilityOptions plausible_intrinsics;

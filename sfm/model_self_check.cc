@@ -300,4 +300,24 @@ ModelSelfCheck CheckModelAgainstItsPairs(const Reconstruction& model,
   return check;
 }
 
+KeptModelChoice ChooseKeptModel(const std::vector<const Reconstruction*>& models,
+                                const frontend::FeatureTracks& tracks,
+                                const ModelSelfCheckOptions& options, double yield_fraction) {
+  COMIC_CHECK(!models.empty(), kInvalidArgument, "ChooseKeptModel: no model");
+  KeptModelChoice choice;
+  choice.check = CheckModelAgainstItsPairs(*models.front(), tracks, options);
+  if (!choice.check.suspect) return choice;
+  const size_t first_frames = models.front()->NumRegisteredImages();
+  for (size_t m = 1; m < models.size(); ++m) {
+    const double frames = static_cast<double>(models[m]->NumRegisteredImages());
+    if (frames < yield_fraction * static_cast<double>(first_frames)) continue;
+    ModelSelfCheck other = CheckModelAgainstItsPairs(*models[m], tracks, options);
+    if (other.suspect || other.pairs_checked < options.min_pairs) continue;
+    other.passed_over_model_frames = static_cast<int>(first_frames);
+    other.passed_over_pairs_disagreeing = choice.check.pairs_disagreeing;
+    return {m, std::move(other)};
+  }
+  return choice;
+}
+
 }  // namespace comic::sfm

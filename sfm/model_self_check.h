@@ -79,6 +79,11 @@ struct ModelSelfCheck {
   bool suspect = false;
   std::string reason;                        // one sentence when suspect, empty otherwise
   std::vector<DisagreeingPair> disagreeing;  // in frame order, suspect or not
+  // Set by the pipeline when a larger model was suspect and this one, which its pairs do not
+  // contradict, is returned in its place: the larger model's registered frames and its check's
+  // disagreeing pairs (0: no model was passed over).
+  int passed_over_model_frames = 0;
+  int passed_over_pairs_disagreeing = 0;
 };
 
 // Checks the registered images of `model` (image i + 1 is frame i of `tracks`, in the same
@@ -86,5 +91,21 @@ struct ModelSelfCheck {
 ModelSelfCheck CheckModelAgainstItsPairs(const Reconstruction& model,
                                          const frontend::FeatureTracks& tracks,
                                          const ModelSelfCheckOptions& options);
+
+// Which of a run's models to return first, and its check.
+struct KeptModelChoice {
+  size_t index = 0;  // into the models given
+  ModelSelfCheck check;
+};
+
+// `models` (one run's, largest first) checked in turn: the first model's check, and when it is
+// suspect, the first later model holding at least `yield_fraction` of the first's registered
+// frames whose own pairs do not contradict it (with at least options.min_pairs pairs kept), with
+// its passed_over_* fields set. Two models that grew over the same frames and could not be merged
+// are two answers for those frames; the one its evidence contradicts is the worse answer whatever
+// its size. Deterministic.
+KeptModelChoice ChooseKeptModel(const std::vector<const Reconstruction*>& models,
+                                const frontend::FeatureTracks& tracks,
+                                const ModelSelfCheckOptions& options, double yield_fraction);
 
 }  // namespace comic::sfm

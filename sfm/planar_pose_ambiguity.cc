@@ -165,16 +165,6 @@ std::vector<const Eigen::Vector3d*> PointsByCorrespondence(const TwoViewGeometry
   return points;
 }
 
-// The feature of `track` in `frame`, or nullptr.
-const frontend::Feature* FeatureInFrame(const frontend::FeatureTracks& tracks,
-                                        const frontend::Track& track, int frame) {
-  const auto it =
-      std::lower_bound(track.observations.begin(), track.observations.end(), frame,
-                       [](const frontend::TrackObservation& obs, int f) { return obs.frame < f; });
-  if (it == track.observations.end() || it->frame != frame) return nullptr;
-  return &tracks.FeatureOf(*it);
-}
-
 }  // namespace
 
 ThirdViewComparison CompareByThirdViews(const frontend::FeatureTracks& tracks, const Camera& camera,
@@ -219,9 +209,10 @@ ThirdViewComparison CompareByThirdViews(const frontend::FeatureTracks& tracks, c
     std::vector<Eigen::Vector2d> pixels;
     std::vector<Eigen::Vector3d> in_first, in_second;
     for (size_t i : shared) {
-      const frontend::Feature* feature = FeatureInFrame(tracks, tracks.tracks[track_ids[i]], frame);
-      if (!feature) continue;
-      pixels.emplace_back(feature->x, feature->y);
+      const int feature = tracks.tracks[track_ids[i]].FeatureInFrame(frame);
+      if (feature < 0) continue;
+      const frontend::Feature& seen = tracks.features[frame][feature];
+      pixels.emplace_back(seen.x, seen.y);
       in_first.push_back(*first_points[i]);
       in_second.push_back(*second_points[i]);
     }

@@ -112,7 +112,7 @@ class GapFiller {
       if (track_point_[t] != kInvalidPoint3DId && model_.ExistsPoint3D(track_point_[t])) {
         direction = (model_.point3D(track_point_[t]).xyz - center).normalized();
       } else {
-        const int other_feature = FeatureIn(t, neighbour);
+        const int other_feature = tracks_.tracks[t].FeatureInFrame(neighbour);
         if (other_feature < 0) continue;
         direction = world_from_other * Ray(camera, neighbour, other_feature);
       }
@@ -136,13 +136,6 @@ class GapFiller {
     const frontend::Feature& f = tracks_.features[frame][feature];
     const Eigen::Vector2d normalized = camera.CamFromImage(Eigen::Vector2d(f.x, f.y));
     return Eigen::Vector3d(normalized.x(), normalized.y(), 1.0).normalized();
-  }
-
-  int FeatureIn(int track_id, int frame) const {
-    for (const frontend::TrackObservation& obs : tracks_.tracks[track_id].observations) {
-      if (obs.frame == frame) return obs.feature;
-    }
-    return -1;
   }
 
   Rigid3d InterpolatePose(int first, int last, int frame) const {

@@ -1,13 +1,13 @@
 #include "frontend/evaluation/evaluation_page.h"
 
 #include <cmath>
-#include <cstdio>
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/evaluation/stereo_match_figure.h"
 #include "frontend/evaluation/track_drawing.h"
 #include "io/report/bar_chart.h"
 #include "io/report/data_uri.h"
+#include "io/report/number_text.h"
 #include "io/report/page_sections.h"
 
 namespace comic::frontend {
@@ -16,12 +16,6 @@ namespace {
 
 constexpr int kFigureWidth = 1600;  // pixels: wider figures are shrunk for the page
 constexpr int kJpegQuality = 85;
-
-std::string Number(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
 
 std::vector<io::PageImage> Pictures(const std::vector<EvaluationFigure>& figures) {
   std::vector<io::PageImage> pictures;
@@ -65,7 +59,7 @@ io::PageSection ScoreCharts(const TrackEvaluation& evaluation, size_t k) {
           " frame(s) later along one track (mean over start frames every " +
           std::to_string(evaluation.options.frame_step) + " frames); ResM_" + n +
           ": how many features that is. Higher is better. Boundary: within " +
-          Number("%g", evaluation.options.boundary_band) +
+          io::NumberText("%g", evaluation.options.boundary_band) +
           " px of the object's edge; non-boundary: inside the object; overall: both.");
 }
 
@@ -80,14 +74,14 @@ std::vector<io::PageFact> TrackFacts(const TrackEvaluation& evaluation,
                      std::to_string(evaluation.frame_size.width) + "×" +
                      std::to_string(evaluation.frame_size.height) + " px"},
       {"object region",
-       inputs.region + "; boundary band " + Number("%g", options.boundary_band) + " px"},
+       inputs.region + "; boundary band " + io::NumberText("%g", options.boundary_band) + " px"},
       {"N", std::to_string(evaluation.reference_count) + " features in frame 0's object region (" +
                 (evaluation.reference_source == "comic" ? "CoMIC's count" : "requested") +
                 "); every detector's threshold is set to give N there"},
-      {"matching", "gate r = " + Number("%g", options.matcher.radius) +
-                       " px, SSD threshold T = " + Number("%g", options.matcher.max_cost) +
+      {"matching", "gate r = " + io::NumberText("%g", options.matcher.radius) +
+                       " px, SSD threshold T = " + io::NumberText("%g", options.matcher.max_cost) +
                        " (mean squared grey-level difference per pixel), min side overlap " +
-                       Number("%g", options.matcher.min_side_overlap) + " px"},
+                       io::NumberText("%g", options.matcher.min_side_overlap) + " px"},
       {"n", ns}};
 }
 
@@ -113,7 +107,8 @@ io::HtmlPage TrackEvaluationPage(const TrackEvaluation& evaluation,
     if (has_precision) {
       page.sections.push_back(io::TableSection(
           "Epipolar precision, n = " + std::to_string(n), PrecisionTable(evaluation, n),
-          "A match is correct within " + Number("%g", evaluation.options.epipolar_tolerance) +
+          "A match is correct within " +
+              io::NumberText("%g", evaluation.options.epipolar_tolerance) +
               " px of its epipolar line (KITTI poses)."));
     }
   }
@@ -166,10 +161,10 @@ io::HtmlPage StereoEvaluationPage(const StereoReport& report,
     }
     page.sections.push_back(io::BarChartSection(
         chart, "N = " + std::to_string(run.target_count) +
-                   " features per image, T = " + Number("%g", options.max_cost) +
+                   " features per image, T = " + io::NumberText("%g", options.max_cost) +
                    ": the share of the detected left features whose accepted match is correct "
                    "(within " +
-                   Number("%g", options.correct_tolerance) +
+                   io::NumberText("%g", options.correct_tolerance) +
                    " px). Boundary: near a depth discontinuity (disc.png); non-boundary: the "
                    "rest of the valid pixels."));
   }

@@ -1,11 +1,19 @@
 #include "frontend/matching/track.h"
 
+#include <algorithm>
 #include <set>
 #include <utility>
 
 #include "io/core/error.h"
 
 namespace comic::frontend {
+
+int Track::FeatureInFrame(int frame) const {
+  const auto it =
+      std::lower_bound(observations.begin(), observations.end(), frame,
+                       [](const TrackObservation& obs, int f) { return obs.frame < f; });
+  return it != observations.end() && it->frame == frame ? it->feature : -1;
+}
 
 void FeatureTracks::Check() const {
   COMIC_CHECK(

@@ -24,6 +24,9 @@ struct Track {
   size_t Length() const { return observations.size(); }
   int FirstFrame() const { return observations.empty() ? -1 : observations.front().frame; }
   int LastFrame() const { return observations.empty() ? -1 : observations.back().frame; }
+  // The index of the track's feature in `frame` (into FeatureTracks::features[frame]), or -1
+  // where the track has none; a binary search, since observations are sorted by frame.
+  int FeatureInFrame(int frame) const;
 };
 
 // Everything a tracker produces for one sequence.

@@ -216,6 +216,11 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                         {"suspect", check.suspect},
                         {"reason", check.reason},
                         {"disagreeing_pairs", nlohmann::json::array()}};
+  if (check.passed_over_model_frames > 0) {
+    json["self_check"]["passed_over_model"] = {
+        {"registered_frames", check.passed_over_model_frames},
+        {"pairs_disagreeing", check.passed_over_pairs_disagreeing}};
+  }
   for (const DisagreeingPair& pair : check.disagreeing) {
     json["self_check"]["disagreeing_pairs"].push_back(
         {{"frame1", pair.frame1},

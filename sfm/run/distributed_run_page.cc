@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/core/error.h"
+#include "io/report/number_text.h"
 #include "io/report/page_sections.h"
 #include "io/report/report_table.h"
 #include "sfm/run/run_page.h"
@@ -14,12 +15,6 @@
 namespace comic::sfm {
 
 namespace {
-
-std::string Format(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
 
 // report.json is written by Python: a field that is missing or of another type is a broken
 // report, said as such rather than as nlohmann's words.
@@ -47,7 +42,7 @@ io::PageTone StatusTone(const std::string& status) {
 }
 
 std::string Percent(int64_t part, int64_t whole) {
-  return Format("%.0f", whole > 0 ? 100.0 * part / whole : 0.0) + " %";
+  return io::NumberText("%.0f", whole > 0 ? 100.0 * part / whole : 0.0) + " %";
 }
 
 std::string FrameRange(const nlohmann::json& chunk) {
@@ -72,7 +67,7 @@ std::string MergeWords(const nlohmann::json& chunk) {
          (shared == 1 ? " shared frame, " : " shared frames, ") +
          std::to_string(Get<int64_t>(merge, "num_inliers")) + " of " +
          std::to_string(Get<int64_t>(merge, "num_point_pairs")) + " point pairs agreeing, scale " +
-         Format("%.4g", Get<double>(merge, "scale"));
+         io::NumberText("%.4g", Get<double>(merge, "scale"));
 }
 
 io::PageSection SummarySection(const nlohmann::json& report) {
@@ -105,9 +100,9 @@ io::PageSection SummarySection(const nlohmann::json& report) {
                      std::to_string(Get<int64_t>(models[0], "num_images")) + " frames, " +
                          std::to_string(Get<int64_t>(models[0], "num_points3D")) + " 3-D points"});
   }
-  facts.push_back({"merge", Format("%.2f s", Get<double>(merge, "time_s")) + " on worker " +
+  facts.push_back({"merge", io::NumberText("%.2f s", Get<double>(merge, "time_s")) + " on worker " +
                                 Get<std::string>(merge, "worker")});
-  facts.push_back({"whole run", Format("%.2f s", Get<double>(report, "wall_time_s")) +
+  facts.push_back({"whole run", io::NumberText("%.2f s", Get<double>(report, "wall_time_s")) +
                                     " wall clock (this page not counted)"});
   return io::FactsSection("Summary", facts);
 }

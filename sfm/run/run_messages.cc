@@ -89,7 +89,14 @@ std::string DetectorSummaryLine(const DetectorRun& run) {
          << " more interpolated (not registered, report.json only)";
   }
   if (report.models.size() > 1) {
-    line << " in the largest of " << report.models.size() << " models (";
+    if (report.self_check.passed_over_model_frames > 0) {
+      line << " in the first of " << report.models.size() << " models (a model of "
+           << report.self_check.passed_over_model_frames
+           << " frames came second: " << report.self_check.passed_over_pairs_disagreeing
+           << " of its own frame pairs contradict it; ";
+    } else {
+      line << " in the largest of " << report.models.size() << " models (";
+    }
     for (size_t m = 1; m < report.models.size(); ++m) {
       line << (m > 1 ? ", " : "") << report.models[m].num_registered;
     }

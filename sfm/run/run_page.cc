@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "io/core/file_utils.h"
 #include "io/datasets/ground_truth_cameras.h"
 #include "io/report/bar_chart.h"
+#include "io/report/number_text.h"
 #include "io/report/page_charts.h"
 #include "io/report/page_scene.h"
 #include "io/report/page_sections.h"
@@ -20,12 +20,6 @@ namespace comic::sfm {
 
 namespace {
 
-std::string Format(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
 io::PageTone StatusTone(const std::string& status) {
   if (status == "success") return io::PageTone::kGood;
   if (status == "partial") return io::PageTone::kWarning;
@@ -34,10 +28,10 @@ io::PageTone StatusTone(const std::string& status) {
 
 std::string CameraWords(const Camera& camera) {
   std::string words = CameraModelName(camera.model) + " " + std::to_string(camera.width) + "×" +
-                      std::to_string(camera.height) + " px, f " + Format("%.1f", camera.fx);
-  if (camera.fy != camera.fx) words += "/" + Format("%.1f", camera.fy);
-  return words + " px, principal point (" + Format("%.1f", camera.cx) + ", " +
-         Format("%.1f", camera.cy) + ")";
+                      std::to_string(camera.height) + " px, f " + io::NumberText("%.1f", camera.fx);
+  if (camera.fy != camera.fx) words += "/" + io::NumberText("%.1f", camera.fy);
+  return words + " px, principal point (" + io::NumberText("%.1f", camera.cx) + ", " +
+         io::NumberText("%.1f", camera.cy) + ")";
 }
 
 // The camera of the model (or the prior without one), where it came from and whether it moved.
@@ -86,29 +80,32 @@ io::PageSection SummarySection(const DetectorRun& run, const ReconstructionRunOp
                      std::to_string(inputs.sequence->FrameSize().height) + " px"},
       {"registered",
        std::to_string(registered) + " of " + std::to_string(frames) + " frames (" +
-           Format("%.0f", frames ? 100.0 * registered / frames : 0.0) + " %)" + others,
+           io::NumberText("%.0f", frames ? 100.0 * registered / frames : 0.0) + " %)" + others,
        registered == frames ? io::PageTone::kGood
                             : (registered == 0 ? io::PageTone::kBad : io::PageTone::kWarning)},
       {"models", std::to_string(models.size())},
       {"3-D points", std::to_string(report.stats.all.num_points) + " · mean track length " +
-                         Format("%.2f", report.stats.all.mean_track_length) +
+                         io::NumberText("%.2f", report.stats.all.mean_track_length) +
                          " · mean reprojection error " +
-                         Format("%.3f", report.stats.all.mean_reprojection_error_px) + " px"},
+                         io::NumberText("%.3f", report.stats.all.mean_reprojection_error_px) +
+                         " px"},
       {"tracks", std::to_string(report.num_tracks) + " from the tracker, mean length " +
-                     Format("%.2f", report.mean_tracker_track_length)}};
+                     io::NumberText("%.2f", report.mean_tracker_track_length)}};
   for (const io::PageFact& fact : CameraFacts(run, inputs)) facts.push_back(fact);
   if (run.evaluation) {
     const std::string unit = PlaceModels(run, inputs).unit;
-    facts.push_back({"ATE (RMSE)", Format("%.4g ", run.evaluation->ate_rmse) + unit + " (" +
-                                       Format("%.3g", 100 * run.evaluation->ate_fraction_of_path) +
-                                       " % of the " + Format("%.4g ", run.evaluation->path_length) +
-                                       unit + " path), max " +
-                                       Format("%.4g ", run.evaluation->ate_max) + unit});
-    facts.push_back({"rotation error", Format("%.3f", run.evaluation->mean_rotation_error_deg) +
-                                           " deg on average over " +
-                                           std::to_string(run.evaluation->frames.size()) +
-                                           " frames"});
-    facts.push_back({"end to start", Format("%.4g ", run.evaluation->end_to_start_error) + unit +
+    facts.push_back(
+        {"ATE (RMSE)", io::NumberText("%.4g ", run.evaluation->ate_rmse) + unit + " (" +
+                           io::NumberText("%.3g", 100 * run.evaluation->ate_fraction_of_path) +
+                           " % of the " + io::NumberText("%.4g ", run.evaluation->path_length) +
+                           unit + " path), max " +
+                           io::NumberText("%.4g ", run.evaluation->ate_max) + unit});
+    facts.push_back(
+        {"rotation error", io::NumberText("%.3f", run.evaluation->mean_rotation_error_deg) +
+                               " deg on average over " +
+                               std::to_string(run.evaluation->frames.size()) + " frames"});
+    facts.push_back({"end to start", io::NumberText("%.4g ", run.evaluation->end_to_start_error) +
+                                         unit +
                                          " error of the last frame's position relative to the "
                                          "first's (after the alignment)"});
   } else if (!options.gt.empty()) {
@@ -123,14 +120,14 @@ io::PageSection SummarySection(const DetectorRun& run, const ReconstructionRunOp
 io::PageSection TimeSection(const SfmRunReport& report) {
   io::PageSection section = io::FactsSection(
       "Time per stage",
-      {{"detection and tracking", Format("%.2f s", report.tracking_time_s)},
-       {"mapping", Format("%.2f s", report.mapping_time_s) + " (local bundle adjustment " +
-                       Format("%.2f s", report.local_ba_time_s) + " in " +
+      {{"detection and tracking", io::NumberText("%.2f s", report.tracking_time_s)},
+       {"mapping", io::NumberText("%.2f s", report.mapping_time_s) + " (local bundle adjustment " +
+                       io::NumberText("%.2f s", report.local_ba_time_s) + " in " +
                        std::to_string(report.num_local_ba) + ", global " +
-                       Format("%.2f s", report.global_ba_time_s) + " in " +
+                       io::NumberText("%.2f s", report.global_ba_time_s) + " in " +
                        std::to_string(report.num_global_ba) + ")"},
        {"whole run",
-        Format("%.2f s", report.wall_time_s) + " wall clock (this page not counted)"}});
+        io::NumberText("%.2f s", report.wall_time_s) + " wall clock (this page not counted)"}});
   section[kDurationsKey] = true;
   return section;
 }
@@ -225,7 +222,7 @@ std::string LoopClosureWords(const LoopClosureSummary& summary) {
   }
   if (summary.loops.size() > kListed) words += ", …";
   return words + " · " + std::to_string(summary.num_points_fused) +
-         " points fused · cameras moved up to " + Format("%.3g", summary.max_correction) +
+         " points fused · cameras moved up to " + io::NumberText("%.3g", summary.max_correction) +
          " (model units)" + rejected;
 }
 

@@ -132,6 +132,53 @@ TEST(ModelSelfCheck, ThePipelineCallsAWrongModelSuspectNotSuccess) {
   EXPECT_TRUE(HasModel(ReconstructionStatus::kSuspect));
 }
 
+// `model` with its frames from `first_unregistered` on taken out.
+Reconstruction WithoutFramesFrom(Reconstruction model, size_t first_unregistered) {
+  for (image_t id = static_cast<image_t>(first_unregistered + 1); model.ExistsImage(id); ++id) {
+    model.DeRegisterImage(id);
+  }
+  return model;
+}
+
+TEST(ModelSelfCheck, ANearlyAsLargeModelItsPairsDoNotContradictIsKeptFirst) {
+  const SyntheticScene scene = HandHeldScene();
+  const Reconstruction wrong =
+      ModelWithCameras(scene, TurnedFrom(scene.cams_from_world, 10, 5.0));  // 20 frames
+  const Reconstruction right =
+      WithoutFramesFrom(ModelWithCameras(scene, scene.cams_from_world), 17);  // 17 frames
+  ASSERT_EQ(right.NumRegisteredImages(), 17u);
+  const KeptModelChoice choice =
+      ChooseKeptModel({&wrong, &right}, scene.tracks, ModelSelfCheckOptions(), 0.8);
+  EXPECT_EQ(choice.index, 1u);
+  EXPECT_FALSE(choice.check.suspect) << choice.check.reason;
+  EXPECT_EQ(choice.check.passed_over_model_frames, 20);
+  EXPECT_GT(choice.check.passed_over_pairs_disagreeing, 0);
+  // Not nearly as large (17 of 20 frames is below 0.9): the larger model stays first, suspect.
+  const KeptModelChoice kept =
+      ChooseKeptModel({&wrong, &right}, scene.tracks, ModelSelfCheckOptions(), 0.9);
+  EXPECT_EQ(kept.index, 0u);
+  EXPECT_TRUE(kept.check.suspect);
+  EXPECT_EQ(kept.check.passed_over_model_frames, 0);
+}
+
+TEST(ModelSelfCheck, ASuspectModelIsKeptWhenTheOthersAreSuspectToo) {
+  const SyntheticScene scene = HandHeldScene();
+  const Reconstruction wrong = ModelWithCameras(scene, TurnedFrom(scene.cams_from_world, 10, 5.0));
+  const Reconstruction also_wrong =
+      ModelWithCameras(scene, TurnedFrom(scene.cams_from_world, 6, -5.0));
+  const KeptModelChoice choice =
+      ChooseKeptModel({&wrong, &also_wrong}, scene.tracks, ModelSelfCheckOptions(), 0.8);
+  EXPECT_EQ(choice.index, 0u);
+  EXPECT_TRUE(choice.check.suspect);
+  // A right first model is kept whatever follows it.
+  const Reconstruction right = ModelWithCameras(scene, scene.cams_from_world);
+  const KeptModelChoice first =
+      ChooseKeptModel({&right, &wrong}, scene.tracks, ModelSelfCheckOptions(), 0.8);
+  EXPECT_EQ(first.index, 0u);
+  EXPECT_FALSE(first.check.suspect);
+  EXPECT_THROW(ChooseKeptModel({}, scene.tracks, ModelSelfCheckOptions(), 0.8), Error);
+}
+
 TEST(ModelSelfCheck, BadOptionsAreRefused) {
   ModelSelfCheckOptions options;
   options.max_error_ratio = 0.5;
@@ -142,6 +189,11 @@ TEST(ModelSelfCheck, BadOptionsAreRefused) {
   options = ModelSelfCheckOptions();
   options.min_disagreeing_pairs = 0;
   EXPECT_THROW(options.Check(), Error);
+  IncrementalPipelineOptions pipeline;
+  pipeline.self_check_yield_fraction = 0.0;
+  EXPECT_THROW(pipeline.Check(), Error);
+  pipeline.self_check_yield_fraction = 1.5;
+  EXPECT_THROW(pipeline.Check(), Error);
 }
 
 }  // namespace

@@ -24,6 +24,19 @@ TEST(FeatureTracks, ValidTracksPass) {
   EXPECT_EQ(tracks.tracks[1].LastFrame(), 2);
 }
 
+TEST(FeatureTracks, ATracksFeatureInAFrameIsFoundOrMinusOne) {
+  const FeatureTracks tracks = ThreeFrames();
+  EXPECT_EQ(tracks.tracks[0].FeatureInFrame(0), 0);
+  EXPECT_EQ(tracks.tracks[0].FeatureInFrame(1), 2);
+  EXPECT_EQ(tracks.tracks[0].FeatureInFrame(2), 1);
+  EXPECT_EQ(tracks.tracks[1].FeatureInFrame(0), -1);  // before the track starts
+  EXPECT_EQ(tracks.tracks[1].FeatureInFrame(3), -1);  // after it ends
+  Track with_gap{{{0, 1}, {2, 0}}};
+  EXPECT_EQ(with_gap.FeatureInFrame(1), -1);  // a frame the track skips
+  EXPECT_EQ(with_gap.FeatureInFrame(2), 0);
+  EXPECT_EQ(Track{}.FeatureInFrame(0), -1);
+}
+
 TEST(FeatureTracks, TwoFeaturesOfOneFrameInATrackAreRejected) {
   FeatureTracks tracks = ThreeFrames();
   tracks.tracks[0].observations.push_back({2, 2});  // frame 2 again
