@@ -24,8 +24,8 @@
 #include "io/core/interrupt_cleanup.h"
 #include "sfm/bundle_adjuster.h"
 #include "sfm/run/reconstruction_run.h"
-#include "sfm/run/run_option_table.h"
 #include "sfm/run/run_messages.h"
+#include "sfm/run/run_option_table.h"
 
 namespace {
 
