@@ -839,9 +839,12 @@ OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet
                        {"output", Field(&o->output)},
                        {"write_frames", WriteFrames(&o->write_frames, sfm::kFramesInOutput)},
                        {"quiet", Field(quiet)}};
-  // The plain options: a keyword per entry of the library's table, typed as its field.
+  // The plain options: a keyword per entry of the library's table, typed as its field. A keyword
+  // also set up by hand above would leave one of the two setters unused.
   for (const sfm::RunOption& entry : sfm::RunOptionTable()) {
-    table[entry.keyword] = std::visit([o](auto field) { return Field(&field(*o)); }, entry.field);
+    Setter setter = std::visit([o](auto field) { return Field(&field(*o)); }, entry.field);
+    const bool added = table.emplace(entry.keyword, std::move(setter)).second;
+    COMIC_CHECK(added, kInvalidArgument, "reconstruct: two setters for '" << entry.keyword << "'");
   }
   AddRunSequenceOptions(&o->sequence, &table);
   AddRunTrackerSettings(&o->tracker, &table);
