@@ -9,6 +9,8 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/colmap_db_flags.h"
@@ -23,6 +25,7 @@
 #include "sfm/bundle_adjuster.h"
 #include "sfm/run/reconstruction_run.h"
 #include "sfm/run/run_messages.h"
+#include "sfm/run/run_option_table.h"
 
 namespace {
 
@@ -34,149 +37,49 @@ struct CommandLine {
   std::string detector = "harris";
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   apps::TrackerFlags tracker;
-  apps::ObjectRegionFlags region{"", "", 11.0};
+  apps::ObjectRegionFlags region{"", "", sfm::ReconstructionRunOptions().boundary_band};
   bool mask_keeps_nonzero = false;  // --mask-keeps-nonzero: COLMAP's mask convention
   bool quiet = false;
 };
 
+// One flag per entry of the library's option table, bound to its field in `o`.
+void AddTableFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o) {
+  for (const sfm::RunOption& entry : sfm::RunOptionTable()) {
+    std::visit(
+        [&](auto field) {
+          auto* value = &field(*o);
+          if constexpr (std::is_same_v<decltype(value), bool*>) {
+            parser.AddFlag(entry.flag, entry.help, value);
+          } else {
+            parser.AddOption(entry.flag, entry.metavar, entry.help, value);
+          }
+        },
+        entry.field);
+  }
+}
+
+// The flags shared with other apps (apps/common/) or needing more than a field, then the table's.
 void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, CommandLine* c) {
   parser.AddPositional("FRAMES", "folder of images, or video file", &o->frames);
   apps::AddDetectorFlag(parser, &c->detector);
   apps::AddScaleLevelsFlag(parser, &o->detector_options.scale_space.num_levels);
-  parser.AddFlag(
-      "compare",
-      "run every detector of --detectors on the same frames; writes --output/<detector>/ "
-      "and the table compare.md, compare.csv, compare.json",
-      &o->compare);
   apps::AddDetectorListFlag(parser, &o->detectors);
   apps::AddIntrinsicsFlag(parser, &o->camera.intrinsics);
-  parser.AddOption("gt", "PATH",
-                   "ground-truth cameras: KITTI poses.txt (calib.txt beside it gives the "
-                   "intrinsics; matched by frame index), Middlebury *_par.txt, a folder of "
-                   "Strecha *.camera files, a COLMAP model (folder of cameras/images .bin or "
-                   ".txt) or a NeRF transforms.json (matched by image name), a TUM trajectory "
-                   "or EuRoC's groundtruth data.csv (matched by time stamp when the frames are "
-                   "named by theirs, else by frame index)",
-                   &o->gt);
-  parser.AddOption("gt-format", "F",
-                   "format of --gt: auto, kitti, middlebury, strecha, colmap, nerf, tum or euroc",
-                   &o->gt_format);
-  parser.AddFlag("gt-partial",
-                 "accept --gt that covers only some frames and evaluate on those (otherwise "
-                 "an error)",
-                 &o->gt_partial);
+  apps::AddCameraModelFlag(parser, &o->camera.camera_model);
   apps::AddAllowTruncatedFlag(parser, &o->sequence.allow_truncated);
   apps::AddMaxPixelsFlag(parser, &c->max_pixels);
   apps::AddOutputFolderFlag(parser, &o->output);
-  parser.AddOption("model-format", "F",
-                   "COLMAP model written: txt (cameras.txt ... in --output), bin (cameras.bin ... "
-                   "in --output/sparse/0/) or both",
-                   &o->model_format);
-  parser.AddOption("ply-format", "F",
-                   "points.ply as binary (little-endian, float xyz, uchar rgb) or ascii (exact "
-                   "doubles)",
-                   &o->ply_format);
   apps::AddResizeHeightFlag(parser, &o->sequence.resize_height);
   apps::AddFrameRangeFlags(parser, &o->sequence);
   apps::AddMatchingFlag(parser, &o->matching);
   apps::AddMatcherFlag(parser, &o->matcher);
   apps::AddTrackerFlags(parser, &c->tracker);
-  parser.AddFlag("no-retriangulate",
-                 "do not triangulate a track again from all its registered views when its point "
-                 "misses some of them (on by default: the new point must explain more views within "
-                 "2 px)",
-                 &o->no_retriangulate);
-  parser.AddFlag("no-planar-pose-choice",
-                 "start a near-planar initial pair from the essential matrix's pose, without "
-                 "asking the other frames which of the plane's two poses they side with (on by "
-                 "default; docs/sfm.md)",
-                 &o->no_planar_pose_choice);
-  parser.AddFlag("two-view-tracks",
-                 "also triangulate tracks seen in only two frames in a video (image sets matched "
-                 "across several frames always keep them; video leaves them out by default, as "
-                 "COLMAP: such a point has no third view to check it)",
-                 &o->two_view_tracks);
-  parser.AddFlag("refine-focal",
-                 "refine the focal length in the global bundle adjustments (on by default without "
-                 "a calibration; kept where the motion leaves it unobservable)",
-                 &o->refine_focal);
-  parser.AddFlag("refine-principal-point",
-                 "refine the principal point in the global bundle adjustments",
-                 &o->refine_principal_point);
-  parser.AddFlag("refine-distortion",
-                 "refine the camera model's distortion in the global bundle adjustments (on by "
-                 "default without a calibration)",
-                 &o->refine_distortion);
-  parser.AddFlag("fixed-intrinsics",
-                 "without a calibration, keep the default camera fixed instead of refining its "
-                 "focal length and distortion",
-                 &o->camera.fixed_intrinsics);
-  apps::AddCameraModelFlag(parser, &o->camera.camera_model);
-  parser.AddFlag("ignore-gt-intrinsics",
-                 "use --gt for evaluation only, not as the camera's intrinsics (self-calibration "
-                 "measured against the truth)",
-                 &o->camera.ignore_gt_intrinsics);
-  parser.AddOption("local-ba-images", "N", "images in each local bundle adjustment",
-                   &o->local_ba_images);
-  parser.AddOption("global-ba-growth", "R",
-                   "adjust the whole model whenever it has grown by this factor (and at the end)",
-                   &o->global_ba_growth);
-  parser.AddOption("global-ba-max-images", "N",
-                   "long video: those adjustments hold only the N newest (key)frames variable, "
-                   "the older ones seeing their points constant, and the final one adjusts the "
-                   "model in overlapping windows of N (0: every frame, one adjustment)",
-                   &o->global_ba_max_images);
-  parser.AddOption("init-angle", "DEG",
-                   "initial pair: a point's triangulation angle that counts fully towards the "
-                   "pair's parallax score",
-                   &o->init_angle);
-  parser.AddOption("init-max-gap", "N",
-                   "initial pair: frames at most this far apart (0: no limit, the gap grows as "
-                   "far as the tracks reach)",
-                   &o->init_max_gap);
-  parser.AddFlag("keyframes",
-                 "long or dense video: only keyframes (a frame where the view has changed enough "
-                 "since the last one) add points and enter bundle adjustments; the other frames "
-                 "are posed against the map, so every frame keeps a pose (report.json "
-                 "'keyframes' lists them and why)",
-                 &o->keyframes);
-  parser.AddFlag("loop-closure",
-                 "video that returns to where it has been: revisited places are found by "
-                 "appearance among the keyframes, verified by their 3-D points and closed (a "
-                 "Sim(3) pose graph, then the final adjustment) if it moves the camera by at "
-                 "most 10 % of the path between its two ends (a larger move is taken for a "
-                 "look-alike place); report.json 'loop_closure' lists the loops closed and "
-                 "rejected",
-                 &o->loop_closure);
-  parser.AddOption("loop-closure-max-move", "F",
-                   "with --loop-closure: the largest move a loop may ask of the camera, as a "
-                   "fraction of the path between its two ends (larger: drift that large is "
-                   "corrected, but a look-alike place is more likely taken for a revisit)",
-                   &o->loop_closure_max_move);
-  parser.AddOption("max-working-size", "N",
-                   "track and map frames whose larger side exceeds N pixels at N, and write the "
-                   "models in the input's pixels (0: the input's size; --resize-height decides "
-                   "when given)",
-                   &o->max_working_size);
-  parser.AddOption("min-registered", "F",
-                   "exit 1 unless the largest model holds at least this fraction of the frames "
-                   "(every model is written either way; 'success' needs 0.95)",
-                   &o->min_registered);
   apps::AddThreadsFlag(parser, &o->threads);
-  parser.AddOption("cache", "DIR",
-                   "detections and tracks are kept in DIR and reused by a re-run with the same "
-                   "frames, detector and tracker options (other mapper options reuse them; not "
-                   "inside FRAMES or --output)",
-                   &o->cache);
   apps::AddObjectRegionFlags(parser, &c->region);
   parser.AddFlag("mask-keeps-nonzero",
                  "--masks in COLMAP's convention (ImageReader.mask_path): features are removed "
                  "where a mask is zero; by default (DAVIS annotations) where it is non-zero",
                  &c->mask_keeps_nonzero);
-  parser.AddOption("plot-plane", "P",
-                   "trajectory plot plane: auto (x-z for KITTI, else the plane of largest "
-                   "spread), xz, xy or yz",
-                   &o->plot_plane);
   apps::AddQuietFlag(parser, &c->quiet);
   apps::AddColmapDbFlags(parser, &o->colmap);
   parser.AddOptionalValueOption(
@@ -184,21 +87,7 @@ void AddRunFlags(apps::ArgParser& parser, sfm::ReconstructionRunOptions* o, Comm
       "video input: write each frame once as DIR/frame_000000.png ..., the names the model and "
       "--colmap-db use, so that COLMAP's image tools find them (alone: images/ in --output)",
       sfm::kFramesInOutput, &o->write_frames);
-  parser.AddFlag("undistort",
-                 "also write the largest model's images undistorted with PINHOLE cameras in "
-                 "--output/dense/ (images/, sparse/, stereo/: the layout of COLMAP's "
-                 "image_undistorter, for colmap patch_match_stereo and other MVS tools)",
-                 &o->undistort);
-  parser.AddFlag("compare-colmap",
-                 "also run COLMAP's mapper on the same tracks and write the side-by-side table "
-                 "--output/colmap_compare.md (.csv, .json); COLMAP's files go to --output/colmap/",
-                 &o->compare_colmap);
-  parser.AddFlag("compare-colmap-sift",
-                 "also run COLMAP's own pipeline on the same frames with its defaults (SIFT, the "
-                 "sequential or exhaustive matcher as --matching chose, mapper; one thread unless "
-                 "--colmap-threads) and write the side-by-side table "
-                 "--output/colmap_sift_compare.md; COLMAP's files go to --output/colmap_sift/",
-                 &o->compare_colmap_sift);
+  AddTableFlags(parser, o);
 }
 
 // The flags that need the parser (which were given) or a conversion, into the options.

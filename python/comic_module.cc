@@ -20,6 +20,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "frontend/detector_factory.h"
@@ -45,6 +46,7 @@
 #include "sfm/run/colmap_export_run.h"
 #include "sfm/run/reconstruction_run.h"
 #include "sfm/run/run_messages.h"
+#include "sfm/run/run_option_table.h"
 #include "sfm/run/run_outputs.h"
 
 namespace py = pybind11;
@@ -818,53 +820,32 @@ Setter WriteFrames(std::string* field, const char* implicit) {
   };
 }
 
-// comic_sfm's options by their flags' names (apps/comic_sfm.cc), into the run's options.
+// comic_sfm's options by their flags' names (apps/comic_sfm.cc and sfm/run/run_option_table.h),
+// into the run's options.
 OptionTable ReconstructOptionTable(sfm::ReconstructionRunOptions* o, bool* quiet) {
   OptionTable table = {{"detector", Field(&o->detector)},
                        {"scale_levels", Field(&o->detector_options.scale_space.num_levels)},
-                       {"compare", Field(&o->compare)},
                        {"detectors", Field(&o->detectors)},
                        {"intrinsics", Field(&o->camera.intrinsics)},
                        {"camera_model", Field(&o->camera.camera_model)},
-                       {"fixed_intrinsics", Field(&o->camera.fixed_intrinsics)},
-                       {"ignore_gt_intrinsics", Field(&o->camera.ignore_gt_intrinsics)},
-                       {"gt", Field(&o->gt)},
-                       {"gt_format", Field(&o->gt_format)},
-                       {"gt_partial", Field(&o->gt_partial)},
                        {"allow_truncated", Field(&o->sequence.allow_truncated)},
                        {"matching", Field(&o->matching)},
                        {"matcher", Field(&o->matcher)},
-                       {"refine_focal", Field(&o->refine_focal)},
-                       {"refine_principal_point", Field(&o->refine_principal_point)},
-                       {"refine_distortion", Field(&o->refine_distortion)},
-                       {"no_retriangulate", Field(&o->no_retriangulate)},
-                       {"no_planar_pose_choice", Field(&o->no_planar_pose_choice)},
-                       {"two_view_tracks", Field(&o->two_view_tracks)},
-                       {"local_ba_images", Field(&o->local_ba_images)},
-                       {"global_ba_growth", Field(&o->global_ba_growth)},
-                       {"global_ba_max_images", Field(&o->global_ba_max_images)},
-                       {"init_angle", Field(&o->init_angle)},
-                       {"init_max_gap", Field(&o->init_max_gap)},
-                       {"keyframes", Field(&o->keyframes)},
-                       {"loop_closure", Field(&o->loop_closure)},
-                       {"loop_closure_max_move", Field(&o->loop_closure_max_move)},
-                       {"max_working_size", Field(&o->max_working_size)},
-                       {"min_registered", Field(&o->min_registered)},
                        {"threads", Field(&o->threads)},
-                       {"cache", Field(&o->cache)},
                        {"masks", Field(&o->masks)},
                        {"mask_keeps_nonzero", Negated(&o->mask_drops_nonzero)},
                        {"regions", Field(&o->regions)},
                        {"boundary_band", Field(&o->boundary_band)},
-                       {"plot_plane", Field(&o->plot_plane)},
                        {"output", Field(&o->output)},
-                       {"model_format", Field(&o->model_format)},
-                       {"ply_format", Field(&o->ply_format)},
-                       {"compare_colmap", Field(&o->compare_colmap)},
-                       {"compare_colmap_sift", Field(&o->compare_colmap_sift)},
-                       {"undistort", Field(&o->undistort)},
                        {"write_frames", WriteFrames(&o->write_frames, sfm::kFramesInOutput)},
                        {"quiet", Field(quiet)}};
+  // The plain options: a keyword per entry of the library's table, typed as its field. A keyword
+  // also set up by hand above would leave one of the two setters unused.
+  for (const sfm::RunOption& entry : sfm::RunOptionTable()) {
+    Setter setter = std::visit([o](auto field) { return Field(&field(*o)); }, entry.field);
+    const bool added = table.emplace(entry.keyword, std::move(setter)).second;
+    COMIC_CHECK(added, kInvalidArgument, "reconstruct: two setters for '" << entry.keyword << "'");
+  }
   AddRunSequenceOptions(&o->sequence, &table);
   AddRunTrackerSettings(&o->tracker, &table);
   AddColmapDatabaseOptions(&o->colmap, &table);
@@ -1105,6 +1086,22 @@ PYBIND11_MODULE(_core, m) {
     std::vector<std::string> names;
     for (const auto& entry : ReconstructOptionTable(&options, &quiet)) names.push_back(entry.first);
     return names;
+  });
+  // The library's table of plain run options (sfm/run/run_option_table.h), for the docstring of
+  // reconstruct() and the tests that every entry is a flag and a keyword.
+  m.def("run_option_table", [] {
+    py::list entries;
+    comic::sfm::ReconstructionRunOptions defaults;
+    for (const comic::sfm::RunOption& entry : comic::sfm::RunOptionTable()) {
+      py::dict d;
+      d["flag"] = entry.flag;
+      d["keyword"] = entry.keyword;
+      d["metavar"] = entry.metavar;
+      d["help"] = entry.help;
+      d["default"] = std::visit([&](auto field) { return py::cast(field(defaults)); }, entry.field);
+      entries.append(d);
+    }
+    return entries;
   });
   m.def("export_colmap_option_names", [] {
     comic::sfm::ColmapExportRunOptions options;

@@ -25,6 +25,7 @@ sfm/run/): the same options give the same files, byte for byte.
 
 import json as _json
 import os as _os
+import textwrap as _textwrap
 
 import numpy as _np
 
@@ -439,28 +440,24 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
 
     `options` are comic_sfm's long flags with underscores (comic.RECONSTRUCT_OPTIONS; `comic_sfm
     --help` gives every meaning and default). A flag without a value is a bool (compare=True).
-      detectors:  detector (default "harris"; "comic", "comic+hessian", ...), compare, detectors
+    The plain ones, each setting one field, are listed with their meanings and defaults at the
+    end (the library's table, sfm/run/run_option_table.h); the others:
+      detectors:  detector (default "harris"; "comic", "comic+hessian", ...), detectors
                   (comma-separated or a list); detector_options: the one detector's own settings
-                  (e.g. {"scale": 8.4} for comic; not with compare).
+                  (e.g. {"scale": 8.4} for comic; not with compare), scale_levels.
       camera:     intrinsics (fx fy cx cy [k1 k2 p1 p2], 3x3 K, 3x4 P such as KITTI's calib.txt,
-                  OpenCV .yml/.xml, COLMAP cameras.txt), camera_model, fixed_intrinsics,
-                  refine_focal, refine_principal_point, refine_distortion, ignore_gt_intrinsics.
-      truth:      gt (KITTI poses.txt, Middlebury *_par.txt, Strecha folder, TUM, EuRoC), gt_format,
-                  gt_partial, masks (non-zero mask pixels remove features), mask_keeps_nonzero
-                  (True: zero ones do, COLMAP's convention), regions, boundary_band.
+                  OpenCV .yml/.xml, COLMAP cameras.txt), camera_model.
+      truth:      masks (non-zero mask pixels remove features), mask_keeps_nonzero (True: zero
+                  ones do, COLMAP's convention), regions, boundary_band.
       frames:     resize_height, first, last, stride, max_pixels, allow_truncated.
       tracking:   matching ("auto", "sequential", "exhaustive", "window:K"), matcher
                   ("patches", "descriptors", "auto"), max_features,
                   search_radius, unpredicted_radius, prediction, coarse_radius, match_window,
                   track_conflicts, verify_min_gap, match_turned, max_cost, threads.
-      mapping:    no_retriangulate, no_planar_pose_choice, two_view_tracks, local_ba_images,
-                  global_ba_growth, global_ba_max_images, init_angle, init_max_gap, keyframes,
-                  loop_closure, loop_closure_max_move.
       outputs:    output (a folder: written as comic_sfm writes it, all or nothing; default None:
-                  nothing written, unlike comic_sfm's out/sfm), model_format, ply_format,
-                  plot_plane, colmap_db, overwrite, window, max_error, min_inliers,
-                  colmap_threads, compare_colmap, write_frames (True: images/ in output, or a
-                  folder), undistort (dense/ for MVS: undistorted images, PINHOLE model).
+                  nothing written, unlike comic_sfm's out/sfm), colmap_db, overwrite, window,
+                  max_error, min_inliers, colmap_threads, write_frames (True: images/ in output,
+                  or a folder).
       quiet:      default True (a library call is silent); False prints comic_sfm's lines.
 
     `callback(event)` is called after each registered frame with a dict (detector, frame,
@@ -468,10 +465,10 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
 
     Returns a Reconstructions: every model (the largest first, in the input's pixels), which is
     also a Reconstruction, the largest model; its write(folder) writes what comic_sfm writes. With
-    compare=True a dict {detector: Reconstructions} in the order run. A sequence that cannot be reconstructed is not an exception: its Reconstruction has
-    status != "success", no model, its report (with the diagnosis) and `failure`, comic_sfm's
-    error line. Bad options raise ValueError (TypeError for a wrong type) with comic_sfm's
-    message; unreadable input raises RuntimeError.
+    compare=True a dict {detector: Reconstructions} in the order run. A sequence that cannot be
+    reconstructed is not an exception: its Reconstruction has status != "success", no model, its
+    report (with the diagnosis) and `failure`, comic_sfm's error line. Bad options raise ValueError
+    (TypeError for a wrong type) with comic_sfm's message; unreadable input raises RuntimeError.
     """
     result = _call(
         "reconstruct",
@@ -488,6 +485,22 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
     if options.get("compare", False):
         return {run.report["detector"]: run for run in runs}
     return runs[0]
+
+
+def _run_option_doc():
+    """The plain options of reconstruct(), from the library's table: one paragraph each."""
+    lines = ["", "    The plain options (the library's table; the default in brackets):"]
+    for entry in _core.run_option_table():
+        text = "%s [%r]: %s." % (entry["keyword"], entry["default"], entry["help"])
+        lines += _textwrap.wrap(
+            text, width=100, initial_indent="      ", subsequent_indent="          "
+        )
+    return "\n".join(lines) + "\n"
+
+
+# Without docstrings (python -OO) there is nothing to add to.
+if reconstruct.__doc__:
+    reconstruct.__doc__ = reconstruct.__doc__.rstrip() + "\n" + _run_option_doc()
 
 
 def export_colmap(frames, colmap_db, *, detector_options=None, **options):

@@ -1,8 +1,11 @@
 #include "sfm/run/run_report.h"
 
+#include <variant>
+
 #include "frontend/matching/pairing.h"
 #include "io/core/content_hash.h"
 #include "sfm/focal_observability.h"
+#include "sfm/run/run_option_table.h"
 #include "sfm/run/run_outputs.h"
 #include "sfm/working_resolution.h"
 
@@ -109,67 +112,63 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
   const io::ImageSequenceOptions& sequence = options.sequence;
   // An image set matched by descriptors: no frame order for the mapper to use.
   const bool unordered = inputs.image_set.has_value() && !frontend::IsVideo(inputs.pairing);
-  return {{"frames", options.frames},
-          {"first", sequence.first_frame},
-          {"last", sequence.last_frame},
-          {"stride", sequence.stride},
-          {"resize_height", sequence.resize_height},
-          {"frame_size", {inputs.sequence->FrameSize().width, inputs.sequence->FrameSize().height}},
-          {"intrinsics",
-           {{"source", inputs.camera.source},
-            {"model", CameraModelName(c.model)},
-            {"params", c.Params()},
-            {"fx", c.fx},
-            {"fy", c.fy},
-            {"cx", c.cx},
-            {"cy", c.cy},
-            {"pixel_convention", "OpenCV (top-left pixel centre at 0,0)"}}},
-          {"gt", options.gt.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.gt)},
-          {"gt_format", io::GroundTruthFormatName(inputs.gt_format)},
-          {"max_features", tracker.max_features},
-          {"scale_levels", options.detector_options.scale_space.num_levels},
-          {"search_radius_px", tracker.matcher.radius},
-          {"unpredicted_radius_px", tracker.unpredicted_radius},
-          {"matching", PairingToJson(inputs.pairing)},
-          {"matcher", inputs.image_set ? "descriptors" : "patches"},
-          {"prediction", frontend::MotionPredictionName(tracker.prediction)},
-          {"coarse_radius_px", tracker.coarse_radius},
-          {"match_window", tracker.match_window},
-          {"track_conflicts", options.tracker.TrackConflictsName()},
-          {"verify_min_gap", tracker.verify_min_gap},
-          {"match_turned", tracker.match_turned_180},
-          {"max_cost", tracker.matcher.max_cost},
-          {"min_window_eigenvalue", tracker.min_window_eigenvalue},
-          {"align_patches", tracker.align_patches},
-          {"continuation", ContinuationToJson(tracker.continuation)},
-          {"refine_focal", options.refine_focal},
-          {"refine_principal_point", options.refine_principal_point},
-          {"refine_distortion", options.refine_distortion},
-          {"fixed_intrinsics", options.camera.fixed_intrinsics},
-          {"ignore_gt_intrinsics", options.camera.ignore_gt_intrinsics},
-          {"camera_model", options.camera.camera_model},
-          {"retriangulate", !options.no_retriangulate},
-          {"planar_pose_choice", !options.no_planar_pose_choice},
-          {"two_view_tracks", options.two_view_tracks || tracker.match_window > 1 || unordered},
-          {"local_ba_images", options.local_ba_images},
-          {"global_ba_growth", options.global_ba_growth},
-          {"global_ba_max_images", options.global_ba_max_images},
-          {"init_angle_deg", options.init_angle},
-          {"keyframes", options.keyframes && !unordered},
-          {"loop_closure", options.loop_closure && !unordered},
-          {"loop_closure_max_move", options.loop_closure_max_move},
-          {"init_max_gap", unordered ? nlohmann::json("all frames (image set)")
-                                     : nlohmann::json(options.init_max_gap)},
-          {"max_working_size", options.max_working_size},
-          {"input_size",
-           {inputs.sequence->SourceFrameSize().width, inputs.sequence->SourceFrameSize().height}},
-          {"min_registered", options.min_registered},
-          {"threads", options.threads},
-          {"cache", options.cache},
-          {"regions", options.regions},
-          {"masks", options.masks},
-          {"mask_drops_nonzero", options.mask_drops_nonzero},
-          {"boundary_band_px", options.boundary_band}};
+  nlohmann::json json = {
+      {"frames", options.frames},
+      {"first", sequence.first_frame},
+      {"last", sequence.last_frame},
+      {"stride", sequence.stride},
+      {"resize_height", sequence.resize_height},
+      {"frame_size", {inputs.sequence->FrameSize().width, inputs.sequence->FrameSize().height}},
+      {"intrinsics",
+       {{"source", inputs.camera.source},
+        {"model", CameraModelName(c.model)},
+        {"params", c.Params()},
+        {"fx", c.fx},
+        {"fy", c.fy},
+        {"cx", c.cx},
+        {"cy", c.cy},
+        {"pixel_convention", "OpenCV (top-left pixel centre at 0,0)"}}},
+      {"gt", options.gt.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.gt)},
+      {"gt_format", io::GroundTruthFormatName(inputs.gt_format)},
+      {"max_features", tracker.max_features},
+      {"scale_levels", options.detector_options.scale_space.num_levels},
+      {"search_radius_px", tracker.matcher.radius},
+      {"unpredicted_radius_px", tracker.unpredicted_radius},
+      {"matching", PairingToJson(inputs.pairing)},
+      {"matcher", inputs.image_set ? "descriptors" : "patches"},
+      {"prediction", frontend::MotionPredictionName(tracker.prediction)},
+      {"coarse_radius_px", tracker.coarse_radius},
+      {"match_window", tracker.match_window},
+      {"track_conflicts", options.tracker.TrackConflictsName()},
+      {"verify_min_gap", tracker.verify_min_gap},
+      {"match_turned", tracker.match_turned_180},
+      {"max_cost", tracker.matcher.max_cost},
+      {"min_window_eigenvalue", tracker.min_window_eigenvalue},
+      {"align_patches", tracker.align_patches},
+      {"continuation", ContinuationToJson(tracker.continuation)},
+      {"camera_model", options.camera.camera_model},
+      {"retriangulate", !options.no_retriangulate},
+      {"planar_pose_choice", !options.no_planar_pose_choice},
+      {"two_view_tracks", options.two_view_tracks || tracker.match_window > 1 || unordered},
+      {"init_angle_deg", options.init_angle},
+      {"keyframes", options.keyframes && !unordered},
+      {"loop_closure", options.loop_closure && !unordered},
+      {"init_max_gap",
+       unordered ? nlohmann::json("all frames (image set)") : nlohmann::json(options.init_max_gap)},
+      {"input_size",
+       {inputs.sequence->SourceFrameSize().width, inputs.sequence->SourceFrameSize().height}},
+      {"threads", options.threads},
+      {"regions", options.regions},
+      {"masks", options.masks},
+      {"mask_drops_nonzero", options.mask_drops_nonzero},
+      {"boundary_band_px", options.boundary_band}};
+  // The table's options reported as given, under their keywords.
+  ReconstructionRunOptions given = options;
+  for (const RunOption& entry : RunOptionTable()) {
+    if (!entry.reported_as_given) continue;
+    std::visit([&](auto field) { json[entry.keyword] = field(given); }, entry.field);
+  }
+  return json;
 }
 
 nlohmann::json DetectorReportJson(const DetectorRun& run, const ReconstructionRunOptions& options,
