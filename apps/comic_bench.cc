@@ -338,7 +338,10 @@ void PrintMatcherTimes(const cv::Mat& gray, const cv::Mat& gray2, int count, int
             << table.ToMarkdown();
 }
 
-int Run(int argc, char** argv) {
+// The command line, bound to the parser by AddFlags; Check() validates it and fills the lists.
+struct Flags {
+  void Check();
+
   std::string input = "../shared/data/middlebury2003_cones/im2.png";
   std::string json_path;
   int resize_height = 700;
@@ -350,29 +353,25 @@ int Run(int argc, char** argv) {
   std::string match_pair;
   int match_features = 2000;
   bool match_only = false;
-  comic::apps::ArgParser parser(
-      "comic_bench", "[IMAGE] [options]",
-      "Times CoMIC (the default direct search, 1 thread and N threads), OpenCV MSER (delta 5),\n"
-      "FAST-9, GFTT-Harris and CoMIC-paper (Algorithm 1, 1 thread) on IMAGE resized to\n"
-      "--resize-height, each run --runs times after one warm-up run, and prints the median\n"
-      "milliseconds per frame and the ratios CoMIC (1 thread) / MSER and CoMIC-paper / MSER,\n"
-      "then each CoMIC's one-thread time by stage. --threads sets the worker count of the\n"
-      "second CoMIC run (and of --perturbations); OpenCV's own thread pool is left as\n"
-      "configured (cv::getNumThreads() is reported).");
+  std::vector<int> counts;                          // parsed from counts_list
+  std::vector<std::string> perturbation_detectors;  // parsed from detector_list
+};
+
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
   parser.AddPositional("IMAGE",
                        "a real frame [default: ../shared/data/middlebury2003_cones/im2.png]",
-                       &input, /*required=*/false);
-  comic::apps::AddResizeHeightFlag(parser, &resize_height);
-  parser.AddOption("runs", "N", "timed runs per detector (the median is reported)", &runs);
-  comic::apps::AddThreadsFlag(parser, &threads);
-  comic::apps::AddJsonFlag(parser, &json_path);
+                       &flags.input, /*required=*/false);
+  comic::apps::AddResizeHeightFlag(parser, &flags.resize_height);
+  parser.AddOption("runs", "N", "timed runs per detector (the median is reported)", &flags.runs);
+  comic::apps::AddThreadsFlag(parser, &flags.threads);
+  comic::apps::AddJsonFlag(parser, &flags.json_path);
   parser.AddFlag(
       "perturbations",
       "also report, for comic, comic-paper, Harris, Hessian and FAST (or --detectors)\n"
       "                              at CoMIC's count (or --keep), the\n"
       "                              share of features found again within 1 px after noise\n"
       "                              of 1 grey level and after a 0.5 px shift",
-      &perturbations);
+      &flags.perturbations);
   // Not --count: comic_track_eval's --count is a target count on the object in frame 0, and one
   // option name has one meaning across the apps (tests/apps/option_vocabulary_test.cc).
   parser.AddOption(
@@ -380,17 +379,19 @@ int Run(int argc, char** argv) {
       "with --perturbations: cut every detector to its N strongest features, one\n"
       "                              table per N of the comma-separated LIST (default: "
       "CoMIC's count)",
-      &counts_list);
-  comic::apps::AddDetectorListFlag(parser, &detector_list);
+      &flags.counts_list);
+  comic::apps::AddDetectorListFlag(parser, &flags.detector_list);
   parser.AddOption("match-pair", "IMAGE2",
                    "also time the patch matcher between IMAGE and IMAGE2 (same size) for every "
                    "cost",
-                   &match_pair);
+                   &flags.match_pair);
   parser.AddOption("match-features", "N", "features per frame for --match-pair (strongest N)",
-                   &match_features);
+                   &flags.match_features);
   parser.AddFlag("match-only", "with --match-pair: time only the patch matcher, not the detectors",
-                 &match_only);
-  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+                 &flags.match_only);
+}
+
+void Flags::Check() {
   COMIC_CHECK(match_features >= 1, kInvalidArgument, "--match-features must be >= 1");
   COMIC_CHECK(match_pair.empty() || comic::io::PathExists(match_pair), kNotFound,
               match_pair << ": no such file (--match-pair)");
@@ -401,7 +402,6 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(comic::io::PathExists(input), kNotFound,
               input << ": no such file (pass a real frame as IMAGE, e.g. "
                        "../shared/data/middlebury2003_cones/im2.png)");
-  std::vector<int> counts;
   {
     std::stringstream stream(counts_list);
     std::string item;
@@ -419,31 +419,32 @@ int Run(int argc, char** argv) {
   comic::io::CheckOutputsAvoidInputs({{"--json", json_path}},
                                      {{"IMAGE", input}, {"--match-pair", match_pair}});
   // --detectors: the detectors of the --perturbations tables (comic's losses need comic).
-  const std::vector<std::string> perturbation_detectors =
+  perturbation_detectors =
       detector_list.empty()
           ? std::vector<std::string>{"comic", "comic-paper", "harris", "hessian", "fast"}
           : comic::frontend::ParseDetectorList(detector_list);
   COMIC_CHECK(detector_list.empty() || perturbations, kInvalidArgument,
               "--detectors needs --perturbations");
   if (!json_path.empty()) comic::io::CheckWritableFile(json_path);
+}
 
-  const cv::Mat gray = comic::io::LoadImage(input, resize_height).gray;
-  cv::Mat gray2;
-  if (!match_pair.empty()) {
-    gray2 = comic::io::LoadImage(match_pair, resize_height).gray;
-    COMIC_CHECK(gray2.size() == gray.size(), kInvalidArgument,
-                match_pair << " is " << gray2.cols << "x" << gray2.rows << ", " << input << " is "
-                           << gray.cols << "x" << gray.rows << " (--match-pair needs equal sizes)");
-  }
-  if (match_only) {
-    std::cout << "image: " << input << " (" << gray.cols << "x" << gray.rows << ")\n";
-    PrintMatcherTimes(gray, gray2, match_features, runs);
-    return 0;
-  }
-  const int many = comic::frontend::ResolveNumThreads(threads, 1 << 20);
-  std::cout << "image: " << input << " (" << gray.cols << "x" << gray.rows << "), " << runs
-            << " runs per detector, OpenCV threads: " << cv::getNumThreads() << "\n\n";
+// One detector's timing, as a row of the table.
+struct Entry {
+  std::string name;
+  int threads;
+  Timing timing;
+};
 
+// The one-thread CoMIC runs' stage times, kept apart for the per-stage medians.
+struct StageTimes {
+  std::vector<comic::frontend::ComicDirectDetectionStats> direct;
+  std::vector<comic::frontend::ComicDetectionStats> paper;
+};
+
+// Times every detector on the image; the rows are in the order the ratios below index them.
+std::vector<Entry> TimeDetectors(const cv::Mat& gray, int runs, int many, StageTimes& times) {
+  std::vector<comic::frontend::ComicDirectDetectionStats>& stages = times.direct;
+  std::vector<comic::frontend::ComicDetectionStats>& paper_stages = times.paper;
   // "comic": the direct search (the default detector); "comic-paper": Algorithm 1.
   comic::frontend::ComicDirectDetectorOptions one_thread;
   one_thread.num_threads = 1;
@@ -461,14 +462,7 @@ int Run(int argc, char** argv) {
       cv::GFTTDetector::create(/*maxCorners=*/100000, /*qualityLevel=*/0.001,
                                /*minDistance=*/1, /*blockSize=*/3, /*useHarrisDetector=*/true);
 
-  struct Entry {
-    std::string name;
-    int threads;
-    Timing timing;
-  };
   std::vector<Entry> entries;
-  std::vector<comic::frontend::ComicDirectDetectionStats> stages;  // of the 1-thread runs
-  std::vector<comic::frontend::ComicDetectionStats> paper_stages;
   entries.push_back({"CoMIC", 1, Time(runs, [&] {
                        comic::frontend::ComicDirectDetectionStats stats;
                        const size_t count = comic_1.Detect(gray, &stats).size();
@@ -498,7 +492,11 @@ int Run(int argc, char** argv) {
                        paper_stages.push_back(stats);
                        return count;
                      })});
+  return entries;
+}
 
+// Prints the timing table and the CoMIC / MSER ratios; returns the table for --json.
+comic::io::ReportTable PrintTimes(const std::vector<Entry>& entries, int many) {
   comic::io::ReportTable table(
       {"detector", "threads", "median ms", "min ms", "median CPU ms", "features"});
   table.SetPrecision("median ms", 1);
@@ -519,6 +517,13 @@ int Run(int argc, char** argv) {
             << entries[0].timing.median_cpu_ms / entries[2].timing.median_cpu_ms << "\n";
   std::cout << "CoMIC-paper / MSER (median, 1 thread): " << entries[5].timing.median_ms / mser_ms
             << "\n";
+  return table;
+}
+
+// Prints each CoMIC's one-thread time by stage, against MSER's median.
+void PrintStageTimes(StageTimes& times, double mser_ms) {
+  std::vector<comic::frontend::ComicDirectDetectionStats>& stages = times.direct;
+  std::vector<comic::frontend::ComicDetectionStats>& paper_stages = times.paper;
   // Where each one-thread time goes: medians of each stage over the timed runs (the warm-up
   // run, first, left out).
   stages.erase(stages.begin());
@@ -548,14 +553,56 @@ int Run(int argc, char** argv) {
             << paper_counts.num_seeds << " seeds, " << paper_counts.num_iterations
             << " iterations, " << paper_counts.num_settled << " settled), side masks and output "
             << median_of(paper_stages, &PaperStats::output_ms) << " ms\n";
-  if (!json_path.empty()) {
-    comic::io::WriteFileAtomically(json_path, comic::io::JsonText(table.ToJson(), 1));
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_bench", "[IMAGE] [options]",
+      "Times CoMIC (the default direct search, 1 thread and N threads), OpenCV MSER (delta 5),\n"
+      "FAST-9, GFTT-Harris and CoMIC-paper (Algorithm 1, 1 thread) on IMAGE resized to\n"
+      "--resize-height, each run --runs times after one warm-up run, and prints the median\n"
+      "milliseconds per frame and the ratios CoMIC (1 thread) / MSER and CoMIC-paper / MSER,\n"
+      "then each CoMIC's one-thread time by stage. --threads sets the worker count of the\n"
+      "second CoMIC run (and of --perturbations); OpenCV's own thread pool is left as\n"
+      "configured (cv::getNumThreads() is reported).");
+  AddFlags(parser, flags);
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  flags.Check();
+
+  const cv::Mat gray = comic::io::LoadImage(flags.input, flags.resize_height).gray;
+  cv::Mat gray2;
+  if (!flags.match_pair.empty()) {
+    gray2 = comic::io::LoadImage(flags.match_pair, flags.resize_height).gray;
+    COMIC_CHECK(gray2.size() == gray.size(), kInvalidArgument,
+                flags.match_pair << " is " << gray2.cols << "x" << gray2.rows << ", " << flags.input
+                                 << " is " << gray.cols << "x" << gray.rows
+                                 << " (--match-pair needs equal sizes)");
   }
-  if (perturbations) {
-    if (counts.empty()) counts.push_back(0);
-    for (int count : counts) PrintPerturbations(gray, many, count, perturbation_detectors);
+  if (flags.match_only) {
+    std::cout << "image: " << flags.input << " (" << gray.cols << "x" << gray.rows << ")\n";
+    PrintMatcherTimes(gray, gray2, flags.match_features, flags.runs);
+    return 0;
   }
-  if (!gray2.empty()) PrintMatcherTimes(gray, gray2, match_features, runs);
+  const int many = comic::frontend::ResolveNumThreads(flags.threads, 1 << 20);
+  std::cout << "image: " << flags.input << " (" << gray.cols << "x" << gray.rows << "), "
+            << flags.runs << " runs per detector, OpenCV threads: " << cv::getNumThreads()
+            << "\n\n";
+
+  StageTimes times;
+  const std::vector<Entry> entries = TimeDetectors(gray, flags.runs, many, times);
+  const comic::io::ReportTable table = PrintTimes(entries, many);
+  PrintStageTimes(times, entries[2].timing.median_ms);
+  if (!flags.json_path.empty()) {
+    comic::io::WriteFileAtomically(flags.json_path, comic::io::JsonText(table.ToJson(), 1));
+  }
+  if (flags.perturbations) {
+    if (flags.counts.empty()) flags.counts.push_back(0);
+    for (int count : flags.counts) {
+      PrintPerturbations(gray, many, count, flags.perturbation_detectors);
+    }
+  }
+  if (!gray2.empty()) PrintMatcherTimes(gray, gray2, flags.match_features, flags.runs);
   return 0;
 }
 

@@ -97,7 +97,13 @@ nlohmann::json FeatureToJson(const Feature& f) {
           {"side_mask", mask}};
 }
 
-int Run(int argc, char** argv) {
+// The command line, bound to the parser by AddFlags; Check() validates it and completes both
+// searches' options.
+struct Flags {
+  // All cores: the output does not depend on the thread count.
+  Flags() { options.num_threads = 0; }
+  void Check();
+
   std::string input;
   std::string overlay_path;
   std::string json_path;
@@ -107,81 +113,79 @@ int Run(int argc, char** argv) {
   bool no_neighbour_seeds = false;
   bool every_path = false;
   std::string detector_name = "comic";
+  int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   // Options shared by both searches are parsed into `options` (Algorithm 1's) and copied to
   // `direct`; the others belong to one search only.
-  int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::frontend::ComicDetectorOptions options;
-  options.num_threads = 0;  // all cores: the output does not depend on the thread count
   comic::frontend::ComicDirectDetectorOptions direct;
-  comic::apps::ArgParser parser(
-      "comic_detect", "IMAGE [--overlay overlay.png] [--json features.json] [options]",
-      "Detects CoMIC features (Corners on Maximally-stable Iso-intensity Curves, Ravindran &\n"
-      "Mittal) in IMAGE (colour and 16-bit images are converted to 8-bit grey), draws them with\n"
-      "their maximally stable iso-curve segments, and writes them as JSON. Prints a summary.");
-  parser.AddPositional("IMAGE", "input image (any format OpenCV reads)", &input);
+  bool paper = false;  // --detector comic-paper
+};
+
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
+  parser.AddPositional("IMAGE", "input image (any format OpenCV reads)", &flags.input);
   parser.AddOption("overlay", "PNG", "write an overlay: features and their MSICS on the image",
-                   &overlay_path);
+                   &flags.overlay_path);
   parser.AddDeprecatedAlias("out", "overlay");
-  comic::apps::AddJsonFlag(parser, &json_path);
-  comic::apps::AddResizeHeightFlag(parser, &resize_height);
+  comic::apps::AddJsonFlag(parser, &flags.json_path);
+  comic::apps::AddResizeHeightFlag(parser, &flags.resize_height);
   // The shared --detector flag; comic_detect runs the two CoMIC searches only: comic (the direct
   // search of the paper's definition) or comic-paper (Algorithm 1).
-  comic::apps::AddDetectorFlag(parser, &detector_name);
+  comic::apps::AddDetectorFlag(parser, &flags.detector_name);
   parser.AddOption("scale", "S", "detection scale s in px (paper: 8.4; initialisation at 2s)",
-                   &options.scale);
+                   &flags.options.scale);
   parser.AddOption("block-size", "B",
                    "comic-paper: block size B in px (paper: 100): B x B initialisation blocks, B/2 "
                    "convergence blocks",
-                   &options.block_size);
+                   &flags.options.block_size);
   parser.AddOption("delta", "D", "intensity offset delta of the Up/Down iso-curves, grey levels",
-                   &options.delta);
+                   &flags.options.delta);
   parser.AddOption("half-length", "K", "points on either side of the corner in a segment, k",
-                   &options.half_length);
+                   &flags.options.half_length);
   parser.AddOption("max-iterations", "N",
                    "comic-paper: feature-convergence iterations before a corner is dropped",
-                   &options.max_iterations);
+                   &flags.options.max_iterations);
   parser.AddOption("convergence-tolerance", "PX",
                    "comic-paper: a corner has settled when it moves at most this",
-                   &options.convergence_tolerance);
+                   &flags.options.convergence_tolerance);
   parser.AddOption("stop-tolerance", "PX",
                    "comic-paper: convergence iterations stop once a corner moves at most this",
-                   &options.stop_tolerance);
+                   &flags.options.stop_tolerance);
   parser.AddOption("merge-radius", "PX", "features closer than this are merged (higher rho kept)",
-                   &options.merge_radius);
+                   &flags.options.merge_radius);
   parser.AddOption("min-stability", "RHO", "stability threshold on rho = len / dA, 1/px (0 = all)",
-                   &options.min_stability);
+                   &flags.options.min_stability);
   parser.AddOption("min-cornerness", "KAPPA", "cornerness threshold on kappa, in [0, 0.25]",
-                   &options.min_cornerness);
+                   &flags.options.min_cornerness);
   parser.AddFlag(
       "no-neighbour-seeds",
       "comic-paper: do not converge again from the other corners found on each MSICS (corners\n"
       "                              closer than the initialisation scale 2s may be missed)",
-      &no_neighbour_seeds);
+      &flags.no_neighbour_seeds);
   parser.AddFlag(
       "every-path",
       "comic-paper: converge every seed to the end (default: a seed that reaches another\n"
       "                              seed's state waits for that seed's outcome)",
-      &every_path);
+      &flags.every_path);
   parser.AddFlag(
       "full-resolution-init",
       "comic-paper: run the initialisation stage at full resolution (default: on the image\n"
       "                              halved, same physical scale, 4x fewer pixels)",
-      &full_resolution_init);
+      &flags.full_resolution_init);
   parser.AddOption("presmoothing-sigma", "PX",
                    "comic: Gaussian pre-smoothing of the image, px (0 = none)",
-                   &direct.presmoothing_sigma);
+                   &flags.direct.presmoothing_sigma);
   parser.AddOption("level-radius", "N",
                    "comic: levels traced on either side of each stable maximum of the tree",
-                   &direct.level_radius);
+                   &flags.direct.level_radius);
   parser.AddOption("link-radius", "PX",
                    "comic: corners of consecutive levels closer than this form one run",
-                   &direct.link_radius);
+                   &flags.direct.link_radius);
   parser.AddOption("consensus-fraction", "F",
                    "comic: run members with rho >= F x the peak's vote for the position",
-                   &direct.consensus_fraction);
-  comic::apps::AddThreadsFlag(parser, &options.num_threads);
-  comic::apps::AddMaxFeaturesFlag(parser, &max_features);
-  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
+                   &flags.direct.consensus_fraction);
+  comic::apps::AddThreadsFlag(parser, &flags.options.num_threads);
+  comic::apps::AddMaxFeaturesFlag(parser, &flags.max_features);
+  comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
   parser.AddEpilog(
       "Example:\n"
       "  comic_detect ../shared/data/middlebury2003_cones/im2.png --resize-height 700 \\\n"
@@ -192,7 +196,9 @@ int Run(int argc, char** argv) {
       "Overlay colours: red = corner pointing into the brighter side of its iso-curve, cyan = "
       "into\n"
       "the darker side; the line through each circle is its maximally stable iso-curve segment.\n");
-  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+}
+
+void Flags::Check() {
   comic::io::CheckResizeHeight(resize_height);
   comic::io::CheckMaxPixels(max_pixels);
   COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
@@ -209,7 +215,7 @@ int Run(int argc, char** argv) {
   direct.min_stability = options.min_stability;
   direct.min_cornerness = options.min_cornerness;
   direct.num_threads = options.num_threads;
-  const bool paper = detector_name == "comic-paper";
+  paper = detector_name == "comic-paper";
   // Both searches' options are checked whichever runs: a bad value is an error, not ignored.
   options.Check();
   if (!paper) direct.Check();
@@ -217,74 +223,108 @@ int Run(int argc, char** argv) {
   // Inputs are sacred: `--json img.png` must not replace the image (issue 29).
   comic::io::CheckOutputsAvoidInputs({{"--overlay", overlay_path}, {"--json", json_path}},
                                      {{"IMAGE", input}});
-  // Both outputs are checked now and renamed into place together at the end (all or nothing).
-  comic::io::StagedFiles outputs;
-  if (!overlay_path.empty()) outputs.Stage(overlay_path);
-  if (!overlay_path.empty()) comic::io::CheckImageOutputFormat(overlay_path, "--overlay");
-  if (!json_path.empty()) outputs.Stage(json_path);
+}
 
-  const comic::io::LoadedImage image = comic::io::LoadImage(input, resize_height, max_pixels);
-  std::unique_ptr<comic::frontend::Detector> detector;
-  if (paper) {
-    detector = std::make_unique<comic::frontend::ComicDetector>(options);
-  } else {
-    detector = std::make_unique<comic::frontend::ComicDirectDetector>(direct);
-  }
+// The options of the search that ran, as the JSON output records them.
+nlohmann::json OptionsToJson(const Flags& flags) {
+  const comic::frontend::ComicDetectorOptions& options = flags.options;
+  const comic::frontend::ComicDirectDetectorOptions& direct = flags.direct;
+  return flags.paper
+             ? nlohmann::json{{"scale", options.scale},
+                              {"block_size", options.block_size},
+                              {"delta", options.delta},
+                              {"half_length", options.half_length},
+                              {"max_iterations", options.max_iterations},
+                              {"convergence_tolerance", options.convergence_tolerance},
+                              {"stop_tolerance", options.stop_tolerance},
+                              {"seed_neighbouring_corners", options.seed_neighbouring_corners},
+                              {"skip_duplicate_paths", options.skip_duplicate_paths},
+                              {"merge_radius", options.merge_radius},
+                              {"min_stability", options.min_stability},
+                              {"min_cornerness", options.min_cornerness},
+                              {"coarse_initialisation", options.coarse_initialisation}}
+             : nlohmann::json{{"scale", direct.scale},
+                              {"delta", direct.delta},
+                              {"half_length", direct.half_length},
+                              {"min_cornerness", direct.min_cornerness},
+                              {"level_radius", direct.level_radius},
+                              {"link_radius", direct.link_radius},
+                              {"consensus_fraction", direct.consensus_fraction},
+                              {"presmoothing_sigma", direct.presmoothing_sigma},
+                              {"merge_radius", direct.merge_radius},
+                              {"min_stability", direct.min_stability}};
+}
+
+std::unique_ptr<comic::frontend::Detector> MakeDetector(const Flags& flags) {
+  if (flags.paper) return std::make_unique<comic::frontend::ComicDetector>(flags.options);
+  return std::make_unique<comic::frontend::ComicDirectDetector>(flags.direct);
+}
+
+// Detects, times and keeps the --max-features strongest.
+FeatureSet DetectStrongest(const comic::frontend::Detector& detector, const cv::Mat& gray,
+                           int max_features, double& ms) {
   const auto start = std::chrono::steady_clock::now();
-  FeatureSet features = detector->Detect(image.gray);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  FeatureSet features = detector.Detect(gray);
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (max_features > 0 && static_cast<int>(features.size()) > max_features) {
     features.resize(max_features);
   }
+  return features;
+}
+
+void WriteJson(const Flags& flags, const comic::io::LoadedImage& image,
+               const comic::frontend::Detector& detector, const FeatureSet& features,
+               comic::io::StagedFiles& outputs) {
+  nlohmann::json features_json = nlohmann::json::array();
+  for (const Feature& f : features) features_json.push_back(FeatureToJson(f));
+  const nlohmann::json root = {{"image", flags.input},
+                               {"width", image.gray.cols},
+                               {"height", image.gray.rows},
+                               {"detector", detector.Name()},
+                               {"options", OptionsToJson(flags)},
+                               {"features", features_json}};
+  outputs.WriteFile(flags.json_path, comic::io::JsonText(root, 1));
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_detect", "IMAGE [--overlay overlay.png] [--json features.json] [options]",
+      "Detects CoMIC features (Corners on Maximally-stable Iso-intensity Curves, Ravindran &\n"
+      "Mittal) in IMAGE (colour and 16-bit images are converted to 8-bit grey), draws them with\n"
+      "their maximally stable iso-curve segments, and writes them as JSON. Prints a summary.");
+  AddFlags(parser, flags);
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  flags.Check();
+
+  // Both outputs are checked now and renamed into place together at the end (all or nothing).
+  comic::io::StagedFiles outputs;
+  if (!flags.overlay_path.empty()) {
+    outputs.Stage(flags.overlay_path);
+    comic::io::CheckImageOutputFormat(flags.overlay_path, "--overlay");
+  }
+  if (!flags.json_path.empty()) outputs.Stage(flags.json_path);
+
+  const comic::io::LoadedImage image =
+      comic::io::LoadImage(flags.input, flags.resize_height, flags.max_pixels);
+  const std::unique_ptr<comic::frontend::Detector> detector = MakeDetector(flags);
+  double ms = 0.0;
+  const FeatureSet features = DetectStrongest(*detector, image.gray, flags.max_features, ms);
 
   int bright = 0;
   for (const Feature& f : features) bright += f.polarity == Polarity::kBright;
-  std::cout << "image:    " << input << " (" << image.gray.cols << "x" << image.gray.rows << ")\n"
+  std::cout << "image:    " << flags.input << " (" << image.gray.cols << "x" << image.gray.rows
+            << ")\n"
             << "features: " << features.size() << " (" << bright << " bright, "
             << features.size() - bright << " dark)\n"
             << "time:     " << ms << " ms\n";
-  if (!overlay_path.empty()) {
-    outputs.WriteImage(overlay_path, DrawOverlay(image.color, features));
+  if (!flags.overlay_path.empty()) {
+    outputs.WriteImage(flags.overlay_path, DrawOverlay(image.color, features));
   }
-  if (!json_path.empty()) {
-    nlohmann::json features_json = nlohmann::json::array();
-    for (const Feature& f : features) features_json.push_back(FeatureToJson(f));
-    const nlohmann::json options_json =
-        paper ? nlohmann::json{{"scale", options.scale},
-                               {"block_size", options.block_size},
-                               {"delta", options.delta},
-                               {"half_length", options.half_length},
-                               {"max_iterations", options.max_iterations},
-                               {"convergence_tolerance", options.convergence_tolerance},
-                               {"stop_tolerance", options.stop_tolerance},
-                               {"seed_neighbouring_corners", options.seed_neighbouring_corners},
-                               {"skip_duplicate_paths", options.skip_duplicate_paths},
-                               {"merge_radius", options.merge_radius},
-                               {"min_stability", options.min_stability},
-                               {"min_cornerness", options.min_cornerness},
-                               {"coarse_initialisation", options.coarse_initialisation}}
-              : nlohmann::json{{"scale", direct.scale},
-                               {"delta", direct.delta},
-                               {"half_length", direct.half_length},
-                               {"min_cornerness", direct.min_cornerness},
-                               {"level_radius", direct.level_radius},
-                               {"link_radius", direct.link_radius},
-                               {"consensus_fraction", direct.consensus_fraction},
-                               {"presmoothing_sigma", direct.presmoothing_sigma},
-                               {"merge_radius", direct.merge_radius},
-                               {"min_stability", direct.min_stability}};
-    const nlohmann::json root = {{"image", input},
-                                 {"width", image.gray.cols},
-                                 {"height", image.gray.rows},
-                                 {"detector", detector->Name()},
-                                 {"options", options_json},
-                                 {"features", features_json}};
-    outputs.WriteFile(json_path, comic::io::JsonText(root, 1));
-  }
+  if (!flags.json_path.empty()) WriteJson(flags, image, *detector, features, outputs);
   outputs.Commit();
-  if (!overlay_path.empty()) std::cout << "overlay:  " << overlay_path << "\n";
-  if (!json_path.empty()) std::cout << "json:     " << json_path << "\n";
+  if (!flags.overlay_path.empty()) std::cout << "overlay:  " << flags.overlay_path << "\n";
+  if (!flags.json_path.empty()) std::cout << "json:     " << flags.json_path << "\n";
   return 0;
 }
 

@@ -22,54 +22,45 @@ namespace {
 
 namespace sfm = comic::sfm;
 
-int Run(int argc, char** argv) {
+// The command line, bound to the parser by AddFlags.
+struct Flags {
   sfm::ColmapExportRunOptions options;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::apps::TrackerFlags tracker_flags;  // comic_sfm's defaults: the same tracks as it builds
   bool quiet = false;
+};
 
-  comic::apps::ArgParser parser(
-      "comic_export_colmap", "FRAMES --colmap-db DB [options]",
-      "Detects and tracks features through FRAMES (a folder of images or a video) and writes\n"
-      "them as a COLMAP 3.8 database: one camera, one image per frame with its features as\n"
-      "keypoints and descriptors, and for every pair of frames at most --window apart that share\n"
-      "tracks the raw\n"
-      "matches and the matches verified by two-view geometry (essential matrix with --intrinsics, "
-      "fundamental\n"
-      "matrix without). Then prints the `colmap mapper` command to run on it, with the options\n"
-      "the sequence needs. The database is written completely or not at all. With the same\n"
-      "options `comic_sfm FRAMES --colmap-db DB` writes the same database. A video's frames are\n"
-      "written as PNGs (--write-frames) and are COLMAP's --image_path.");
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
   parser.AddPositional("FRAMES",
                        "folder of images, or video file (its frames are written as images, see "
                        "--write-frames)",
-                       &options.frames);
-  comic::apps::AddColmapDbFlags(parser, &options.colmap);
+                       &flags.options.frames);
+  comic::apps::AddColmapDbFlags(parser, &flags.options.colmap);
   parser.AddDeprecatedAlias("output", "colmap-db");
-  comic::apps::AddIntrinsicsFlag(parser, &options.camera.intrinsics);
-  comic::apps::AddCameraModelFlag(parser, &options.camera.camera_model);
-  comic::apps::AddDetectorFlag(parser, &options.detector);
-  comic::apps::AddMatchingFlag(parser, &options.matching);
-  comic::apps::AddMatcherFlag(parser, &options.matcher);
-  comic::apps::AddTrackerFlags(parser, &tracker_flags);
+  comic::apps::AddIntrinsicsFlag(parser, &flags.options.camera.intrinsics);
+  comic::apps::AddCameraModelFlag(parser, &flags.options.camera.camera_model);
+  comic::apps::AddDetectorFlag(parser, &flags.options.detector);
+  comic::apps::AddMatchingFlag(parser, &flags.options.matching);
+  comic::apps::AddMatcherFlag(parser, &flags.options.matcher);
+  comic::apps::AddTrackerFlags(parser, &flags.tracker_flags);
   parser.AddDeprecatedAlias("radius", "search-radius");
-  comic::apps::AddFrameRangeFlags(parser, &options.sequence);
-  comic::apps::AddThreadsFlag(parser, &options.threads);
+  comic::apps::AddFrameRangeFlags(parser, &flags.options.sequence);
+  comic::apps::AddThreadsFlag(parser, &flags.options.threads);
   parser.AddOption("image-path", "DIR",
                    "COLMAP's --image_path: FRAMES (default) or a folder above it; image names "
                    "are relative to it",
-                   &options.image_path);
+                   &flags.options.image_path);
   parser.AddOption("sparse", "DIR",
                    "output folder in the printed mapper command (default: DB's folder/sparse)",
-                   &options.sparse);
-  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
-  comic::apps::AddResizeHeightFlag(parser, &options.sequence.resize_height);
+                   &flags.options.sparse);
+  comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
+  comic::apps::AddResizeHeightFlag(parser, &flags.options.sequence.resize_height);
   parser.AddOptionalValueOption(
       "write-frames", "DIR",
       "video input: write each frame once as DIR/frame_000000.png ..., the names the database "
       "uses, and use DIR as COLMAP's --image_path (default, and alone: images/ beside DB)",
-      sfm::kFramesBesideDatabase, &options.write_frames);
-  comic::apps::AddQuietFlag(parser, &quiet);
+      sfm::kFramesBesideDatabase, &flags.options.write_frames);
+  comic::apps::AddQuietFlag(parser, &flags.quiet);
   parser.AddEpilog(
       "Without --intrinsics the camera is COLMAP's SIMPLE_RADIAL guess (or --camera-model's).\n"
       "Example (the bundled KITTI clip):\n"
@@ -82,9 +73,26 @@ int Run(int argc, char** argv) {
       "--Mapper.init_min_tri_angle 16 reject every initial pair; the printed values let it start.\n"
       "Known intrinsics are held fixed (--Mapper.ba_refine_* 0).\n"
       "Python: comic.export_colmap(FRAMES, DB, ...) runs the same (python/README.md).\n");
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_export_colmap", "FRAMES --colmap-db DB [options]",
+      "Detects and tracks features through FRAMES (a folder of images or a video) and writes\n"
+      "them as a COLMAP 3.8 database: one camera, one image per frame with its features as\n"
+      "keypoints and descriptors, and for every pair of frames at most --window apart that share\n"
+      "tracks the raw\n"
+      "matches and the matches verified by two-view geometry (essential matrix with --intrinsics, "
+      "fundamental\n"
+      "matrix without). Then prints the `colmap mapper` command to run on it, with the options\n"
+      "the sequence needs. The database is written completely or not at all. With the same\n"
+      "options `comic_sfm FRAMES --colmap-db DB` writes the same database. A video's frames are\n"
+      "written as PNGs (--write-frames) and are COLMAP's --image_path.");
+  AddFlags(parser, flags);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  options.sequence.max_pixels = max_pixels;
-  options.tracker = comic::apps::ToTrackerSettings(tracker_flags, parser);
+  flags.options.sequence.max_pixels = flags.max_pixels;
+  flags.options.tracker = comic::apps::ToTrackerSettings(flags.tracker_flags, parser);
 
   std::unique_ptr<comic::apps::ProgressLine> progress;
   sfm::RunCallbacks callbacks;
@@ -93,14 +101,14 @@ int Run(int argc, char** argv) {
         stage == sfm::RunStage::kTracking
             ? "comic_export_colmap: [" + detector + "] detection and tracking"
             : "comic_export_colmap: writing frames",
-        quiet);
+        flags.quiet);
   };
   callbacks.frame_done = [&](size_t done, size_t total) {
     if (progress) progress->Update(done, total);
   };
-  const sfm::ColmapExportRunResult result = sfm::RunColmapExport(options, callbacks);
+  const sfm::ColmapExportRunResult result = sfm::RunColmapExport(flags.options, callbacks);
   comic::apps::PrintWarning("comic_export_colmap", result.warning);
-  for (const std::string& line : sfm::ColmapExportReportLines(options, result)) {
+  for (const std::string& line : sfm::ColmapExportReportLines(flags.options, result)) {
     std::cout << line << "\n";
   }
   return 0;

@@ -59,7 +59,10 @@ std::vector<std::string> ExpandPhotos(const std::string& list) {
   return photos;
 }
 
-int Run(int argc, char** argv) {
+// The command line, bound to the parser by AddFlags; Check() validates it.
+struct Flags {
+  void Check();
+
   std::string scene_file;
   std::string photos;
   std::string out_dir = "render_out";
@@ -73,62 +76,61 @@ int Run(int argc, char** argv) {
   render::StereoPairOptions stereo;
   render::SceneBuildOptions build;
   render::SequenceRenderOptions options;
-  comic::apps::ArgParser parser(
-      "comic_render", "SCENE.json --photos IMAGES [options]",
-      "Renders a scene of textured planar pieces (ground, facades, boxes, poles, trees, fences,\n"
-      "a distant backdrop) along its camera path, with textures cut from the photographs given,\n"
-      "and writes the frames with their exact truth: images/, depth/, ids/, boundaries/, masks/,\n"
-      "poses.txt + calib.txt (KITTI), colmap/ (the true cameras) and scene.json.");
-  parser.AddPositional("SCENE", "scene file (JSON; docs/rendering.md)", &scene_file);
+};
+
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
+  parser.AddPositional("SCENE", "scene file (JSON; docs/rendering.md)", &flags.scene_file);
   parser.AddOption("photos", "LIST",
                    "comma-separated photographs (or folders of them) to cut textures from",
-                   &photos);
-  parser.AddOption("seed", "N", "draws positions, sizes, textures, shake and noise", &seed);
-  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
-  parser.AddOption("frames", "N", "frames to render (0: the scene file's)", &build.num_frames);
-  comic::apps::AddOutputFolderFlag(parser, &out_dir);
+                   &flags.photos);
+  parser.AddOption("seed", "N", "draws positions, sizes, textures, shake and noise", &flags.seed);
+  comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
+  parser.AddOption("frames", "N", "frames to render (0: the scene file's)",
+                   &flags.build.num_frames);
+  comic::apps::AddOutputFolderFlag(parser, &flags.out_dir);
   parser.AddOption("supersampling", "N", "samples per pixel along each axis (1-8)",
-                   &options.raster.supersampling);
-  parser.AddOption("noise", "SIGMA", "read noise (grey levels)", &options.sensor.read_noise);
+                   &flags.options.raster.supersampling);
+  parser.AddOption("noise", "SIGMA", "read noise (grey levels)", &flags.options.sensor.read_noise);
   parser.AddOption("shot-noise", "K", "shot noise: variance per grey level",
-                   &options.sensor.shot_noise);
+                   &flags.options.sensor.shot_noise);
   parser.AddOption("exposure-drift", "A", "exposure gain wanders within exp(+-A)",
-                   &options.sensor.exposure_drift);
+                   &flags.options.sensor.exposure_drift);
   parser.AddOption("exposure-period", "F", "frames between the exposure drift's knots",
-                   &options.sensor.exposure_period);
+                   &flags.options.sensor.exposure_period);
   parser.AddOption("shutter", "F",
                    "motion blur: shutter open for this fraction of the frame interval (0: none)",
-                   &options.sensor.shutter);
+                   &flags.options.sensor.shutter);
   parser.AddOption("blur-samples", "N", "sub-frames averaged for motion blur",
-                   &options.sensor.blur_samples);
+                   &flags.options.sensor.blur_samples);
   parser.AddOption("blur-every", "N",
                    "blur only every Nth frame (index % N == N-1), the others sharp (1: all)",
-                   &options.sensor.blur_every);
+                   &flags.options.sensor.blur_every);
   parser.AddOption("depth-format", "F", "png (16-bit millimetres, saturates at 65.5 m) or pfm",
-                   &options.depth_format);
+                   &flags.options.depth_format);
   parser.AddOption("occlusion-band", "PX",
                    "boundaries/: pixels within PX of a pixel touching a depth discontinuity",
-                   &options.boundary.band_px);
+                   &flags.options.boundary.band_px);
   parser.AddOption("occlusion-depth-ratio", "R",
                    "boundaries/: relative depth jump (each plane extended) that makes one",
-                   &options.boundary.depth_ratio);
+                   &flags.options.boundary.depth_ratio);
   parser.AddOption("max-texture-size", "PX", "photographs are shrunk to this longer side",
-                   &build.max_texture_size);
+                   &flags.build.max_texture_size);
   parser.AddFlag("frames-only",
                  "write the frames and the cameras only (no depth, ids, boundaries, masks)",
-                 &no_truth_images);
+                 &flags.no_truth_images);
   parser.AddOption("stereo-pairs", "N",
                    "also write N rectified pairs (frames evenly spread) as Middlebury folders "
                    "stereo/NNNNNN/ for comic_stereo_eval --middlebury",
-                   &stereo_pairs);
+                   &flags.stereo_pairs);
   parser.AddOption("stereo-baseline", "M", "right camera this far to the left one's right",
-                   &stereo.baseline);
+                   &flags.stereo.baseline);
   parser.AddOption("nerf", "DIR",
                    "composite the views of a NeRF synthetic set (transforms_train.json, RGBA "
                    "views) over SCENE seen through the same cameras, instead of SCENE's path",
-                   &nerf);
-  parser.AddOption("nerf-lift", "M", "the NeRF set's origin this far above the ground", &nerf_lift);
-  comic::apps::AddQuietFlag(parser, &quiet);
+                   &flags.nerf);
+  parser.AddOption("nerf-lift", "M", "the NeRF set's origin this far above the ground",
+                   &flags.nerf_lift);
+  comic::apps::AddQuietFlag(parser, &flags.quiet);
   parser.AddEpilog(
       "Example (a short drive textured with the bundled KITTI frames):\n"
       "  comic_render scenes/test_street.json --photos examples/data/kitti06_000-011/image_l \\\n"
@@ -136,7 +138,9 @@ int Run(int argc, char** argv) {
       "  comic_sfm out/street/images --gt out/street/poses.txt --masks out/street/masks\n"
       "Same scene, photographs, seed and options: the same bytes. Timing (CPU seconds of the\n"
       "rendering thread) is printed at the end.");
-  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+}
+
+void Flags::Check() {
   COMIC_CHECK(seed >= 0, kInvalidArgument, "--seed must be >= 0, got " << seed);
   COMIC_CHECK(!photos.empty(), kInvalidArgument,
               "--photos is required: the photographs to cut textures from");
@@ -157,43 +161,71 @@ int Run(int argc, char** argv) {
   }
   io::CheckOutputFolderAvoidsInputs({"--output", out_dir}, inputs);
   io::CheckCreatableFolder(out_dir);  // before the photographs are read
+}
 
-  const render::BuiltScene built =
-      render::BuildScene(scene_file, ExpandPhotos(photos), static_cast<uint64_t>(seed), build);
-  CheckCameraPixels(scene_file, built.lens, max_pixels);
-  io::StagedFolder out(out_dir);
-  comic::apps::ProgressLine progress("comic_render: " + built.name, quiet);
+// Renders the scene's frames (or, with --nerf, the NeRF set's views composited over the scene)
+// into `folder`; `size` is set to the frames' size.
+render::SequenceRenderSummary RenderFrames(const Flags& flags, const render::BuiltScene& built,
+                                           const std::string& folder,
+                                           comic::apps::ProgressLine& progress, cv::Size& size) {
   const auto update = [&](int done, int total) { progress.Update(done, total); };
   render::SequenceRenderSummary summary;
-  cv::Size size(built.lens.width, built.lens.height);
-  if (!nerf.empty()) {
-    COMIC_CHECK(stereo_pairs == 0, kInvalidArgument,
+  size = cv::Size(built.lens.width, built.lens.height);
+  if (!flags.nerf.empty()) {
+    COMIC_CHECK(flags.stereo_pairs == 0, kInvalidArgument,
                 "--stereo-pairs and --nerf exclude each other");
-    const render::NerfSet set = render::ReadNerfSet(nerf, "train", nerf_lift);
+    const render::NerfSet set = render::ReadNerfSet(flags.nerf, "train", flags.nerf_lift);
     size = cv::Size(set.lens.width, set.lens.height);
-    summary = render::RenderNerfComposite(set, built, static_cast<uint64_t>(seed), options,
-                                          out.path(), build.num_frames, update);
+    summary = render::RenderNerfComposite(set, built, static_cast<uint64_t>(flags.seed),
+                                          flags.options, folder, flags.build.num_frames, update);
   } else {
-    summary =
-        render::RenderSequence(built, static_cast<uint64_t>(seed), options, out.path(), update);
+    summary = render::RenderSequence(built, static_cast<uint64_t>(flags.seed), flags.options,
+                                     folder, update);
   }
-  if (stereo_pairs > 0) {
-    const render::Rasterizer rasterizer(built.lens, options.raster);
-    for (int k = 0; k < stereo_pairs; ++k) {
-      // The middle frames of N equal parts of the sequence.
-      const int frame = built.num_frames * (2 * k + 1) / (2 * stereo_pairs);
-      char name[32];
-      std::snprintf(name, sizeof(name), "stereo/%06d", frame);
-      render::WriteStereoPair(built, rasterizer, static_cast<uint64_t>(seed), options.sensor, frame,
-                              stereo, io::JoinPaths(out.path(), name));
-    }
+  return summary;
+}
+
+// --stereo-pairs rectified pairs as Middlebury folders stereo/NNNNNN/ in `folder`.
+void WriteStereoPairs(const Flags& flags, const render::BuiltScene& built,
+                      const std::string& folder) {
+  const render::Rasterizer rasterizer(built.lens, flags.options.raster);
+  for (int k = 0; k < flags.stereo_pairs; ++k) {
+    // The middle frames of N equal parts of the sequence.
+    const int frame = built.num_frames * (2 * k + 1) / (2 * flags.stereo_pairs);
+    char name[32];
+    std::snprintf(name, sizeof(name), "stereo/%06d", frame);
+    render::WriteStereoPair(built, rasterizer, static_cast<uint64_t>(flags.seed),
+                            flags.options.sensor, frame, flags.stereo, io::JoinPaths(folder, name));
   }
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_render", "SCENE.json --photos IMAGES [options]",
+      "Renders a scene of textured planar pieces (ground, facades, boxes, poles, trees, fences,\n"
+      "a distant backdrop) along its camera path, with textures cut from the photographs given,\n"
+      "and writes the frames with their exact truth: images/, depth/, ids/, boundaries/, masks/,\n"
+      "poses.txt + calib.txt (KITTI), colmap/ (the true cameras) and scene.json.");
+  AddFlags(parser, flags);
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  flags.Check();
+
+  const render::BuiltScene built = render::BuildScene(
+      flags.scene_file, ExpandPhotos(flags.photos), static_cast<uint64_t>(flags.seed), flags.build);
+  CheckCameraPixels(flags.scene_file, built.lens, flags.max_pixels);
+  io::StagedFolder out(flags.out_dir);
+  comic::apps::ProgressLine progress("comic_render: " + built.name, flags.quiet);
+  cv::Size size;
+  const render::SequenceRenderSummary summary =
+      RenderFrames(flags, built, out.path(), progress, size);
+  if (flags.stereo_pairs > 0) WriteStereoPairs(flags, built, out.path());
   out.Commit();
   std::cout << "comic_render: " << summary.num_frames << " frames " << size.width << "x"
             << size.height << " of " << built.name << " (" << built.scene.pieces.size()
-            << " pieces) in " << out_dir << "; CPU " << summary.render_cpu_s << " s rendering ("
-            << summary.num_frames / std::max(1e-9, summary.render_cpu_s) << " frames/s), "
-            << summary.write_cpu_s << " s writing" << std::endl;
+            << " pieces) in " << flags.out_dir << "; CPU " << summary.render_cpu_s
+            << " s rendering (" << summary.num_frames / std::max(1e-9, summary.render_cpu_s)
+            << " frames/s), " << summary.write_cpu_s << " s writing" << std::endl;
   return 0;
 }
 

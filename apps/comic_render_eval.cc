@@ -29,7 +29,13 @@ namespace {
 namespace io = comic::io;
 namespace sfm = comic::sfm;
 
-int Run(int argc, char** argv) {
+// The command line, bound to the parser by AddFlags; Check() validates it and fills `options`
+// (all but the tracker, which FitTrackerToFrames sets for the frames).
+struct Flags {
+  // Every core, as the other apps: the output does not depend on it.
+  Flags() { options.num_threads = 0; }
+  void Check(const comic::apps::ArgParser& parser);
+
   std::string folder;
   std::string detectors;
   std::string matching = "auto";
@@ -37,42 +43,41 @@ int Run(int argc, char** argv) {
   bool quiet = false;
   bool no_remap = false;
   sfm::RenderedBenchmarkOptions options;
-  options.num_threads = 0;  // every core, as the other apps: the output does not depend on it
   comic::apps::TrackerFlags tracker;
-  comic::apps::ArgParser parser(
-      "comic_render_eval", "RENDERED [options]",
-      "The boundary question in SfM on a comic_render output (frames with exact truth): for\n"
-      "each detector, the share of features on occlusion boundaries, how long their tracks live,\n"
-      "how many follow one 3-D surface point (the true point re-projected through the true\n"
-      "cameras) or slide along a silhouette, their share of the model's points and reprojection\n"
-      "error, and the ATE with all tracks, without the boundary tracks and without the sliding\n"
-      "ones. Tracking and mapping are comic_sfm's, with the true camera.");
-  parser.AddPositional("RENDERED", "a comic_render output folder (not --frames-only)", &folder);
+  sfm::TrackerSettings tracker_settings;  // from `tracker` by Check()
+};
+
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
+  parser.AddPositional("RENDERED", "a comic_render output folder (not --frames-only)",
+                       &flags.folder);
   parser.AddOption("detectors", "LIST", "comma-separated detectors, one run each (empty = all)",
-                   &detectors);
-  comic::apps::AddFrameRangeFlags(parser, &options.sequence);
-  comic::apps::AddMatchingFlag(parser, &matching);
-  comic::apps::AddTrackerFlags(parser, &tracker);
+                   &flags.detectors);
+  comic::apps::AddFrameRangeFlags(parser, &flags.options.sequence);
+  comic::apps::AddMatchingFlag(parser, &flags.matching);
+  comic::apps::AddTrackerFlags(parser, &flags.tracker);
   parser.AddOption("follow-tolerance", "PX",
                    "a track follows a surface point if one reprojects to an RMS within PX",
-                   &options.tracks.follow_tolerance_px);
+                   &flags.options.tracks.follow_tolerance_px);
   // The shared meaning of --boundary-band: here the region is the occlusion boundary's (the
   // rendered band widened to PX).
   parser.AddOption("boundary-band", "PX",
                    "boundary features: within PX pixels of the region's edge (either side)",
-                   &options.band_px);
+                   &flags.options.band_px);
   parser.AddOption("min-track-length", "N", "shorter tracks are not judged follow/slide",
-                   &options.tracks.min_track_length);
-  parser.AddFlag("no-remap", "skip the mappings without boundary or sliding tracks", &no_remap);
-  comic::apps::AddThreadsFlag(parser, &options.num_threads);
-  comic::apps::AddOutputFolderFlag(parser, &out_dir);
-  comic::apps::AddQuietFlag(parser, &quiet);
+                   &flags.options.tracks.min_track_length);
+  parser.AddFlag("no-remap", "skip the mappings without boundary or sliding tracks",
+                 &flags.no_remap);
+  comic::apps::AddThreadsFlag(parser, &flags.options.num_threads);
+  comic::apps::AddOutputFolderFlag(parser, &flags.out_dir);
+  comic::apps::AddQuietFlag(parser, &flags.quiet);
   parser.AddEpilog(
       "Outputs in DIR: boundary_benchmark.md, boundary_benchmark.csv, boundary_benchmark.json.\n"
       "Example (docs/rendered_benchmark.md; scripts/rendered_benchmark.sh runs it all):\n"
       "  comic_render scenes/orbit_object.json --photos PHOTOS -o out/orbit\n"
       "  comic_render_eval out/orbit --detectors harris,comic,comic+hessian -o out/orbit_eval");
-  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+}
+
+void Flags::Check(const comic::apps::ArgParser& parser) {
   if (!detectors.empty()) {
     options.detectors = comic::frontend::ParseDetectorList(detectors);
   } else {
@@ -82,37 +87,64 @@ int Run(int argc, char** argv) {
   options.without_boundary_tracks = options.without_sliding_tracks = !no_remap;
   comic::apps::CheckThreadCount("--threads", options.num_threads);
   options.sequence.Check();
-  const sfm::TrackerSettings tracker_settings = comic::apps::ToTrackerSettings(tracker, parser);
+  tracker_settings = comic::apps::ToTrackerSettings(tracker, parser);
   tracker_settings.ToTrackerOptions();  // bad flags fail before any work
   options.Check();
   io::CheckOutputsAvoidInputs({{"--output", out_dir}}, {{"RENDERED", folder}});
   io::CheckCreatableFolder(out_dir);
+}
 
+// Sets the tracker of `flags.options` for the rendered frames; returns the pairing it chose.
+comic::frontend::PairingChoice FitTrackerToFrames(Flags& flags) {
+  sfm::RenderedBenchmarkOptions& options = flags.options;
   // The tracker as comic_sfm sets it up for these frames (video or image set), and its mapper
   // defaults for known intrinsics: two-view tracks left out of video.
-  const io::RenderedTruth truth = io::OpenRenderedTruth(folder);
+  const io::RenderedTruth truth = io::OpenRenderedTruth(flags.folder);
   const io::ImageSequence sequence =
       io::ImageSequence::Open(truth.ImagesFolder(), options.sequence);
   const comic::frontend::PairingChoice pairing =
-      sfm::ChooseRunPairing(matching, tracker_settings, sequence);
-  options.reconstruction.tracker =
-      sfm::TrackerOptionsForRun(tracker_settings, pairing, static_cast<int>(sequence.NumFrames()));
+      sfm::ChooseRunPairing(flags.matching, flags.tracker_settings, sequence);
+  options.reconstruction.tracker = sfm::TrackerOptionsForRun(
+      flags.tracker_settings, pairing, static_cast<int>(sequence.NumFrames()));
   options.reconstruction.mapper.mapper.ignore_two_view_tracks =
       options.reconstruction.tracker.match_window <= 1;
   options.Check();
+  return pairing;
+}
 
-  io::StagedFolder out(out_dir);
-  const sfm::RenderedBenchmark result =
-      sfm::RunRenderedBenchmark(folder, options, [&](const std::string& message) {
-        if (!quiet) std::cout << "comic_render_eval: " << message << std::endl;
-      });
+// boundary_benchmark.md, .csv and .json in `folder`; returns the table.
+io::ReportTable WriteOutputs(const std::string& folder, const sfm::RenderedBenchmark& result,
+                             const comic::frontend::PairingChoice& pairing) {
   const io::ReportTable table = result.Table();
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "boundary_benchmark.md"), table.ToMarkdown());
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "boundary_benchmark.csv"), table.ToCsv());
+  io::WriteFileAtomically(io::JoinPaths(folder, "boundary_benchmark.md"), table.ToMarkdown());
+  io::WriteFileAtomically(io::JoinPaths(folder, "boundary_benchmark.csv"), table.ToCsv());
   nlohmann::json json = result.ToJson();
   json["matching"] = comic::frontend::PairingName(pairing.chosen);
-  io::WriteFileAtomically(io::JoinPaths(out.path(), "boundary_benchmark.json"),
-                          json.dump(2) + "\n");
+  io::WriteFileAtomically(io::JoinPaths(folder, "boundary_benchmark.json"), json.dump(2) + "\n");
+  return table;
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_render_eval", "RENDERED [options]",
+      "The boundary question in SfM on a comic_render output (frames with exact truth): for\n"
+      "each detector, the share of features on occlusion boundaries, how long their tracks live,\n"
+      "how many follow one 3-D surface point (the true point re-projected through the true\n"
+      "cameras) or slide along a silhouette, their share of the model's points and reprojection\n"
+      "error, and the ATE with all tracks, without the boundary tracks and without the sliding\n"
+      "ones. Tracking and mapping are comic_sfm's, with the true camera.");
+  AddFlags(parser, flags);
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  flags.Check(parser);
+  const comic::frontend::PairingChoice pairing = FitTrackerToFrames(flags);
+
+  io::StagedFolder out(flags.out_dir);
+  const sfm::RenderedBenchmark result = sfm::RunRenderedBenchmark(
+      flags.folder, flags.options, [quiet = flags.quiet](const std::string& message) {
+        if (!quiet) std::cout << "comic_render_eval: " << message << std::endl;
+      });
+  const io::ReportTable table = WriteOutputs(out.path(), result, pairing);
   out.Commit();
   std::cout << table.ToMarkdown();
   return 0;

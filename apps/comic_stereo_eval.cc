@@ -3,6 +3,7 @@
 // and repeatability tables. Flags -> StereoEvaluationOptions -> EvaluateStereoPair -> files.
 #include <cctype>
 #include <iostream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -49,6 +50,11 @@ double ScaleFromLeftName(const std::string& left) {
   return 0.0;
 }
 
+// The CSV files, one per table of the report, in the order WriteOutputs writes them.
+constexpr const char* kTables[] = {
+    "protocol",          "pairs",         "detections",      "scores",
+    "matched_precision", "repeatability", "paper_comparison"};
+
 std::string Safe(const std::string& name) {
   std::string safe = name.empty() ? "pair" : name;
   for (char& c : safe) {
@@ -57,12 +63,19 @@ std::string Safe(const std::string& name) {
   return safe;
 }
 
-int Run(int argc, char** argv) {
+// The command line, bound to the parser by AddFlags; Check() validates it and fills `options`.
+struct Flags {
+  Flags() {
+    options.detectors.comic.num_threads = 0;
+  }  // one per core: the output does not
+     // depend on it
+  void Check();
+
   std::string left, right, disparity, disc, nonocc, middlebury;
   std::string out_dir = "stereo_eval";
   double scale = 0.0;
+  bool scale_set = false;  // --disparity-scale given
   fe::StereoEvaluationOptions options;
-  options.detectors.comic.num_threads = 0;  // one per core: the output does not depend on it
   std::string methods =
       "comic/split,comic/like-sides,comic/full,comic/calibrated,comic-paper/split,comic-paper/full,"
       "harris/full,harris/calibrated,hessian/full,hessian/calibrated,mser/full,fast/full,"
@@ -73,78 +86,73 @@ int Run(int argc, char** argv) {
   std::string precision_reference = options.precision_reference.Label();
   std::string figure_methods = "comic/split,harris/full";
   bool quiet = false;
+  std::vector<fe::StereoMethod> drawn;  // parsed from figure_methods
+};
 
-  comic::apps::ArgParser parser(
-      "comic_stereo_eval",
-      "LEFT RIGHT --disparity GT [--disparity-scale S] [--disc MASK] [--nonocc MASK] [-o DIR] | "
-      "--middlebury DIR[,DIR...] [-o DIR]",
-      "Evaluates CoMIC and the baseline detectors on rectified stereo pairs with ground-truth\n"
-      "disparity (paper §5.2.2, Tables 1 and 2): thresholds equalised on the left image, SSD\n"
-      "matching along the row, one-to-one; M_score(1), ResM_1 and precision for the boundary\n"
-      "(disc = 255), non-boundary and overall regions, at a fixed T, over a T sweep, at matched\n"
-      "precision and at T = inf, plus repeatability. Writes Markdown, CSV, JSON and a PNG of\n"
-      "correct and wrong matches per pair.");
-  parser.AddPositional("LEFT", "left (reference) image", &left, false);
-  parser.AddPositional("RIGHT", "right image", &right, false);
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
+  parser.AddPositional("LEFT", "left (reference) image", &flags.left, false);
+  parser.AddPositional("RIGHT", "right image", &flags.right, false);
   parser.AddOption("disparity", "GT", "ground-truth disparity of the left image (stored x S)",
-                   &disparity);
+                   &flags.disparity);
   parser.AddOption("disparity-scale", "S",
                    "disparity = stored value / S (Tsukuba 16, 2003 quarter-size pairs 4); "
                    "0 = from the left file name (im3.png: 16, im2.png: 4)",
-                   &scale);
+                   &flags.scale);
   parser.AddDeprecatedAlias("scale", "disparity-scale");
   parser.AddOption("disc", "MASK",
                    "depth-discontinuity mask (255 = boundary, 128 = other visible pixels); "
                    "without it no boundary split",
-                   &disc);
+                   &flags.disc);
   parser.AddOption("nonocc", "MASK",
                    "non-occluded mask (255 = evaluated); without it nothing counts as occluded",
-                   &nonocc);
+                   &flags.nonocc);
   parser.AddOption("middlebury", "DIRS",
                    "comma-separated folders laid out like ../shared/data/middlebury2003_cones "
                    "(im2/im6 or im3/im4, groundtruth, nonocc, disc)",
-                   &middlebury);
-  comic::apps::AddOutputFolderFlag(parser, &out_dir);
-  comic::apps::AddResizeHeightFlag(parser, &options.working_height);
+                   &flags.middlebury);
+  comic::apps::AddOutputFolderFlag(parser, &flags.out_dir);
+  comic::apps::AddResizeHeightFlag(parser, &flags.options.working_height);
   parser.AddDeprecatedAlias("height", "resize-height");
   parser.AddOption("methods", "LIST",
                    "detector/matcher pairs (matchers: full, split, like-sides, calibrated)",
-                   &methods);
+                   &flags.methods);
   parser.AddOption("counts", "LIST",
                    "target counts N of valid left features, one run each; 0 = the count "
                    "reference's own count at its default threshold",
-                   &counts);
-  parser.AddOption("count-reference", "DET", "detector defining N = 0", &options.count_reference);
-  comic::apps::AddMaxCostFlag(parser, &options.max_cost);
+                   &flags.counts);
+  parser.AddOption("count-reference", "DET", "detector defining N = 0",
+                   &flags.options.count_reference);
+  comic::apps::AddMaxCostFlag(parser, &flags.options.max_cost);
   parser.AddOption("sensitivity", "LIST", "further thresholds T reported (inf always is)",
-                   &sensitivity);
+                   &flags.sensitivity);
   parser.AddOption("tolerance", "PX", "a match is correct within this distance of the truth",
-                   &options.correct_tolerance);
+                   &flags.options.correct_tolerance);
   parser.AddOption("row-tolerance", "PX", "stereo gate: largest row difference",
-                   &options.row_tolerance);
+                   &flags.options.row_tolerance);
   parser.AddOption("min-disparity", "PX", "stereo gate: smallest disparity",
-                   &options.min_disparity);
+                   &flags.options.min_disparity);
   parser.AddOption("max-disparity", "PX",
                    "stereo gate: largest disparity; 0 = max GT disparity + --disparity-margin",
-                   &options.max_disparity);
+                   &flags.options.max_disparity);
   parser.AddOption("disparity-margin", "PX", "added to the max GT disparity for the gate",
-                   &options.disparity_margin);
-  comic::apps::AddMinSideOverlapFlag(parser, &options.min_side_overlap);
-  comic::apps::AddCalibratedCostFlags(parser, &options.min_side_fraction, &options.side_noise_sigma,
-                                      &options.side_noise_from_pair);
-  parser.AddOption("repeatability", "LIST", "repeatability tolerances in px", &repeatability);
+                   &flags.options.disparity_margin);
+  comic::apps::AddMinSideOverlapFlag(parser, &flags.options.min_side_overlap);
+  comic::apps::AddCalibratedCostFlags(parser, &flags.options.min_side_fraction,
+                                      &flags.options.side_noise_sigma,
+                                      &flags.options.side_noise_from_pair);
+  parser.AddOption("repeatability", "LIST", "repeatability tolerances in px", &flags.repeatability);
   parser.AddOption("precision-reference", "METHOD",
                    "matched precision target = this method's overall precision at T",
-                   &precision_reference);
+                   &flags.precision_reference);
   parser.AddOption("target-precision", "P",
                    "also compare the methods at this matched precision (see below)",
-                   &options.target_precision);
+                   &flags.options.target_precision);
   parser.AddOption("mser-merge-radius", "PX", "MSER centroids closer than this are merged",
-                   &options.detectors.mser.merge_radius);
-  comic::apps::AddThreadsFlag(parser, &options.detectors.comic.num_threads);
+                   &flags.options.detectors.mser.merge_radius);
+  comic::apps::AddThreadsFlag(parser, &flags.options.detectors.comic.num_threads);
   parser.AddOption("figure-methods", "LIST", "methods drawn side by side in matches_<pair>.png",
-                   &figure_methods);
-  comic::apps::AddQuietFlag(parser, &quiet);
+                   &flags.figure_methods);
+  comic::apps::AddQuietFlag(parser, &flags.quiet);
   parser.AddEpilog(
       "Outputs in DIR: stereo_eval.md (every table, readable), stereo_eval.json, protocol.csv,\n"
       "pairs.csv, detections.csv, scores.csv, matched_precision.csv, repeatability.csv,\n"
@@ -156,10 +164,11 @@ int Run(int argc, char** argv) {
       "Example:\n"
       "  comic_stereo_eval --middlebury ../shared/data/middlebury2001_tsukuba,"
       "../shared/data/middlebury2003_cones -o stereo\n");
-  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
-  options.detectors.comic_paper.num_threads = options.detectors.comic.num_threads;
+}
 
-  // Options first: a bad flag fails before any file is read.
+// Options first: a bad flag fails before any file is read.
+void Flags::Check() {
+  options.detectors.comic_paper.num_threads = options.detectors.comic.num_threads;
   options.methods = fe::ParseStereoMethods(methods);
   options.target_counts = ParseCountList(counts);
   options.sensitivity_costs = comic::apps::ParseNumberList(sensitivity, "sensitivity");
@@ -169,104 +178,147 @@ int Run(int argc, char** argv) {
   COMIC_CHECK(precision_methods.size() == 1, kInvalidArgument,
               "--precision-reference: expected one method, got '" << precision_reference << "'");
   options.precision_reference = precision_methods.front();
-  const std::vector<fe::StereoMethod> drawn = fe::ParseStereoMethods(figure_methods);
+  drawn = fe::ParseStereoMethods(figure_methods);
   options.Check();
   comic::apps::CheckThreadCount("--threads", options.detectors.comic.num_threads);
   io::CheckResizeHeight(options.working_height);
+}
 
-  // Inputs next: every pair is loaded (and so checked) before any output is touched.
-  const bool pair_mode = !left.empty() || !right.empty();
-  COMIC_CHECK(pair_mode != !middlebury.empty(), kInvalidArgument,
+// Inputs next: every pair is loaded (and so checked) before any output is touched.
+std::vector<io::MiddleburyPair> LoadPairs(const Flags& flags) {
+  const bool scale_set = flags.scale_set;
+  const bool pair_mode = !flags.left.empty() || !flags.right.empty();
+  COMIC_CHECK(pair_mode != !flags.middlebury.empty(), kInvalidArgument,
               (pair_mode ? "give either LEFT RIGHT or --middlebury, not both"
                          : "missing input: LEFT RIGHT --disparity GT, or --middlebury DIR"));
   std::vector<io::MiddleburyPair> pairs;
   if (pair_mode) {
-    COMIC_CHECK(!right.empty(), kInvalidArgument, "missing argument RIGHT");
-    COMIC_CHECK(!disparity.empty(), kInvalidArgument,
+    COMIC_CHECK(!flags.right.empty(), kInvalidArgument, "missing argument RIGHT");
+    COMIC_CHECK(!flags.disparity.empty(), kInvalidArgument,
                 "missing --disparity GT (the left image's ground-truth disparity)");
     io::MiddleburyPairPaths paths;
-    paths.left = left;
-    paths.right = right;
-    paths.disparity = disparity;
-    paths.disparity_scale = parser.WasSet("disparity-scale") ? scale : ScaleFromLeftName(left);
-    COMIC_CHECK(parser.WasSet("disparity-scale") || paths.disparity_scale > 0, kInvalidArgument,
-                "--disparity-scale is required: " << io::FileName(left)
+    paths.left = flags.left;
+    paths.right = flags.right;
+    paths.disparity = flags.disparity;
+    paths.disparity_scale = scale_set ? flags.scale : ScaleFromLeftName(flags.left);
+    COMIC_CHECK(scale_set || paths.disparity_scale > 0, kInvalidArgument,
+                "--disparity-scale is required: " << io::FileName(flags.left)
                                                   << " does not say which Middlebury pair it is");
-    paths.nonocc = nonocc;
-    paths.disc = disc;
-    pairs.push_back(io::LoadMiddleburyPair(paths, options.working_height));
+    paths.nonocc = flags.nonocc;
+    paths.disc = flags.disc;
+    pairs.push_back(io::LoadMiddleburyPair(paths, flags.options.working_height));
   } else {
-    COMIC_CHECK(disparity.empty() && disc.empty() && nonocc.empty(), kInvalidArgument,
+    COMIC_CHECK(flags.disparity.empty() && flags.disc.empty() && flags.nonocc.empty(),
+                kInvalidArgument,
                 "--disparity, --disc and --nonocc go with LEFT RIGHT; --middlebury folders hold "
                 "their own");
-    COMIC_CHECK(!parser.WasSet("disparity-scale") || scale > 0, kInvalidArgument,
-                "--disparity-scale must be > 0, got " << scale);
-    for (const std::string& folder : comic::apps::SplitList(middlebury, "middlebury")) {
-      pairs.push_back(io::LoadMiddleburyFolder(folder, options.working_height, scale));
+    COMIC_CHECK(!scale_set || flags.scale > 0, kInvalidArgument,
+                "--disparity-scale must be > 0, got " << flags.scale);
+    for (const std::string& folder : comic::apps::SplitList(flags.middlebury, "middlebury")) {
+      pairs.push_back(io::LoadMiddleburyFolder(folder, flags.options.working_height, flags.scale));
     }
   }
+  return pairs;
+}
 
-  std::vector<io::NamedPath> inputs = {{"LEFT", left},
-                                       {"RIGHT", right},
-                                       {"--disparity", disparity},
-                                       {"--disc", disc},
-                                       {"--nonocc", nonocc}};
-  if (!middlebury.empty()) {
-    for (const std::string& folder : comic::apps::SplitList(middlebury, "middlebury")) {
+void CheckOutputAvoidsInputs(const Flags& flags) {
+  std::vector<io::NamedPath> inputs = {{"LEFT", flags.left},
+                                       {"RIGHT", flags.right},
+                                       {"--disparity", flags.disparity},
+                                       {"--disc", flags.disc},
+                                       {"--nonocc", flags.nonocc}};
+  if (!flags.middlebury.empty()) {
+    for (const std::string& folder : comic::apps::SplitList(flags.middlebury, "middlebury")) {
       inputs.push_back({"--middlebury", folder});
     }
   }
-  io::CheckOutputsAvoidInputs({{"--output", out_dir}}, inputs);
+  io::CheckOutputsAvoidInputs({{"--output", flags.out_dir}}, inputs);
+}
+
+// The files the run writes into `folder`: stereo_eval.md and .json, one CSV per table, one figure
+// per pair, and report.html last.
+std::vector<std::string> OutputPaths(const std::string& folder,
+                                     const std::vector<io::MiddleburyPair>& pairs) {
+  std::vector<std::string> outputs = {io::JoinPaths(folder, "stereo_eval.md"),
+                                      io::JoinPaths(folder, "stereo_eval.json")};
+  for (const char* table : kTables) {
+    outputs.push_back(io::JoinPaths(folder, std::string(table) + ".csv"));
+  }
+  for (const io::MiddleburyPair& pair : pairs) {
+    outputs.push_back(io::JoinPaths(folder, "matches_" + Safe(pair.name) + ".png"));
+  }
+  outputs.push_back(io::JoinPaths(folder, "report.html"));
+  return outputs;
+}
+
+// Writes the report, the tables and the figures to the paths OutputPaths gave.
+void WriteOutputs(const std::vector<std::string>& outputs, const fe::StereoReport& report,
+                  const std::vector<fe::StereoPairEvaluation>& results,
+                  const std::vector<cv::Mat>& figures, const fe::StereoEvaluationOptions& options,
+                  const std::string& command) {
+  const size_t num_tables = std::size(kTables);
+  const std::string& page = outputs.back();
+  io::WriteFileAtomically(outputs[0], fe::StereoReportMarkdown(report, results, options));
+  io::WriteFileAtomically(outputs[1], io::JsonText(report.ToJson(), 2));
+  const io::ReportTable* csv[] = {
+      &report.protocol,          &report.pairs,         &report.detections,      &report.scores,
+      &report.matched_precision, &report.repeatability, &report.paper_comparison};
+  for (size_t t = 0; t < num_tables; ++t) io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
+  std::vector<fe::EvaluationFigure> page_figures;
+  for (size_t p = 0; p < figures.size(); ++p) {
+    io::WriteImageAtomically(outputs[2 + num_tables + p], figures[p]);
+    page_figures.push_back({io::FileName(outputs[2 + num_tables + p]), figures[p]});
+  }
+  io::WriteHtmlPage(page,
+                    fe::StereoEvaluationPage(report, results, options, page_figures, command));
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_stereo_eval",
+      "LEFT RIGHT --disparity GT [--disparity-scale S] [--disc MASK] [--nonocc MASK] [-o DIR] | "
+      "--middlebury DIR[,DIR...] [-o DIR]",
+      "Evaluates CoMIC and the baseline detectors on rectified stereo pairs with ground-truth\n"
+      "disparity (paper §5.2.2, Tables 1 and 2): thresholds equalised on the left image, SSD\n"
+      "matching along the row, one-to-one; M_score(1), ResM_1 and precision for the boundary\n"
+      "(disc = 255), non-boundary and overall regions, at a fixed T, over a T sweep, at matched\n"
+      "precision and at T = inf, plus repeatability. Writes Markdown, CSV, JSON and a PNG of\n"
+      "correct and wrong matches per pair.");
+  AddFlags(parser, flags);
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  flags.scale_set = parser.WasSet("disparity-scale");
+  flags.Check();
+  const std::vector<io::MiddleburyPair> pairs = LoadPairs(flags);
+  CheckOutputAvoidsInputs(flags);
 
   // Outputs: checked up front, written into a staging folder beside --out and moved into place
   // together at the end (all or nothing; --out itself is created only then).
-  io::StagedFolder out(out_dir);
-  const std::vector<std::string> tables = {
-      "protocol",          "pairs",         "detections",      "scores",
-      "matched_precision", "repeatability", "paper_comparison"};
-  std::vector<std::string> outputs = {io::JoinPaths(out.path(), "stereo_eval.md"),
-                                      io::JoinPaths(out.path(), "stereo_eval.json")};
-  for (const std::string& table : tables)
-    outputs.push_back(io::JoinPaths(out.path(), table + ".csv"));
-  for (const io::MiddleburyPair& pair : pairs) {
-    outputs.push_back(io::JoinPaths(out.path(), "matches_" + Safe(pair.name) + ".png"));
-  }
-  const std::string page = io::JoinPaths(out.path(), "report.html");
-  outputs.push_back(page);
+  io::StagedFolder out(flags.out_dir);
+  const std::vector<std::string> outputs = OutputPaths(out.path(), pairs);
   for (const std::string& path : outputs) io::CheckWritableFile(path);
 
-  const fe::StereoProgress progress = [quiet](const std::string& message) {
+  const fe::StereoProgress progress = [quiet = flags.quiet](const std::string& message) {
     if (!quiet) std::cout << message << std::endl;
   };
   std::vector<fe::StereoPairEvaluation> results;
   std::vector<cv::Mat> figures;
   for (const io::MiddleburyPair& pair : pairs) {
-    results.push_back(fe::EvaluateStereoPair(pair, options, progress));
-    figures.push_back(
-        fe::DrawStereoMatchFigure(pair, results.back().runs.front(), drawn, options.max_cost));
+    results.push_back(fe::EvaluateStereoPair(pair, flags.options, progress));
+    figures.push_back(fe::DrawStereoMatchFigure(pair, results.back().runs.front(), flags.drawn,
+                                                flags.options.max_cost));
   }
 
-  const fe::StereoReport report = fe::BuildStereoReport(results, options);
+  const fe::StereoReport report = fe::BuildStereoReport(results, flags.options);
   // Errors while writing (a full disk) name --output, not the staging folder.
   out.NamingTarget([&] {
-    io::WriteFileAtomically(outputs[0], fe::StereoReportMarkdown(report, results, options));
-    io::WriteFileAtomically(outputs[1], io::JsonText(report.ToJson(), 2));
-    const io::ReportTable* csv[] = {
-        &report.protocol,          &report.pairs,         &report.detections,      &report.scores,
-        &report.matched_precision, &report.repeatability, &report.paper_comparison};
-    for (size_t t = 0; t < tables.size(); ++t)
-      io::WriteFileAtomically(outputs[2 + t], csv[t]->ToCsv());
-    std::vector<fe::EvaluationFigure> page_figures;
-    for (size_t p = 0; p < pairs.size(); ++p) {
-      io::WriteImageAtomically(outputs[2 + tables.size() + p], figures[p]);
-      page_figures.push_back({io::FileName(outputs[2 + tables.size() + p]), figures[p]});
-    }
-    io::WriteHtmlPage(
-        page, fe::StereoEvaluationPage(report, results, options, page_figures,
-                                       comic::apps::CommandLine("comic_stereo_eval", argc, argv)));
+    WriteOutputs(outputs, report, results, figures, flags.options,
+                 comic::apps::CommandLine("comic_stereo_eval", argc, argv));
   });
   out.Commit();
-  if (!quiet) std::cout << "wrote " << outputs.size() << " files to " << out_dir << "\n";
+  if (!flags.quiet) {
+    std::cout << "wrote " << outputs.size() << " files to " << flags.out_dir << "\n";
+  }
   return 0;
 }
 

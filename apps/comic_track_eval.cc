@@ -122,7 +122,14 @@ cv::Mat OverlayMosaic(const fe::TrackEvaluation& evaluation, const comic::io::Fr
   return mosaic;
 }
 
-int Run(int argc, char** argv) {
+// The command line, bound to the parser by AddFlags; Check() validates it and fills `options`.
+struct Flags {
+  Flags() {
+    sequence_options.resize_height = 700;
+    region.boundary_band = options.boundary_band;
+  }
+  void Check();
+
   std::string frames_path, region_format = "auto";
   // Both CoMIC searches by default (issue 14): the direct search and Algorithm 1 side by side.
   std::string detector_list = "comic,comic-paper,harris,hessian,mser,fast";
@@ -134,82 +141,74 @@ int Run(int argc, char** argv) {
   bool quiet = false;
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
   comic::io::ImageSequenceOptions sequence_options;
-  sequence_options.resize_height = 700;
   fe::TrackEvaluationOptions options;
   double radius = options.matcher.radius, max_cost = options.matcher.max_cost;
   int min_side_overlap = options.matcher.min_side_overlap;
   comic::apps::ObjectRegionFlags region;
-  region.boundary_band = options.boundary_band;
   double epipolar_tolerance = options.epipolar_tolerance;
   double target_precision = options.target_precision;
+  comic::io::RegionFileFormat region_file_format{};  // parsed from region_format by Check()
+};
 
-  comic::apps::ArgParser parser(
-      "comic_track_eval", "FRAMES [--masks DIR | --regions FILE] [options]",
-      "Compares CoMIC with Harris, Hessian, MSER and FAST-9 on one sequence under the paper's\n"
-      "protocol (§5.1): every detector's threshold is set to give the same number N of features\n"
-      "on the object in the first frame; features are detected on every frame and matched frame\n"
-      "to frame by 23x23 SSD within r pixels, one-to-one, at one SSD threshold; ResM_n and\n"
-      "M_score(n) = ResM_n / N_{i-n} (Eq. 2) are computed every frame-step frames and averaged,\n"
-      "for boundary, non-boundary and all features of the object region (features off the\n"
-      "object are left out). CoMIC is matched with its split patch (Algorithm 2), with like\n"
-      "sides only, and with the full patch, one row each.");
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
   parser.AddPositional("FRAMES", "folder of images (or a video file) of the sequence",
-                       &frames_path);
-  comic::apps::AddObjectRegionFlags(parser, &region);
+                       &flags.frames_path);
+  comic::apps::AddObjectRegionFlags(parser, &flags.region);
   parser.AddDeprecatedAlias("boxes", "regions");
   parser.AddDeprecatedAlias("band", "boundary-band");
   parser.AddOption("region-format", "F",
                    "format of --regions: auto (8 numbers = VOT, 4 = OTB), vot or otb; both 1-based",
-                   &region_format);
-  comic::apps::AddDetectorListFlag(parser, &detector_list);
+                   &flags.region_format);
+  comic::apps::AddDetectorListFlag(parser, &flags.detector_list);
   parser.AddOption("comic-matchers", "LIST",
                    "matchers for CoMIC's features, one row each: split (Algorithm 2), "
                    "like-sides, full, calibrated, track-sides",
-                   &comic_matchers);
+                   &flags.comic_matchers);
   parser.AddOption("baseline-matchers", "LIST",
                    "matchers for the other detectors' features, one row each: full, calibrated "
                    "(side-aware, issue 15), track-sides (calibrated with a memory along the "
                    "track), split, like-sides",
-                   &baseline_matchers);
+                   &flags.baseline_matchers);
   parser.AddOption("n", "N",
                    "frames a feature must be matched through (M_score(n)); n = 1 is "
                    "always reported too",
-                   &n);
-  parser.AddOption("frame-step", "K", "score every K-th start frame (paper: 5)", &frame_step);
+                   &flags.n);
+  parser.AddOption("frame-step", "K", "score every K-th start frame (paper: 5)", &flags.frame_step);
   parser.AddOption("count", "N",
                    "target count N: features on the object in frame 0 for every detector (0 = "
                    "CoMIC's count)",
-                   &num_features);
+                   &flags.num_features);
   parser.AddDeprecatedAlias("num-features", "count");
-  comic::apps::AddResizeHeightFlag(parser, &sequence_options.resize_height);
-  comic::apps::AddFrameRangeFlags(parser, &sequence_options, comic::apps::StrideFlag::kWithout);
-  comic::apps::AddSearchRadiusFlag(parser, &radius);
+  comic::apps::AddResizeHeightFlag(parser, &flags.sequence_options.resize_height);
+  comic::apps::AddFrameRangeFlags(parser, &flags.sequence_options,
+                                  comic::apps::StrideFlag::kWithout);
+  comic::apps::AddSearchRadiusFlag(parser, &flags.radius);
   parser.AddDeprecatedAlias("radius", "search-radius");
-  comic::apps::AddMaxCostFlag(parser, &max_cost);
-  comic::apps::AddMinSideOverlapFlag(parser, &min_side_overlap);
-  comic::apps::AddCalibratedCostFlags(parser, &options.matcher.min_side_fraction,
-                                      &options.matcher.side_noise_sigma,
-                                      &options.matcher.side_noise_from_pair);
+  comic::apps::AddMaxCostFlag(parser, &flags.max_cost);
+  comic::apps::AddMinSideOverlapFlag(parser, &flags.min_side_overlap);
+  comic::apps::AddCalibratedCostFlags(parser, &flags.options.matcher.min_side_fraction,
+                                      &flags.options.matcher.side_noise_sigma,
+                                      &flags.options.matcher.side_noise_from_pair);
   parser.AddOption("poses", "FILE", "KITTI poses.txt (camera-to-world per frame) for precision",
-                   &poses_file);
+                   &flags.poses_file);
   parser.AddOption("calib", "FILE", "KITTI calib.txt (P0 gives the intrinsics) for precision",
-                   &calib_file);
+                   &flags.calib_file);
   parser.AddOption("epipolar-tolerance", "PX",
                    "a match is consistent within PX pixels of its epipolar line",
-                   &epipolar_tolerance);
+                   &flags.epipolar_tolerance);
   parser.AddOption("target-precision", "P",
                    "also compare the methods at this matched precision (see below)",
-                   &target_precision);
+                   &flags.target_precision);
   parser.AddOption("sweep", "LIST",
                    "also score every row at these SSD thresholds (inf = every mutual-best match)",
-                   &sweep_list);
+                   &flags.sweep_list);
   parser.AddOption("overlay-frames", "K", "write track overlays of K frames (0 = none)",
-                   &overlay_frames);
-  comic::apps::AddThreadsFlag(parser, &threads);
-  comic::apps::AddOutputFolderFlag(parser, &out_dir);
-  comic::apps::AddQuietFlag(parser, &quiet);
-  comic::apps::AddAllowTruncatedFlag(parser, &sequence_options.allow_truncated);
-  comic::apps::AddMaxPixelsFlag(parser, &max_pixels);
+                   &flags.overlay_frames);
+  comic::apps::AddThreadsFlag(parser, &flags.threads);
+  comic::apps::AddOutputFolderFlag(parser, &flags.out_dir);
+  comic::apps::AddQuietFlag(parser, &flags.quiet);
+  comic::apps::AddAllowTruncatedFlag(parser, &flags.sequence_options.allow_truncated);
+  comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
   parser.AddEpilog(
       "Outputs in DIR: scores_n<n>.{md,csv,json} (Table 1/2 layout), scores_n<n>.png (bar\n"
       "charts), threshold_sweep_n<n>.{md,csv,json} (the scores at every --sweep threshold),\n"
@@ -222,8 +221,9 @@ int Run(int argc, char** argv) {
       "Example:\n"
       "  comic_track_eval ../shared/data/otb_Crossing/img --regions "
       "../shared/data/otb_Crossing/groundtruth_rect.txt -o crossing\n");
-  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+}
 
+void Flags::Check() {
   // Everything is checked before any detection runs.
   const std::string& masks_dir = region.masks;
   const std::string& boxes_file = region.regions;
@@ -266,30 +266,41 @@ int Run(int argc, char** argv) {
   options.target_precision = target_precision;
   options.sweep_costs = comic::apps::ParseNumberList(sweep_list, "sweep");
   options.Check();
-  const comic::io::RegionFileFormat format = comic::io::ParseRegionFileFormat(region_format);
+  region_file_format = comic::io::ParseRegionFileFormat(region_format);
   // --out is checked, not created: the outputs are staged beside it and moved into place when
   // the whole evaluation has succeeded (issue 19: a rejected run left an empty folder).
   comic::io::CheckCreatableFolder(out_dir);
+}
 
-  const auto sequence = comic::io::ImageSequence::Open(frames_path, sequence_options);
+// Fits the options to the opened sequence: --n needs n + 1 frames, and the epipolar tolerance
+// is given in stored pixels.
+void FitToSequence(const comic::io::ImageSequence& sequence, Flags& flags) {
   const size_t num_frames = sequence.NumFrames();
-  COMIC_CHECK(static_cast<size_t>(n) < num_frames, kInvalidArgument,
-              "--n " << n << " needs at least " << n + 1 << " frames, " << frames_path << " gives "
-                     << num_frames);
+  COMIC_CHECK(static_cast<size_t>(flags.n) < num_frames, kInvalidArgument,
+              "--n " << flags.n << " needs at least " << flags.n + 1 << " frames, "
+                     << flags.frames_path << " gives " << num_frames);
   const cv::Size source_size = sequence.SourceFrameSize();
   const cv::Size frame_size = sequence.FrameSize();
   // The ground truth's accuracy is a property of the stored images: scale the tolerance with them.
-  options.epipolar_tolerance =
-      epipolar_tolerance * static_cast<double>(frame_size.height) / source_size.height;
-  const size_t first_source = static_cast<size_t>(sequence_options.first_frame);
-  const size_t last_source = first_source + num_frames - 1;
+  flags.options.epipolar_tolerance =
+      flags.epipolar_tolerance * static_cast<double>(frame_size.height) / source_size.height;
+}
 
+// The object region of each evaluated frame, from --masks or --regions (none without either).
+fe::RegionMaskSource ReadRegions(const Flags& flags, const comic::io::ImageSequence& sequence) {
+  const std::string& masks_dir = flags.region.masks;
+  const std::string& boxes_file = flags.region.regions;
+  const size_t num_frames = sequence.NumFrames();
+  const cv::Size source_size = sequence.SourceFrameSize();
+  const cv::Size frame_size = sequence.FrameSize();
+  const size_t first_source = static_cast<size_t>(flags.sequence_options.first_frame);
+  const size_t last_source = first_source + num_frames - 1;
   fe::RegionMaskSource regions;
   if (!masks_dir.empty()) {
     const auto masks =
         std::make_shared<comic::io::MaskFolder>(comic::io::MaskFolder::Open(masks_dir));
     // One mask per frame of the whole sequence, each the size of the frames.
-    masks->CheckCount(comic::io::ImageSequence::Open(frames_path).NumFrames());
+    masks->CheckCount(comic::io::ImageSequence::Open(flags.frames_path).NumFrames());
     for (size_t i = 0; i < num_frames; ++i) masks->Read(first_source + i, source_size);
     regions = [masks, first_source, source_size, frame_size](size_t frame) {
       cv::Mat mask = masks->Read(first_source + frame, source_size);
@@ -300,7 +311,7 @@ int Run(int argc, char** argv) {
     };
   } else if (!boxes_file.empty()) {
     const auto annotations = std::make_shared<comic::io::RegionAnnotations>(
-        comic::io::ReadRegionFile(boxes_file, format));
+        comic::io::ReadRegionFile(boxes_file, flags.region_file_format));
     COMIC_CHECK(annotations->polygons.size() > last_source, kInvalidData,
                 boxes_file << ": " << annotations->polygons.size() << " regions, but frame "
                            << last_source << " needs line " << last_source + 1);
@@ -309,6 +320,19 @@ int Run(int argc, char** argv) {
                                         frame_size);
     };
   }
+  return regions;
+}
+
+// With --poses and --calib: the true cameras of the evaluated frames, at the evaluated size.
+std::optional<fe::EpipolarGroundTruth> ReadGroundTruth(const Flags& flags,
+                                                       const comic::io::ImageSequence& sequence) {
+  const std::string& poses_file = flags.poses_file;
+  const std::string& calib_file = flags.calib_file;
+  const size_t num_frames = sequence.NumFrames();
+  const cv::Size source_size = sequence.SourceFrameSize();
+  const cv::Size frame_size = sequence.FrameSize();
+  const size_t first_source = static_cast<size_t>(flags.sequence_options.first_frame);
+  const size_t last_source = first_source + num_frames - 1;
   std::optional<fe::EpipolarGroundTruth> ground_truth;
   if (!poses_file.empty()) {
     const auto poses = comic::io::ReadKittiPoses(poses_file);
@@ -322,97 +346,155 @@ int Run(int argc, char** argv) {
                                    poses.begin() + first_source + num_frames);
     ground_truth = truth;
   }
+  return ground_truth;
+}
+
+// Per n: the score table and chart, the threshold sweep and, with ground truth, the precision;
+// each written to the folder and appended to the report.
+void WriteScoreTables(const std::string& folder, const Flags& flags,
+                      const fe::TrackEvaluation& evaluation, bool has_ground_truth,
+                      std::ostringstream& report) {
+  const fe::TrackEvaluationOptions& options = flags.options;
+  const std::string& frames_path = flags.frames_path;
+  const double epipolar_tolerance = flags.epipolar_tolerance;
+  for (size_t k = 0; k < options.ns.size(); ++k) {
+    const int nk = options.ns[k];
+    const ReportTable table = fe::ScoreTable(evaluation, nk);
+    const std::string name = "scores_n" + std::to_string(nk);
+    WriteTable(folder, name, table);
+    comic::io::WriteImageAtomically(comic::io::JoinPaths(folder, name + ".png"),
+                                    ScoreChart(evaluation, k, comic::io::FileName(frames_path)));
+    report << "## M_score(" << nk << ") and ResM_" << nk << "\n\n" << table.ToMarkdown() << "\n";
+    const ReportTable sweep = fe::ThresholdSweepTable(evaluation, nk);
+    WriteTable(folder, "threshold_sweep_n" + std::to_string(nk), sweep);
+    report << "## M_score(" << nk << ") and ResM_" << nk
+           << " at other SSD thresholds T (same matches, re-thresholded)\n\n"
+           << sweep.ToMarkdown() << "\n";
+    if (has_ground_truth) {
+      const ReportTable precision = fe::PrecisionTable(evaluation, nk);
+      WriteTable(folder, "precision_n" + std::to_string(nk), precision);
+      report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
+             << "\n\n"
+             << precision.ToMarkdown() << "\n";
+    }
+  }
+  if (has_ground_truth) {
+    const ReportTable equal_count = fe::EqualCountPrecisionTable(evaluation);
+    if (equal_count.NumRows() > 0) {
+      WriteTable(folder, "precision_equal_count", equal_count);
+      report << "## Epipolar precision at the full patch's number of accepted matches per pair "
+                "(tolerance "
+             << epipolar_tolerance << " px)\n\n"
+             << equal_count.ToMarkdown() << "\n";
+    }
+  }
+}
+
+// Overlays on frames spread over the sequence, late enough to show some history; written to the
+// folder and returned for report.html.
+std::vector<fe::EvaluationFigure> WriteOverlays(const std::string& folder, const Flags& flags,
+                                                const comic::io::ImageSequence& sequence,
+                                                const fe::RegionMaskSource& regions,
+                                                const fe::TrackEvaluation& evaluation) {
+  const size_t num_frames = sequence.NumFrames();
+  const double band = flags.region.boundary_band;
+  const int overlay_frames = flags.overlay_frames;
+  std::vector<fe::EvaluationFigure> figures;
+  const size_t overlays = std::min<size_t>(overlay_frames, num_frames);
+  for (size_t o = 0; o < overlays; ++o) {
+    const size_t first_shown = std::min<size_t>(5, num_frames - 1);
+    const size_t index = overlays == 1
+                             ? first_shown
+                             : first_shown + o * (num_frames - 1 - first_shown) / (overlays - 1);
+    const comic::io::Frame frame = sequence.ReadFrame(index);
+    const cv::Mat labels = regions ? fe::LabelRegion(regions(index), band) : cv::Mat();
+    const std::string stem = frame.name.substr(0, frame.name.find_last_of('.'));
+    figures.push_back({"tracks_" + stem + ".png", OverlayMosaic(evaluation, frame, index, labels)});
+    comic::io::WriteImageAtomically(comic::io::JoinPaths(folder, figures.back().caption),
+                                    figures.back().image);
+  }
+  return figures;
+}
+
+// Tables, charts, overlays, evaluation.json, report.md and report.html.
+void WriteOutputs(const std::string& folder, const Flags& flags, const std::string& command,
+                  const comic::io::ImageSequence& sequence, const fe::RegionMaskSource& regions,
+                  bool has_ground_truth, const fe::TrackEvaluation& evaluation) {
+  const size_t num_frames = sequence.NumFrames();
+  const cv::Size frame_size = sequence.FrameSize();
+  const std::string& masks_dir = flags.region.masks;
+  const std::string& boxes_file = flags.region.regions;
+  const double band = flags.region.boundary_band;
+  std::ostringstream report;
+  report << "# comic_track_eval report\n\n```\n"
+         << command << "\n```\n\n"
+         << "- frames: " << num_frames << " (" << evaluation.frame_names.front() << " .. "
+         << evaluation.frame_names.back() << "), evaluated at " << frame_size.width << "x"
+         << frame_size.height << "\n"
+         << "- object region: "
+         << (!masks_dir.empty() ? "masks " + masks_dir
+                                : (!boxes_file.empty() ? "regions " + boxes_file : "none"))
+         << "; boundary band " << band << " px\n"
+         << "- N = " << evaluation.reference_count << " features in frame 0's object region ("
+         << (evaluation.reference_source == "comic" ? "CoMIC's count" : "requested") << ")\n"
+         << "- matching: r = " << flags.radius << " px, T = " << flags.max_cost
+         << " (mean squared difference), min side overlap " << flags.min_side_overlap << " px\n\n";
+  WriteScoreTables(folder, flags, evaluation, has_ground_truth, report);
+  nlohmann::json json = fe::EvaluationToJson(evaluation);
+  json["command"] = command;
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(folder, "evaluation.json"),
+                                 comic::io::JsonText(json, 2));
+
+  const std::vector<fe::EvaluationFigure> figures =
+      WriteOverlays(folder, flags, sequence, regions, evaluation);
+  const std::string region_words = !masks_dir.empty()
+                                       ? "masks " + masks_dir
+                                       : (!boxes_file.empty() ? "regions " + boxes_file : "none");
+  comic::io::WriteHtmlPage(comic::io::JoinPaths(folder, "report.html"),
+                           fe::TrackEvaluationPage(evaluation, {command, region_words, figures}));
+  comic::io::WriteFileAtomically(comic::io::JoinPaths(folder, "report.md"), report.str());
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_track_eval", "FRAMES [--masks DIR | --regions FILE] [options]",
+      "Compares CoMIC with Harris, Hessian, MSER and FAST-9 on one sequence under the paper's\n"
+      "protocol (§5.1): every detector's threshold is set to give the same number N of features\n"
+      "on the object in the first frame; features are detected on every frame and matched frame\n"
+      "to frame by 23x23 SSD within r pixels, one-to-one, at one SSD threshold; ResM_n and\n"
+      "M_score(n) = ResM_n / N_{i-n} (Eq. 2) are computed every frame-step frames and averaged,\n"
+      "for boundary, non-boundary and all features of the object region (features off the\n"
+      "object are left out). CoMIC is matched with its split patch (Algorithm 2), with like\n"
+      "sides only, and with the full patch, one row each.");
+  AddFlags(parser, flags);
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+  flags.Check();
+
+  const auto sequence = comic::io::ImageSequence::Open(flags.frames_path, flags.sequence_options);
+  FitToSequence(sequence, flags);
+  const fe::RegionMaskSource regions = ReadRegions(flags, sequence);
+  const std::optional<fe::EpipolarGroundTruth> ground_truth = ReadGroundTruth(flags, sequence);
 
   comic::apps::PrintWarning("comic_track_eval", sequence.warning());
-  comic::io::StagedFolder out(out_dir);
-  std::cout << "comic_track_eval: " << num_frames << " frames of " << frames_path << " at "
-            << frame_size.width << "x" << frame_size.height << ", detectors " << detector_list
-            << std::endl;
+  comic::io::StagedFolder out(flags.out_dir);
+  std::cout << "comic_track_eval: " << sequence.NumFrames() << " frames of " << flags.frames_path
+            << " at " << sequence.FrameSize().width << "x" << sequence.FrameSize().height
+            << ", detectors " << flags.detector_list << std::endl;
   // Per frame (of all detectors' passes) with elapsed time and an estimate of what remains,
   // on stdout (issue 17); --quiet silences it.
-  comic::apps::ProgressLine progress("comic_track_eval: detection and tracking", quiet);
+  comic::apps::ProgressLine progress("comic_track_eval: detection and tracking", flags.quiet);
   const fe::TrackEvaluation evaluation =
-      fe::EvaluateTracking(sequence, regions, ground_truth, options, progress.Callback());
+      fe::EvaluateTracking(sequence, regions, ground_truth, flags.options, progress.Callback());
 
   // Errors while writing (a full disk) name --output, not the staging folder.
   out.NamingTarget([&] {
-    // Tables, charts, report.
-    const std::string command = comic::apps::CommandLine("comic_track_eval", argc, argv);
-    std::ostringstream report;
-    report << "# comic_track_eval report\n\n```\n"
-           << command << "\n```\n\n"
-           << "- frames: " << num_frames << " (" << evaluation.frame_names.front() << " .. "
-           << evaluation.frame_names.back() << "), evaluated at " << frame_size.width << "x"
-           << frame_size.height << "\n"
-           << "- object region: "
-           << (!masks_dir.empty() ? "masks " + masks_dir
-                                  : (!boxes_file.empty() ? "regions " + boxes_file : "none"))
-           << "; boundary band " << band << " px\n"
-           << "- N = " << evaluation.reference_count << " features in frame 0's object region ("
-           << (evaluation.reference_source == "comic" ? "CoMIC's count" : "requested") << ")\n"
-           << "- matching: r = " << radius << " px, T = " << max_cost
-           << " (mean squared difference), min side overlap " << min_side_overlap << " px\n\n";
-    for (size_t k = 0; k < options.ns.size(); ++k) {
-      const int nk = options.ns[k];
-      const ReportTable table = fe::ScoreTable(evaluation, nk);
-      const std::string name = "scores_n" + std::to_string(nk);
-      WriteTable(out.path(), name, table);
-      comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), name + ".png"),
-                                      ScoreChart(evaluation, k, comic::io::FileName(frames_path)));
-      report << "## M_score(" << nk << ") and ResM_" << nk << "\n\n" << table.ToMarkdown() << "\n";
-      const ReportTable sweep = fe::ThresholdSweepTable(evaluation, nk);
-      WriteTable(out.path(), "threshold_sweep_n" + std::to_string(nk), sweep);
-      report << "## M_score(" << nk << ") and ResM_" << nk
-             << " at other SSD thresholds T (same matches, re-thresholded)\n\n"
-             << sweep.ToMarkdown() << "\n";
-      if (ground_truth) {
-        const ReportTable precision = fe::PrecisionTable(evaluation, nk);
-        WriteTable(out.path(), "precision_n" + std::to_string(nk), precision);
-        report << "## Epipolar precision (tolerance " << epipolar_tolerance << " px), n = " << nk
-               << "\n\n"
-               << precision.ToMarkdown() << "\n";
-      }
-    }
-    if (ground_truth) {
-      const ReportTable equal_count = fe::EqualCountPrecisionTable(evaluation);
-      if (equal_count.NumRows() > 0) {
-        WriteTable(out.path(), "precision_equal_count", equal_count);
-        report << "## Epipolar precision at the full patch's number of accepted matches per pair "
-                  "(tolerance "
-               << epipolar_tolerance << " px)\n\n"
-               << equal_count.ToMarkdown() << "\n";
-      }
-    }
-    nlohmann::json json = fe::EvaluationToJson(evaluation);
-    json["command"] = command;
-    comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "evaluation.json"),
-                                   comic::io::JsonText(json, 2));
-
-    // Overlays on frames spread over the sequence, late enough to show some history.
-    std::vector<fe::EvaluationFigure> figures;
-    const size_t overlays = std::min<size_t>(overlay_frames, num_frames);
-    for (size_t o = 0; o < overlays; ++o) {
-      const size_t first_shown = std::min<size_t>(5, num_frames - 1);
-      const size_t index = overlays == 1
-                               ? first_shown
-                               : first_shown + o * (num_frames - 1 - first_shown) / (overlays - 1);
-      const comic::io::Frame frame = sequence.ReadFrame(index);
-      const cv::Mat labels = regions ? fe::LabelRegion(regions(index), band) : cv::Mat();
-      const std::string stem = frame.name.substr(0, frame.name.find_last_of('.'));
-      figures.push_back(
-          {"tracks_" + stem + ".png", OverlayMosaic(evaluation, frame, index, labels)});
-      comic::io::WriteImageAtomically(comic::io::JoinPaths(out.path(), figures.back().caption),
-                                      figures.back().image);
-    }
-    const std::string region_words = !masks_dir.empty()
-                                         ? "masks " + masks_dir
-                                         : (!boxes_file.empty() ? "regions " + boxes_file : "none");
-    comic::io::WriteHtmlPage(comic::io::JoinPaths(out.path(), "report.html"),
-                             fe::TrackEvaluationPage(evaluation, {command, region_words, figures}));
-    comic::io::WriteFileAtomically(comic::io::JoinPaths(out.path(), "report.md"), report.str());
+    WriteOutputs(out.path(), flags, comic::apps::CommandLine("comic_track_eval", argc, argv),
+                 sequence, regions, ground_truth.has_value(), evaluation);
   });
   out.Commit();
-  std::cout << fe::ScoreTable(evaluation, n).ToMarkdown() << "wrote " << out_dir << "/\n";
+  std::cout << fe::ScoreTable(evaluation, flags.n).ToMarkdown() << "wrote " << flags.out_dir
+            << "/\n";
   return 0;
 }
 

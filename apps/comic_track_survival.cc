@@ -220,15 +220,7 @@ nlohmann::json ToJson(const std::vector<DetectorResult>& results) {
   return rows;
 }
 
-int Run(int argc, char** argv) {
-  Flags flags;
-  comic::apps::ArgParser parser(
-      "comic_track_survival", "FRAMES [options]",
-      "Tracks a video with comic_sfm's tracker for each detector and prints how long the tracks\n"
-      "live (mean track length; share of the features of every --start-stride-th frame followed\n"
-      ">= 1, 5, 10 frames) beside OpenCV's pyramidal Lucas-Kanade on the same corners, and where\n"
-      "the features of each frame go in the next (continued, not re-detected, outside the search\n"
-      "region, above the cost threshold, beaten under the one-to-one rule; LK is the reference).");
+void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
   parser.AddPositional("FRAMES", "folder of images or a video file", &flags.frames);
   comic::apps::AddDetectorListFlag(parser, &flags.detectors);
   comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
@@ -257,21 +249,10 @@ int Run(int argc, char** argv) {
   comic::apps::AddThreadsFlag(parser, &flags.threads);
   comic::apps::AddQuietFlag(parser, &flags.quiet);
   comic::apps::AddJsonFlag(parser, &flags.json);
-  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+}
 
-  const std::vector<std::string> detectors = fe::ParseDetectorList(flags.detectors);
-  comic::apps::CheckThreadCount("--threads", flags.threads);
-  COMIC_CHECK(flags.start_stride >= 1, kInvalidArgument, "--start-stride must be >= 1");
-  COMIC_CHECK(flags.horizon >= 0, kInvalidArgument, "--horizon must be >= 0");
-  io::CheckMaxPixels(flags.max_pixels);
-  flags.sequence.max_pixels = flags.max_pixels;
-  const fe::TrackerOptions options = comic::apps::ToTrackerOptions(flags.tracker);
-  flags.lk.Check();
-  const io::ImageSequence sequence = io::ImageSequence::Open(flags.frames, flags.sequence);
-  std::vector<cv::Mat> grays;
-  for (size_t i = 0; i < sequence.NumFrames(); ++i) grays.push_back(sequence.ReadFrame(i).gray);
-  COMIC_CHECK(grays.size() >= 2, kInvalidArgument, flags.frames << ": needs at least 2 frames");
-
+// With --poses and --calib: the true cameras of the frames, at the frames' size.
+GroundTruth ReadGroundTruth(const Flags& flags, const io::ImageSequence& sequence) {
   GroundTruth truth;
   COMIC_CHECK(flags.gt.empty() == flags.calib.empty(), kInvalidArgument,
               "--poses and --calib go together");
@@ -287,6 +268,35 @@ int Run(int argc, char** argv) {
       truth.world_from_camera.push_back(poses[source]);
     }
   }
+  return truth;
+}
+
+int Run(int argc, char** argv) {
+  Flags flags;
+  comic::apps::ArgParser parser(
+      "comic_track_survival", "FRAMES [options]",
+      "Tracks a video with comic_sfm's tracker for each detector and prints how long the tracks\n"
+      "live (mean track length; share of the features of every --start-stride-th frame followed\n"
+      ">= 1, 5, 10 frames) beside OpenCV's pyramidal Lucas-Kanade on the same corners, and where\n"
+      "the features of each frame go in the next (continued, not re-detected, outside the search\n"
+      "region, above the cost threshold, beaten under the one-to-one rule; LK is the reference).");
+  AddFlags(parser, flags);
+  if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
+
+  const std::vector<std::string> detectors = fe::ParseDetectorList(flags.detectors);
+  comic::apps::CheckThreadCount("--threads", flags.threads);
+  COMIC_CHECK(flags.start_stride >= 1, kInvalidArgument, "--start-stride must be >= 1");
+  COMIC_CHECK(flags.horizon >= 0, kInvalidArgument, "--horizon must be >= 0");
+  io::CheckMaxPixels(flags.max_pixels);
+  flags.sequence.max_pixels = flags.max_pixels;
+  const fe::TrackerOptions options = comic::apps::ToTrackerOptions(flags.tracker);
+  flags.lk.Check();
+  const io::ImageSequence sequence = io::ImageSequence::Open(flags.frames, flags.sequence);
+  std::vector<cv::Mat> grays;
+  for (size_t i = 0; i < sequence.NumFrames(); ++i) grays.push_back(sequence.ReadFrame(i).gray);
+  COMIC_CHECK(grays.size() >= 2, kInvalidArgument, flags.frames << ": needs at least 2 frames");
+
+  const GroundTruth truth = ReadGroundTruth(flags, sequence);
   std::vector<DetectorResult> results;
   for (const std::string& name : detectors) {
     results.push_back(RunDetector(name, grays, flags, options, truth));

@@ -198,11 +198,10 @@ nlohmann::json StereoReport::ToJson() const {
                         {"paper_comparison", paper_comparison.ToJson()}};
 }
 
-StereoReport BuildStereoReport(const std::vector<StereoPairEvaluation>& results,
-                               const StereoEvaluationOptions& options) {
-  StereoReport report;
-  report.protocol = ProtocolTable(options);
+namespace {
 
+// The report's tables with their columns and number formats, no rows yet.
+void MakeEmptyTables(const StereoEvaluationOptions& options, StereoReport& report) {
   report.pairs = io::ReportTable({"pair", "width", "height", "resize factor", "disparity scale",
                                   "max GT disparity px", "gate min disparity px",
                                   "gate max disparity px", "boundary pixels", "non-boundary pixels",
@@ -240,7 +239,99 @@ StereoReport BuildStereoReport(const std::vector<StereoPairEvaluation>& results,
   }
   report.matched_precision.SetPrecision("T at target", 1);
   report.detections.SetPrecision("cut-off response", 6);
+}
 
+// One detections row per detector and its repeatability rows per region.
+void AddDetectionRows(const StereoPairEvaluation& pair, const StereoRun& run,
+                      const StereoEvaluationOptions& options, StereoReport& report) {
+  const Cell n = Int(run.target_count);
+  for (const StereoDetection& d : run.detections) {
+    report.detections.AddRow(
+        {pair.name, n, d.detector, CutCell(d.cut), Int(d.left_candidates), Int(d.cut.available),
+         std::string(d.cut.reached ? "yes" : "no"), Int(static_cast<int>(d.left.size())),
+         Int(static_cast<int>(d.right.size())), Int(d.detected[0]), Int(d.detected[1]),
+         Int(d.detected[2]), Int(d.unknown_disparity), Int(d.occluded)});
+    for (StereoRegion region : kStereoRegions) {
+      const int r = static_cast<int>(region);
+      std::vector<Cell> row = {pair.name, n, d.detector, StereoRegionName(region),
+                               Int(d.detected[r])};
+      for (size_t k = 0; k < options.repeatability_tolerances.size(); ++k) {
+        row.push_back(
+            Percent(RegionCounts{d.detected[r], d.detected[r], d.repeatable[k][r]}.MScore()));
+      }
+      report.repeatability.AddRow(std::move(row));
+    }
+  }
+}
+
+// Per matching method: scores at each reported threshold, and at the matched precision.
+void AddMatchingRows(const StereoPairEvaluation& pair, const StereoRun& run,
+                     const std::vector<double>& thresholds, StereoReport& report) {
+  const Cell n = Int(run.target_count);
+  for (const StereoMatching& m : run.matchings) {
+    const StereoDetection& d = run.DetectionFor(m.method.detector);
+    for (double t : thresholds) {
+      const RegionScores s = ScoreAt(d, m, t);
+      for (StereoRegion region : kStereoRegions) {
+        const RegionCounts& c = s[static_cast<int>(region)];
+        report.scores.AddRow({pair.name, n, m.method.Label(), Number(t), StereoRegionName(region),
+                              Int(c.detected), Int(c.accepted), Int(c.correct), Percent(c.MScore()),
+                              Percent(c.Precision()),
+                              Percent(RegionCounts{s[kOverall].detected, 0, c.correct}.MScore())});
+      }
+    }
+    const RegionScores all = ScoreAt(d, m, kInfinity);
+    std::vector<Cell> row = {pair.name, n, m.method.Label(), Percent(run.target_precision)};
+    if (run.target_precision) {
+      const MatchedPrecision mp = ScoreAtPrecision(d, m, *run.target_precision);
+      if (mp.point) {
+        row.insert(row.end(), {mp.point->max_cost, Int(mp.point->accepted), Int(mp.point->correct),
+                               Percent(mp.point->precision)});
+      } else {
+        row.insert(row.end(), 4, std::monostate{});
+      }
+      for (const RegionCounts& c : mp.scores) {
+        row.push_back(mp.point ? Percent(c.MScore()) : Cell(std::monostate{}));
+      }
+    } else {
+      row.insert(row.end(), 7, std::monostate{});
+    }
+    for (const RegionCounts& c : all) row.push_back(Percent(c.MScore()));
+    row.push_back(Percent(all[kOverall].Precision()));
+    report.matched_precision.AddRow(std::move(row));
+  }
+}
+
+// Each detector's primary method at the paper's cost, beside the paper's numbers for this pair.
+void AddPaperComparisonRows(const StereoPairEvaluation& pair, const StereoRun& run,
+                            const std::optional<PaperStereoNumbers>& paper,
+                            const StereoEvaluationOptions& options, StereoReport& report) {
+  const Cell n = Int(run.target_count);
+  for (const std::string& detector : DetectorNames()) {
+    const StereoMatching* m = PrimaryMatching(run, detector);
+    if (m == nullptr) continue;
+    const StereoDetection& d = run.DetectionFor(detector);
+    const RegionScores s = ScoreAt(d, *m, options.max_cost);
+    const int di = DetectorIndex(detector);
+    for (StereoRegion region : kStereoRegions) {
+      const int r = static_cast<int>(region);
+      report.paper_comparison.AddRow(
+          {pair.name, n, detector, m->method.Label(), StereoRegionName(region),
+           Percent(s[r].MScore()), paper ? Cell(paper->m_score_percent[r][di]) : Cell(),
+           Int(s[r].correct), paper ? Cell(paper->resm[r][di]) : Cell(), Percent(s[r].Precision()),
+           Percent(RegionCounts{s[kOverall].detected, 0, s[r].correct}.MScore()),
+           Int(s[r].detected)});
+    }
+  }
+}
+
+}  // namespace
+
+StereoReport BuildStereoReport(const std::vector<StereoPairEvaluation>& results,
+                               const StereoEvaluationOptions& options) {
+  StereoReport report;
+  report.protocol = ProtocolTable(options);
+  MakeEmptyTables(options, report);
   const std::vector<double> thresholds = ReportedThresholds(options);
   for (const StereoPairEvaluation& pair : results) {
     const auto& px = pair.pixel_counts;
@@ -254,74 +345,9 @@ StereoReport BuildStereoReport(const std::vector<StereoPairEvaluation>& results,
                          Int(pair.reference_count)});
     const auto paper = PaperStereoNumbersFor(pair.name);
     for (const StereoRun& run : pair.runs) {
-      const Cell n = Int(run.target_count);
-      for (const StereoDetection& d : run.detections) {
-        report.detections.AddRow(
-            {pair.name, n, d.detector, CutCell(d.cut), Int(d.left_candidates), Int(d.cut.available),
-             std::string(d.cut.reached ? "yes" : "no"), Int(static_cast<int>(d.left.size())),
-             Int(static_cast<int>(d.right.size())), Int(d.detected[0]), Int(d.detected[1]),
-             Int(d.detected[2]), Int(d.unknown_disparity), Int(d.occluded)});
-        for (StereoRegion region : kStereoRegions) {
-          const int r = static_cast<int>(region);
-          std::vector<Cell> row = {pair.name, n, d.detector, StereoRegionName(region),
-                                   Int(d.detected[r])};
-          for (size_t k = 0; k < options.repeatability_tolerances.size(); ++k) {
-            row.push_back(
-                Percent(RegionCounts{d.detected[r], d.detected[r], d.repeatable[k][r]}.MScore()));
-          }
-          report.repeatability.AddRow(std::move(row));
-        }
-      }
-      for (const StereoMatching& m : run.matchings) {
-        const StereoDetection& d = run.DetectionFor(m.method.detector);
-        for (double t : thresholds) {
-          const RegionScores s = ScoreAt(d, m, t);
-          for (StereoRegion region : kStereoRegions) {
-            const RegionCounts& c = s[static_cast<int>(region)];
-            report.scores.AddRow(
-                {pair.name, n, m.method.Label(), Number(t), StereoRegionName(region),
-                 Int(c.detected), Int(c.accepted), Int(c.correct), Percent(c.MScore()),
-                 Percent(c.Precision()),
-                 Percent(RegionCounts{s[kOverall].detected, 0, c.correct}.MScore())});
-          }
-        }
-        const RegionScores all = ScoreAt(d, m, kInfinity);
-        std::vector<Cell> row = {pair.name, n, m.method.Label(), Percent(run.target_precision)};
-        if (run.target_precision) {
-          const MatchedPrecision mp = ScoreAtPrecision(d, m, *run.target_precision);
-          if (mp.point) {
-            row.insert(row.end(), {mp.point->max_cost, Int(mp.point->accepted),
-                                   Int(mp.point->correct), Percent(mp.point->precision)});
-          } else {
-            row.insert(row.end(), 4, std::monostate{});
-          }
-          for (const RegionCounts& c : mp.scores) {
-            row.push_back(mp.point ? Percent(c.MScore()) : Cell(std::monostate{}));
-          }
-        } else {
-          row.insert(row.end(), 7, std::monostate{});
-        }
-        for (const RegionCounts& c : all) row.push_back(Percent(c.MScore()));
-        row.push_back(Percent(all[kOverall].Precision()));
-        report.matched_precision.AddRow(std::move(row));
-      }
-      for (const std::string& detector : DetectorNames()) {
-        const StereoMatching* m = PrimaryMatching(run, detector);
-        if (m == nullptr) continue;
-        const StereoDetection& d = run.DetectionFor(detector);
-        const RegionScores s = ScoreAt(d, *m, options.max_cost);
-        const int di = DetectorIndex(detector);
-        for (StereoRegion region : kStereoRegions) {
-          const int r = static_cast<int>(region);
-          report.paper_comparison.AddRow(
-              {pair.name, n, detector, m->method.Label(), StereoRegionName(region),
-               Percent(s[r].MScore()), paper ? Cell(paper->m_score_percent[r][di]) : Cell(),
-               Int(s[r].correct), paper ? Cell(paper->resm[r][di]) : Cell(),
-               Percent(s[r].Precision()),
-               Percent(RegionCounts{s[kOverall].detected, 0, s[r].correct}.MScore()),
-               Int(s[r].detected)});
-        }
-      }
+      AddDetectionRows(pair, run, options, report);
+      AddMatchingRows(pair, run, thresholds, report);
+      AddPaperComparisonRows(pair, run, paper, options, report);
     }
   }
   return report;

@@ -193,14 +193,19 @@ nlohmann::json PrecisionPointJson(const PrecisionPoint& point) {
           {"precision", point.precision}};
 }
 
-}  // namespace
+// Frame 0 as every detector sees it: the reference count N and each detector's cut-off are set on
+// it, and the tracking loop reuses it rather than reading and detecting it twice.
+struct FirstFrame {
+  io::Frame frame;
+  cv::Mat labels;
+  cv::Mat region;                      // empty without region masks
+  std::vector<FeatureSet> detections;  // one per detector, in options.detectors order
+};
 
-TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const RegionMaskSource& regions,
-                                 const std::optional<EpipolarGroundTruth>& ground_truth,
-                                 const TrackEvaluationOptions& options,
-                                 const EvaluationProgress& progress) {
+void CheckEvaluationInputs(size_t num_frames,
+                           const std::optional<EpipolarGroundTruth>& ground_truth,
+                           const TrackEvaluationOptions& options) {
   options.Check();
-  const size_t num_frames = sequence.NumFrames();
   for (int n : options.ns) {
     COMIC_CHECK(
         static_cast<size_t>(n) < num_frames, kInvalidArgument,
@@ -210,44 +215,54 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
               kInvalidArgument,
               "ground truth has " << (ground_truth ? ground_truth->world_from_camera.size() : 0)
                                   << " poses for " << num_frames << " frames");
+}
 
-  TrackEvaluation evaluation;
-  evaluation.options = options;
-  evaluation.num_frames = num_frames;
-  evaluation.frame_size = sequence.FrameSize();
-  evaluation.frame_names = sequence.FrameNames();
-  evaluation.has_regions = static_cast<bool>(regions);
-  const cv::Size size = sequence.FrameSize();
-
+std::vector<std::unique_ptr<Detector>> MakeDetectors(const TrackEvaluationOptions& options) {
   std::vector<std::unique_ptr<Detector>> detectors;
   for (const std::string& name : options.detectors) {
     DetectorOptions named = options.detector_options;
     named.name = name;
     detectors.push_back(MakeDetector(named));
   }
+  return detectors;
+}
 
-  // Frame 0: every detector's candidates, the reference count N and each detector's cut-off.
-  const io::Frame first = sequence.ReadFrame(0);
-  const cv::Mat first_labels = FrameLabels(regions, 0, size, options.boundary_band);
-  const cv::Mat first_region = regions ? EvaluatedRegionMask(first_labels) : cv::Mat();
-  std::vector<FeatureSet> first_detections;
-  for (const auto& detector : detectors) first_detections.push_back(detector->Detect(first.gray));
+FirstFrame DetectFirstFrame(const io::ImageSequence& sequence, const RegionMaskSource& regions,
+                            const TrackEvaluationOptions& options,
+                            const std::vector<std::unique_ptr<Detector>>& detectors) {
+  FirstFrame first;
+  first.frame = sequence.ReadFrame(0);
+  first.labels = FrameLabels(regions, 0, sequence.FrameSize(), options.boundary_band);
+  first.region = regions ? EvaluatedRegionMask(first.labels) : cv::Mat();
+  for (const auto& detector : detectors) {
+    first.detections.push_back(detector->Detect(first.frame.gray));
+  }
+  return first;
+}
+
+// The count N every detector is cut to: the requested one, or CoMIC's count on frame 0.
+void SetReferenceCount(const FirstFrame& first, const cv::Size& size,
+                       const TrackEvaluationOptions& options, TrackEvaluation& evaluation) {
   int reference = options.num_features;
   evaluation.reference_source = "requested";
   if (reference == 0) {
     const size_t comic =
         static_cast<size_t>(std::find(options.detectors.begin(), options.detectors.end(), "comic") -
                             options.detectors.begin());
-    reference = CountCountedFeatures(first_detections[comic], size, first_region);
+    reference = CountCountedFeatures(first.detections[comic], size, first.region);
     evaluation.reference_source = "comic";
     COMIC_CHECK(reference > 0, kInvalidArgument,
                 "CoMIC found no feature in the object region of frame 0, so there is no count to "
                 "equalise to; give the count N explicitly (num_features)");
   }
   evaluation.reference_count = reference;
+}
 
+// Each detector's response cut-off that keeps the reference count on frame 0.
+std::vector<ThresholdCut> EqualiseCuts(const FirstFrame& first, int reference, const cv::Size& size,
+                                       const TrackEvaluationOptions& options) {
   std::vector<ThresholdCut> cuts;
-  for (size_t d = 0; d < detectors.size(); ++d) {
+  for (size_t d = 0; d < first.detections.size(); ++d) {
     if (options.detectors[d] == "comic" && options.num_features == 0) {
       // CoMIC sets N at its own threshold: it keeps everything it returns.
       ThresholdCut cut;
@@ -257,14 +272,20 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
       cut.reached = true;
       cuts.push_back(cut);
     } else {
-      cuts.push_back(EqualiseThreshold(first_detections[d], reference, size, first_region));
+      cuts.push_back(EqualiseThreshold(first.detections[d], reference, size, first.region));
     }
   }
+  return cuts;
+}
 
-  // One tracker per row; rows of one detector share its detections.
-  std::vector<std::vector<size_t>> rows_of_detector(detectors.size());
-  std::vector<Tracker> trackers;
-  for (size_t d = 0; d < detectors.size(); ++d) {
+// One row and one tracker per (detector, cost); returns each detector's row indices, since rows of
+// one detector share its detections.
+std::vector<std::vector<size_t>> AddRows(const TrackEvaluationOptions& options,
+                                         const std::vector<ThresholdCut>& cuts,
+                                         TrackEvaluation& evaluation,
+                                         std::vector<Tracker>& trackers) {
+  std::vector<std::vector<size_t>> rows_of_detector(cuts.size());
+  for (size_t d = 0; d < cuts.size(); ++d) {
     const std::vector<MatchCost>& costs =
         IsComic(options.detectors[d]) ? options.comic_costs : options.baseline_costs;
     for (MatchCost cost : costs) {
@@ -282,16 +303,26 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
       trackers.emplace_back(tracker_options, options.detectors[d]);
     }
   }
+  return rows_of_detector;
+}
 
+void TrackAllFrames(const io::ImageSequence& sequence, const RegionMaskSource& regions,
+                    const TrackEvaluationOptions& options, const EvaluationProgress& progress,
+                    const std::vector<std::unique_ptr<Detector>>& detectors,
+                    const FirstFrame& first, const std::vector<ThresholdCut>& cuts,
+                    const std::vector<std::vector<size_t>>& rows_of_detector,
+                    TrackEvaluation& evaluation, std::vector<Tracker>& trackers) {
+  const size_t num_frames = sequence.NumFrames();
+  const cv::Size size = sequence.FrameSize();
   for (size_t i = 0; i < num_frames; ++i) {
-    const io::Frame frame = i == 0 ? first : sequence.ReadFrame(i);
+    const io::Frame frame = i == 0 ? first.frame : sequence.ReadFrame(i);
     const cv::Mat labels =
-        i == 0 ? first_labels : FrameLabels(regions, i, size, options.boundary_band);
+        i == 0 ? first.labels : FrameLabels(regions, i, size, options.boundary_band);
     for (size_t d = 0; d < detectors.size(); ++d) {
       TrackerOptions cut_options;
       cut_options.min_response = cuts[d].min_response;
       FeatureSet features = SelectTrackableFeatures(
-          i == 0 ? first_detections[d] : detectors[d]->Detect(frame.gray), size, cut_options);
+          i == 0 ? first.detections[d] : detectors[d]->Detect(frame.gray), size, cut_options);
       const std::vector<RegionLabel> feature_labels =
           regions ? LabelFeatures(labels, features) : std::vector<RegionLabel>();
       for (size_t r : rows_of_detector[d]) {
@@ -301,7 +332,12 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
     }
     if (progress) progress(i + 1, num_frames);
   }
+}
 
+// Matching scores at each n (and at each swept cost) and, with ground truth, precision.
+void ScoreRows(const std::optional<EpipolarGroundTruth>& ground_truth,
+               const TrackEvaluationOptions& options, std::vector<Tracker>& trackers,
+               TrackEvaluation& evaluation) {
   for (size_t r = 0; r < evaluation.rows.size(); ++r) {
     EvaluationRow& row = evaluation.rows[r];
     row.tracking = trackers[r].Result();
@@ -330,6 +366,33 @@ TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const Region
       }
     }
   }
+}
+
+}  // namespace
+
+TrackEvaluation EvaluateTracking(const io::ImageSequence& sequence, const RegionMaskSource& regions,
+                                 const std::optional<EpipolarGroundTruth>& ground_truth,
+                                 const TrackEvaluationOptions& options,
+                                 const EvaluationProgress& progress) {
+  const size_t num_frames = sequence.NumFrames();
+  CheckEvaluationInputs(num_frames, ground_truth, options);
+  TrackEvaluation evaluation;
+  evaluation.options = options;
+  evaluation.num_frames = num_frames;
+  evaluation.frame_size = sequence.FrameSize();
+  evaluation.frame_names = sequence.FrameNames();
+  evaluation.has_regions = static_cast<bool>(regions);
+  const std::vector<std::unique_ptr<Detector>> detectors = MakeDetectors(options);
+  const FirstFrame first = DetectFirstFrame(sequence, regions, options, detectors);
+  SetReferenceCount(first, sequence.FrameSize(), options, evaluation);
+  const std::vector<ThresholdCut> cuts =
+      EqualiseCuts(first, evaluation.reference_count, sequence.FrameSize(), options);
+  std::vector<Tracker> trackers;
+  const std::vector<std::vector<size_t>> rows_of_detector =
+      AddRows(options, cuts, evaluation, trackers);
+  TrackAllFrames(sequence, regions, options, progress, detectors, first, cuts, rows_of_detector,
+                 evaluation, trackers);
+  ScoreRows(ground_truth, options, trackers, evaluation);
   return evaluation;
 }
 

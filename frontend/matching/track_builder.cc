@@ -67,23 +67,34 @@ struct NodeMatch {
   int node2;
 };
 
-}  // namespace
+// (frame, feature) numbered as one node each: node = first_node[frame] + feature.
+struct NodeNumbering {
+  std::vector<int> first_node;     // num_frames + 1 entries
+  std::vector<int> frame_of_node;  // one per node
+  int NumNodes() const { return first_node.back(); }
+};
 
-std::vector<Track> BuildTracks(const std::vector<FeatureSet>& features,
-                               const std::vector<FramePairMatches>& pairs, TrackConflictRule rule,
-                               TrackBuildSummary* summary) {
+NodeNumbering NumberNodes(const std::vector<FeatureSet>& features) {
   const int num_frames = static_cast<int>(features.size());
-  // Node of (frame, feature) = first_node[frame] + feature.
-  std::vector<int> first_node(num_frames + 1, 0);
+  NodeNumbering numbering;
+  numbering.first_node.assign(num_frames + 1, 0);
+  std::vector<int>& first_node = numbering.first_node;
   for (int f = 0; f < num_frames; ++f) {
     first_node[f + 1] = first_node[f] + static_cast<int>(features[f].size());
   }
-  const int num_nodes = first_node[num_frames];
-  std::vector<int> frame_of_node(num_nodes);
+  numbering.frame_of_node.resize(first_node[num_frames]);
   for (int f = 0; f < num_frames; ++f) {
-    std::fill(frame_of_node.begin() + first_node[f], frame_of_node.begin() + first_node[f + 1], f);
+    std::fill(numbering.frame_of_node.begin() + first_node[f],
+              numbering.frame_of_node.begin() + first_node[f + 1], f);
   }
+  return numbering;
+}
 
+// Every match as a NodeMatch; throws on a pair out of order or a match that is not one-to-one.
+std::vector<NodeMatch> CollectMatches(const std::vector<FeatureSet>& features,
+                                      const std::vector<FramePairMatches>& pairs,
+                                      const std::vector<int>& first_node) {
+  const int num_frames = static_cast<int>(features.size());
   std::vector<NodeMatch> matches;
   std::vector<char> used1, used2;
   for (const FramePairMatches& pair : pairs) {
@@ -108,54 +119,55 @@ std::vector<Track> BuildTracks(const std::vector<FeatureSet>& features,
                          first_node[pair.frame1] + m.index1, first_node[pair.frame2] + m.index2});
     }
   }
-  TrackBuildSummary local;
-  local.num_matches = static_cast<int>(matches.size());
+  return matches;
+}
 
-  DisjointSets sets(num_nodes);
-  if (rule == TrackConflictRule::kDrop) {
-    for (const NodeMatch& m : matches) {
-      const int a = sets.Find(m.node1), b = sets.Find(m.node2);
-      if (a != b) sets.Unite(a, b);
+// kGreedy, kGreedyByCost: joins along the matches in a fixed order, refusing a match whose two
+// components share a frame. Returns the number refused.
+int UniteGreedily(std::vector<NodeMatch>& matches, TrackConflictRule rule,
+                  const std::vector<int>& frame_of_node, DisjointSets& sets) {
+  // (gap, cost, frame1, index1) identifies a match (matching is one-to-one per pair), so the
+  // order is total and the result independent of the input order.
+  // kGreedyByCost: (cost, frame1, index1, gap), equally total.
+  const bool by_cost = rule == TrackConflictRule::kGreedyByCost;
+  std::sort(matches.begin(), matches.end(), [by_cost](const NodeMatch& x, const NodeMatch& y) {
+    if (by_cost) {
+      return std::tie(x.cost, x.frame1, x.index1, x.gap) <
+             std::tie(y.cost, y.frame1, y.index1, y.gap);
     }
-  } else {
-    // (gap, cost, frame1, index1) identifies a match (matching is one-to-one per pair), so the
-    // order is total and the result independent of the input order.
-    // kGreedyByCost: (cost, frame1, index1, gap), equally total.
-    const bool by_cost = rule == TrackConflictRule::kGreedyByCost;
-    std::sort(matches.begin(), matches.end(), [by_cost](const NodeMatch& x, const NodeMatch& y) {
-      if (by_cost) {
-        return std::tie(x.cost, x.frame1, x.index1, x.gap) <
-               std::tie(y.cost, y.frame1, y.index1, y.gap);
-      }
-      return std::tie(x.gap, x.cost, x.frame1, x.index1) <
-             std::tie(y.gap, y.cost, y.frame1, y.index1);
-    });
-    // Frames of each root's component, sorted; empty for a single node (its own frame).
-    std::vector<std::vector<int>> frames_of_root(num_nodes);
-    auto frames_of = [&](int root) {
-      return frames_of_root[root].empty() ? std::vector<int>{frame_of_node[root]}
-                                          : frames_of_root[root];
-    };
-    for (const NodeMatch& m : matches) {
-      const int a = sets.Find(m.node1), b = sets.Find(m.node2);
-      if (a == b) continue;
-      const std::vector<int> frames_a = frames_of(a), frames_b = frames_of(b);
-      std::vector<int> merged;
-      merged.reserve(frames_a.size() + frames_b.size());
-      std::merge(frames_a.begin(), frames_a.end(), frames_b.begin(), frames_b.end(),
-                 std::back_inserter(merged));
-      if (std::adjacent_find(merged.begin(), merged.end()) != merged.end()) {
-        ++local.num_refused_matches;
-        continue;
-      }
-      frames_of_root[a].clear();
-      frames_of_root[b].clear();
-      frames_of_root[sets.Unite(a, b)] = std::move(merged);
+    return std::tie(x.gap, x.cost, x.frame1, x.index1) <
+           std::tie(y.gap, y.cost, y.frame1, y.index1);
+  });
+  // Frames of each root's component, sorted; empty for a single node (its own frame).
+  std::vector<std::vector<int>> frames_of_root(frame_of_node.size());
+  auto frames_of = [&](int root) {
+    return frames_of_root[root].empty() ? std::vector<int>{frame_of_node[root]}
+                                        : frames_of_root[root];
+  };
+  int refused = 0;
+  for (const NodeMatch& m : matches) {
+    const int a = sets.Find(m.node1), b = sets.Find(m.node2);
+    if (a == b) continue;
+    const std::vector<int> frames_a = frames_of(a), frames_b = frames_of(b);
+    std::vector<int> merged;
+    merged.reserve(frames_a.size() + frames_b.size());
+    std::merge(frames_a.begin(), frames_a.end(), frames_b.begin(), frames_b.end(),
+               std::back_inserter(merged));
+    if (std::adjacent_find(merged.begin(), merged.end()) != merged.end()) {
+      ++refused;
+      continue;
     }
+    frames_of_root[a].clear();
+    frames_of_root[b].clear();
+    frames_of_root[sets.Unite(a, b)] = std::move(merged);
   }
+  return refused;
+}
 
-  // Components in node order: observations come out by increasing frame, and components by
-  // their first (frame, feature).
+// Components of two or more nodes, in node order: observations come out by increasing frame, and
+// components by their first (frame, feature).
+std::vector<Track> Components(const NodeNumbering& numbering, DisjointSets& sets) {
+  const int num_nodes = numbering.NumNodes();
   std::vector<int> root_of_node(num_nodes), component_size(num_nodes, 0);
   for (int node = 0; node < num_nodes; ++node) {
     root_of_node[node] = sets.Find(node);
@@ -170,11 +182,35 @@ std::vector<Track> BuildTracks(const std::vector<FeatureSet>& features,
       track_of_root[root] = static_cast<int>(components.size());
       components.emplace_back();
     }
-    const int frame = frame_of_node[node];
-    components[track_of_root[root]].observations.push_back({frame, node - first_node[frame]});
+    const int frame = numbering.frame_of_node[node];
+    components[track_of_root[root]].observations.push_back(
+        {frame, node - numbering.first_node[frame]});
   }
+  return components;
+}
+
+}  // namespace
+
+std::vector<Track> BuildTracks(const std::vector<FeatureSet>& features,
+                               const std::vector<FramePairMatches>& pairs, TrackConflictRule rule,
+                               TrackBuildSummary* summary) {
+  const NodeNumbering numbering = NumberNodes(features);
+  std::vector<NodeMatch> matches = CollectMatches(features, pairs, numbering.first_node);
+  TrackBuildSummary local;
+  local.num_matches = static_cast<int>(matches.size());
+
+  DisjointSets sets(numbering.NumNodes());
+  if (rule == TrackConflictRule::kDrop) {
+    for (const NodeMatch& m : matches) {
+      const int a = sets.Find(m.node1), b = sets.Find(m.node2);
+      if (a != b) sets.Unite(a, b);
+    }
+  } else {
+    local.num_refused_matches = UniteGreedily(matches, rule, numbering.frame_of_node, sets);
+  }
+
   std::vector<Track> tracks;
-  for (Track& component : components) {
+  for (Track& component : Components(numbering, sets)) {
     const auto& obs = component.observations;
     const bool repeats_a_frame =
         std::adjacent_find(obs.begin(), obs.end(), [](const auto& x, const auto& y) {

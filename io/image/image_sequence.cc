@@ -61,6 +61,109 @@ void CheckFrameNotTooSmall(const std::string& what, int64_t width, int64_t heigh
                    << kMinResizeHeight << "x" << kMinResizeHeight << ")");
 }
 
+// A folder's images, in name order, selected by the frame range. Image-named entries that are not
+// files are left out with a warning.
+void ListFolderFrames(const std::string& path, const ImageSequenceOptions& options,
+                      std::vector<int>& source_indices, std::vector<std::string>& names,
+                      std::string& warning) {
+  std::vector<std::string> images;
+  std::vector<SkippedEntry> skipped;
+  for (const std::string& name : ListFiles(path, &skipped)) {
+    if (IsImageExtension(FileExtension(name))) images.push_back(name);
+  }
+  // Entries named as images that are not files (a FIFO would block the reader, a dangling
+  // symlink is a frame gone missing) are left out, and said so (issue 29).
+  std::vector<SkippedEntry> skipped_images;
+  for (const SkippedEntry& entry : skipped) {
+    if (IsImageExtension(FileExtension(entry.name))) skipped_images.push_back(entry);
+  }
+  if (!skipped_images.empty()) {
+    warning = path + ": " + DescribeSkippedEntries(skipped_images);
+  }
+  COMIC_CHECK(
+      !images.empty(), kInvalidArgument,
+      path << ": folder holds no images (png/jpg/jpeg/ppm/pgm/pnm/pbm/tif/tiff/bmp)"
+           << (skipped_images.empty() ? "" : "; " + DescribeSkippedEntries(skipped_images)));
+  source_indices = SelectIndices(static_cast<int>(images.size()), options);
+  COMIC_CHECK(!source_indices.empty(), kInvalidArgument,
+              path << ": frame range [" << options.first_frame << ", " << options.last_frame
+                   << "] selects none of its " << images.size() << " images");
+  for (int index : source_indices) names.push_back(images[index]);
+}
+
+// Opens a video file for decoding: refuses streams, what FFmpeg cannot open, and a declared size
+// over the pixel budget.
+void OpenVideo(const std::string& path, const ImageSequenceOptions& options,
+               cv::VideoCapture& capture) {
+  CheckInputFile(path);
+  // Counted by decoding, then decoded again: a stream cannot be read twice.
+  COMIC_CHECK(IsRegularFile(path), kInvalidData,
+              path << ": a video must be a regular file (it is read twice: its frames counted, "
+                      "then decoded), not a stream");
+  SilenceLibraryLogging();
+  // FFmpeg prints what it finds wrong ("moov atom not found", "overread 8"): captured per call,
+  // it becomes our one line, and tells where a damaged stream stops decoding.
+  std::string message = CaptureLibraryMessages([&] {
+    try {
+      capture.open(path, cv::CAP_FFMPEG);
+    } catch (const cv::Exception&) {
+    }
+  });
+  COMIC_CHECK(capture.isOpened(), kInvalidData,
+              path << ": cannot open as a video (unknown format, unsupported codec or corrupt"
+                   << (message.empty() ? "" : "; FFmpeg: " + message) << ")");
+  // The budget on the size the stream declares, before any frame is decoded.
+  const double declared_width = capture.get(cv::CAP_PROP_FRAME_WIDTH);
+  const double declared_height = capture.get(cv::CAP_PROP_FRAME_HEIGHT);
+  if (declared_width >= 1 && declared_height >= 1 && declared_width < 1e9 &&
+      declared_height < 1e9) {
+    const cv::Size declared =
+        ResizedSize(cv::Size(static_cast<int>(declared_width), static_cast<int>(declared_height)),
+                    options.resize_height);
+    CheckPixelBudget(path, declared, options.max_pixels);
+  }
+}
+
+// Counts a video's frames by decoding them and selects the frame range; a stream that stops
+// decoding before its header's count is refused unless allow_truncated.
+void ListVideoFrames(const std::string& path, const ImageSequenceOptions& options,
+                     cv::VideoCapture& capture, std::vector<int>& source_indices,
+                     std::vector<std::string>& names, std::string& warning, double& fps) {
+  std::string message;
+  const double declared_fps = capture.get(cv::CAP_PROP_FPS);
+  if (std::isfinite(declared_fps) && declared_fps > 0.0 && declared_fps < 1e6) fps = declared_fps;
+  // Count frames by grabbing: CAP_PROP_FRAME_COUNT is an estimate for many containers.
+  int count = 0;
+  bool corrupt = false;
+  while (true) {
+    bool grabbed = false;
+    message = CaptureLibraryMessages([&] { grabbed = capture.grab(); });
+    if (MessageReportsCorruptData(message)) corrupt = true;
+    if (!grabbed || corrupt) break;
+    ++count;
+  }
+  const double announced = capture.get(cv::CAP_PROP_FRAME_COUNT);
+  const int header_count = announced > 0 && announced < 1e9 ? static_cast<int>(announced) : 0;
+  COMIC_CHECK(count > 0, kInvalidData,
+              path << ": video has no decodable frames"
+                   << (message.empty() ? "" : " (FFmpeg: " + message + ")"));
+  if (corrupt || count < header_count) {
+    std::ostringstream what;
+    what << path << ": video stops decoding after frame " << count - 1;
+    if (header_count > 0) what << " of the " << header_count << " its header announces";
+    if (!message.empty()) what << " (FFmpeg: " << message << ")";
+    COMIC_CHECK(
+        options.allow_truncated, kInvalidData,
+        what.str() << "; --allow-truncated uses the " << count << " frames before the break");
+    warning = what.str() + "; using its first " + std::to_string(count) + " frames";
+  }
+  source_indices = SelectIndices(count, options);
+  COMIC_CHECK(!source_indices.empty(), kInvalidArgument,
+              path << ": frame range [" << options.first_frame << ", " << options.last_frame
+                   << "] selects none of its " << count << " frames");
+  for (int index : source_indices) names.push_back(VideoFrameName(index));
+}
+
 }  // namespace
 
 ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOptions& options) {
@@ -73,30 +176,8 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
   sequence.options_ = options;
 
   if (IsDirectory(path)) {
-    std::vector<std::string> images;
-    std::vector<SkippedEntry> skipped;
-    for (const std::string& name : ListFiles(path, &skipped)) {
-      if (IsImageExtension(FileExtension(name))) images.push_back(name);
-    }
-    // Entries named as images that are not files (a FIFO would block the reader, a dangling
-    // symlink is a frame gone missing) are left out, and said so (issue 29).
-    std::vector<SkippedEntry> skipped_images;
-    for (const SkippedEntry& entry : skipped) {
-      if (IsImageExtension(FileExtension(entry.name))) skipped_images.push_back(entry);
-    }
-    if (!skipped_images.empty()) {
-      sequence.warning_ = path + ": " + DescribeSkippedEntries(skipped_images);
-    }
-    COMIC_CHECK(
-        !images.empty(), kInvalidArgument,
-        path << ": folder holds no images (png/jpg/jpeg/ppm/pgm/pnm/pbm/tif/tiff/bmp)"
-             << (skipped_images.empty() ? "" : "; " + DescribeSkippedEntries(skipped_images)));
     sequence.folder_ = path;
-    sequence.source_indices_ = SelectIndices(static_cast<int>(images.size()), options);
-    COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,
-                path << ": frame range [" << options.first_frame << ", " << options.last_frame
-                     << "] selects none of its " << images.size() << " images");
-    for (int index : sequence.source_indices_) sequence.names_.push_back(images[index]);
+    ListFolderFrames(path, options, sequence.source_indices_, sequence.names_, sequence.warning_);
   } else if (IsImageExtension(FileExtension(path))) {
     // A single image is a one-frame sequence.
     sequence.folder_ = ParentPath(path);
@@ -106,66 +187,10 @@ ImageSequence ImageSequence::Open(const std::string& path, const ImageSequenceOp
     sequence.names_.push_back(FileName(path));
   } else {
     sequence.is_video_ = true;
-    CheckInputFile(path);
-    // Counted by decoding, then decoded again: a stream cannot be read twice.
-    COMIC_CHECK(IsRegularFile(path), kInvalidData,
-                path << ": a video must be a regular file (it is read twice: its frames counted, "
-                        "then decoded), not a stream");
-    SilenceLibraryLogging();
     cv::VideoCapture capture;
-    // FFmpeg prints what it finds wrong ("moov atom not found", "overread 8"): captured per call,
-    // it becomes our one line, and tells where a damaged stream stops decoding.
-    std::string message = CaptureLibraryMessages([&] {
-      try {
-        capture.open(path, cv::CAP_FFMPEG);
-      } catch (const cv::Exception&) {
-      }
-    });
-    COMIC_CHECK(capture.isOpened(), kInvalidData,
-                path << ": cannot open as a video (unknown format, unsupported codec or corrupt"
-                     << (message.empty() ? "" : "; FFmpeg: " + message) << ")");
-    // The budget on the size the stream declares, before any frame is decoded.
-    const double declared_width = capture.get(cv::CAP_PROP_FRAME_WIDTH);
-    const double declared_height = capture.get(cv::CAP_PROP_FRAME_HEIGHT);
-    if (declared_width >= 1 && declared_height >= 1 && declared_width < 1e9 &&
-        declared_height < 1e9) {
-      const cv::Size declared =
-          ResizedSize(cv::Size(static_cast<int>(declared_width), static_cast<int>(declared_height)),
-                      options.resize_height);
-      CheckPixelBudget(path, declared, options.max_pixels);
-    }
-    const double fps = capture.get(cv::CAP_PROP_FPS);
-    if (std::isfinite(fps) && fps > 0.0 && fps < 1e6) sequence.fps_ = fps;
-    // Count frames by grabbing: CAP_PROP_FRAME_COUNT is an estimate for many containers.
-    int count = 0;
-    bool corrupt = false;
-    while (true) {
-      bool grabbed = false;
-      message = CaptureLibraryMessages([&] { grabbed = capture.grab(); });
-      if (MessageReportsCorruptData(message)) corrupt = true;
-      if (!grabbed || corrupt) break;
-      ++count;
-    }
-    const double announced = capture.get(cv::CAP_PROP_FRAME_COUNT);
-    const int header_count = announced > 0 && announced < 1e9 ? static_cast<int>(announced) : 0;
-    COMIC_CHECK(count > 0, kInvalidData,
-                path << ": video has no decodable frames"
-                     << (message.empty() ? "" : " (FFmpeg: " + message + ")"));
-    if (corrupt || count < header_count) {
-      std::ostringstream what;
-      what << path << ": video stops decoding after frame " << count - 1;
-      if (header_count > 0) what << " of the " << header_count << " its header announces";
-      if (!message.empty()) what << " (FFmpeg: " << message << ")";
-      COMIC_CHECK(
-          options.allow_truncated, kInvalidData,
-          what.str() << "; --allow-truncated uses the " << count << " frames before the break");
-      sequence.warning_ = what.str() + "; using its first " + std::to_string(count) + " frames";
-    }
-    sequence.source_indices_ = SelectIndices(count, options);
-    COMIC_CHECK(!sequence.source_indices_.empty(), kInvalidArgument,
-                path << ": frame range [" << options.first_frame << ", " << options.last_frame
-                     << "] selects none of its " << count << " frames");
-    for (int index : sequence.source_indices_) sequence.names_.push_back(VideoFrameName(index));
+    OpenVideo(path, options, capture);
+    ListVideoFrames(path, options, capture, sequence.source_indices_, sequence.names_,
+                    sequence.warning_, sequence.fps_);
   }
 
   // Read the first frame: it fixes the frame size and validates the source early. An image's

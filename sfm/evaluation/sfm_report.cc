@@ -168,24 +168,8 @@ nlohmann::json PointSetToJson(const PointSetStats& stats) {
           {"mean_reprojection_error_px", stats.mean_reprojection_error_px}};
 }
 
-}  // namespace
-
-std::string DescribeUnregisteredRanges(const std::vector<UnregisteredRange>& ranges) {
-  std::string text;
-  for (const UnregisteredRange& range : ranges) {
-    if (!text.empty()) text += "; ";
-    text += std::to_string(range.first_frame);
-    if (range.last_frame > range.first_frame) text += "-" + std::to_string(range.last_frame);
-    text += " " + range.stage + "/" + range.check;
-    if (range.check == "other_model") text += " " + std::to_string(range.other_model + 1);
-  }
-  return text;
-}
-
-nlohmann::json RunReportToJson(const SfmRunReport& report) {
-  nlohmann::json json;
-  json["detector"] = report.detector;
-  json["status"] = report.status;
+// Counts and indices of the frames by how they got a pose, with the interpolated poses.
+void AddFrameCounts(const SfmRunReport& report, nlohmann::json& json) {
   json["frames"] = report.num_frames;
   // Registered: a pose from observations (rotation-only ones included, counted apart). Interpolated
   // poses are guesses: never counted as registered, listed with their poses, not in any model.
@@ -207,6 +191,10 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
          {"cam_from_world_tvec",
           {pose.translation.x(), pose.translation.y(), pose.translation.z()}}});
   }
+}
+
+// The model self-check: its verdict and the frame pairs that disagree with the model.
+void AddSelfCheck(const SfmRunReport& report, nlohmann::json& json) {
   const ModelSelfCheck& check = report.self_check;
   json["self_check"] = {{"pairs_checked", check.pairs_checked},
                         {"pairs_disagreeing", check.pairs_disagreeing},
@@ -230,6 +218,10 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
          {"inliers", pair.inliers},
          {"shared_tracks", pair.shared_tracks}});
   }
+}
+
+// Runs of frames left without a pose, with the check that stopped each.
+void AddUnregisteredRanges(const SfmRunReport& report, nlohmann::json& json) {
   json["unregistered_ranges"] = nlohmann::json::array();
   for (const UnregisteredRange& range : report.unregistered_ranges) {
     json["unregistered_ranges"].push_back({{"first", range.first_frame},
@@ -241,6 +233,10 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                                            {"message", range.message}});
     if (range.other_model >= 0) json["unregistered_ranges"].back()["model"] = range.other_model + 1;
   }
+}
+
+// One entry per model written under sparse/.
+void AddModels(const SfmRunReport& report, nlohmann::json& json) {
   json["models"] = nlohmann::json::array();
   for (const SfmModelReport& model : report.models) {
     json["models"].push_back({{"index", model.index},
@@ -255,6 +251,10 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                               {"initial_pair", {model.initial_frame1, model.initial_frame2}},
                               {"merged_models", model.num_merged_models}});
   }
+}
+
+// What the mapper did (models, merges, links) and which frames were keyframes.
+void AddMappingAndKeyframes(const SfmRunReport& report, nlohmann::json& json) {
   json["mapping"] = {{"models_started", report.num_models_started},
                      {"merges", report.num_merges},
                      {"seam_links", report.num_seam_links},
@@ -274,17 +274,10 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
   } else {
     json["keyframes"] = nullptr;
   }
-  json["loop_closure"] =
-      report.loop_closure ? LoopClosureToJson(*report.loop_closure) : nlohmann::json(nullptr);
-  json["intrinsics_rejection"] = report.intrinsics_rejection.empty()
-                                     ? nlohmann::json(nullptr)
-                                     : nlohmann::json(report.intrinsics_rejection);
-  json["initial_pair"] = {report.initial_frame1, report.initial_frame2};
-  json["tracker"] = {{"tracks", report.num_tracks},
-                     {"mean_track_length", report.mean_tracker_track_length}};
-  json["points3D"] = PointSetToJson(report.stats.all);
-  if (report.stats.boundary) json["boundary_points3D"] = PointSetToJson(*report.stats.boundary);
-  if (report.stats.interior) json["interior_points3D"] = PointSetToJson(*report.stats.interior);
+}
+
+// The trajectory against ground truth, or null without it.
+void AddGroundTruth(const SfmRunReport& report, nlohmann::json& json) {
   if (report.trajectory) {
     const TrajectoryEvaluation& t = *report.trajectory;
     const Sim3d& sim3 = t.gt_from_estimated;
@@ -308,6 +301,10 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
   } else {
     json["ground_truth"] = nullptr;
   }
+}
+
+// Wall and CPU time per stage.
+void AddTimes(const SfmRunReport& report, nlohmann::json& json) {
   json["time_s"] = {
       {"tracking", report.tracking_time_s},
       {"mapping", report.mapping_time_s},
@@ -324,6 +321,10 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
       {"num_global_bundle_adjustments", report.num_global_ba},
       {"per_frame",
        report.num_frames > 0 ? report.wall_time_s / static_cast<double>(report.num_frames) : 0.0}};
+}
+
+// The unordered image-set matching summary, when the run matched an image set.
+void AddImageSetMatching(const SfmRunReport& report, nlohmann::json& json) {
   if (report.image_set_matching) {
     const frontend::ImageSetMatchingSummary& m = *report.image_set_matching;
     json["image_set_matching"] = {{"frames", m.num_frames},
@@ -338,6 +339,45 @@ nlohmann::json RunReportToJson(const SfmRunReport& report) {
                                   {"verification_cpu_s", m.verification_cpu_s},
                                   {"track_building_cpu_s", m.track_building_cpu_s}};
   }
+}
+
+}  // namespace
+
+std::string DescribeUnregisteredRanges(const std::vector<UnregisteredRange>& ranges) {
+  std::string text;
+  for (const UnregisteredRange& range : ranges) {
+    if (!text.empty()) text += "; ";
+    text += std::to_string(range.first_frame);
+    if (range.last_frame > range.first_frame) text += "-" + std::to_string(range.last_frame);
+    text += " " + range.stage + "/" + range.check;
+    if (range.check == "other_model") text += " " + std::to_string(range.other_model + 1);
+  }
+  return text;
+}
+
+nlohmann::json RunReportToJson(const SfmRunReport& report) {
+  nlohmann::json json;
+  json["detector"] = report.detector;
+  json["status"] = report.status;
+  AddFrameCounts(report, json);
+  AddSelfCheck(report, json);
+  AddUnregisteredRanges(report, json);
+  AddModels(report, json);
+  AddMappingAndKeyframes(report, json);
+  json["loop_closure"] =
+      report.loop_closure ? LoopClosureToJson(*report.loop_closure) : nlohmann::json(nullptr);
+  json["intrinsics_rejection"] = report.intrinsics_rejection.empty()
+                                     ? nlohmann::json(nullptr)
+                                     : nlohmann::json(report.intrinsics_rejection);
+  json["initial_pair"] = {report.initial_frame1, report.initial_frame2};
+  json["tracker"] = {{"tracks", report.num_tracks},
+                     {"mean_track_length", report.mean_tracker_track_length}};
+  json["points3D"] = PointSetToJson(report.stats.all);
+  if (report.stats.boundary) json["boundary_points3D"] = PointSetToJson(*report.stats.boundary);
+  if (report.stats.interior) json["interior_points3D"] = PointSetToJson(*report.stats.interior);
+  AddGroundTruth(report, json);
+  AddTimes(report, json);
+  AddImageSetMatching(report, json);
   return json;
 }
 
