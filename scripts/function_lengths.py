@@ -1,12 +1,11 @@
 #!/usr/bin/env python3
-"""Lists the functions longer than a bound (STYLE.md: none over 120 lines in frontend/comic or sfm).
+"""Lists the functions longer than a bound (none over 120 lines outside tests/).
 
     scripts/function_lengths.py [--max-lines 120] [--report-only] [--root .] [folder ...]
 
-Scans the .h/.cc files under each folder (default: frontend/comic and sfm, recursively) and prints
-one line per function over the bound, "path:line: Name N lines", longest first. Exits 1 if any
-is over, 0 otherwise; --report-only always exits 0 (the layout/function_length test uses it until
-every function is under the bound).
+Scans the .h/.cc files under each folder (default: every source folder but tests/, recursively)
+and prints one line per function over the bound, "path:line: Name N lines", longest first. Exits 1
+if any is over, 0 otherwise; --report-only always exits 0.
 
 A function is a definition at namespace scope in clang-formatted code (Google style): its
 signature starts at column 0, its body ends at the next line starting with "}" at column 0. Its
@@ -80,7 +79,7 @@ def long_functions(path, max_lines):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("folders", nargs="*", default=["frontend/comic", "sfm"])
+    parser.add_argument("folders", nargs="*", default=["apps", "examples", "frontend", "fuzz", "io", "python", "render", "sfm"])
     parser.add_argument("--root", default=".")
     parser.add_argument("--max-lines", type=int, default=120)
     parser.add_argument("--report-only", action="store_true")

@@ -1,6 +1,7 @@
 #include "sfm/run/run_option_table.h"
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 namespace comic::sfm {
@@ -24,9 +25,8 @@ RunOption Reported(RunOption entry) {
   return entry;
 }
 
-}  // namespace
-
-std::vector<RunOption> RunOptionTable() {
+// What is compared and written, and which tracks become points.
+std::vector<RunOption> InputOutputAndTrackOptions() {
   return {
       Switch("compare",
              "run every detector of --detectors on the same frames; writes --output/<detector>/ "
@@ -70,6 +70,12 @@ std::vector<RunOption> RunOptionTable() {
              "across several frames always keep them; video leaves them out by default, as "
              "COLMAP: such a point has no third view to check it)",
              [](Options& o) -> bool& { return o.two_view_tracks; }),
+  };
+}
+
+// The camera, the bundle adjustments and the initial pair.
+std::vector<RunOption> CameraAndAdjustmentOptions() {
+  return {
       Reported(
           Switch("refine-focal",
                  "refine the focal length in the global bundle adjustments (on by default without "
@@ -103,6 +109,12 @@ std::vector<RunOption> RunOptionTable() {
                      "the older ones seeing their points constant, and the final one adjusts the "
                      "model in overlapping windows of N (0: every frame, one adjustment)",
                      [](Options& o) -> int& { return o.global_ba_max_images; })),
+  };
+}
+
+// Long video, the cache, and what is written for other tools.
+std::vector<RunOption> VideoAndHandOffOptions() {
+  return {
       Entry("init-angle", "DEG",
             "initial pair: a point's triangulation angle that counts fully towards the "
             "pair's parallax score",
@@ -164,6 +176,18 @@ std::vector<RunOption> RunOptionTable() {
              "--output/colmap_sift_compare.md; COLMAP's files go to --output/colmap_sift/",
              [](Options& o) -> bool& { return o.compare_colmap_sift; }),
   };
+}
+
+}  // namespace
+
+std::vector<RunOption> RunOptionTable() {
+  std::vector<RunOption> table = InputOutputAndTrackOptions();
+  for (auto part : {CameraAndAdjustmentOptions, VideoAndHandOffOptions}) {
+    std::vector<RunOption> entries = part();
+    table.insert(table.end(), std::make_move_iterator(entries.begin()),
+                 std::make_move_iterator(entries.end()));
+  }
+  return table;
 }
 
 }  // namespace comic::sfm
