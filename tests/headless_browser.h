@@ -36,11 +36,13 @@ inline std::string HtmlAttribute(const std::string& dom, const std::string& name
   return std::regex_search(tag, match, attribute) ? match[1].str() : "";
 }
 
-// Loads `html_file` in headless Chromium in a window of `width` x `height` CSS pixels.
-// std::nullopt, with the reason in `why`, when Chromium is not installed or cannot start here
-// (the caller skips); a page that loads but fails is a BrowserPage whose DOM says so.
+// Loads `html_file` in headless Chromium in a window of `width` x `height` CSS pixels; with
+// `webgl` false, in a browser that offers no WebGL at all (--disable-webgl --disable-3d-apis), as
+// on a machine without a GPU or with WebGL switched off. std::nullopt, with the reason in `why`,
+// when Chromium is not installed or cannot start here (the caller skips); a page that loads but
+// fails is a BrowserPage whose DOM says so.
 inline std::optional<BrowserPage> LoadInChromium(const std::string& html_file, int width,
-                                                 int height, std::string* why) {
+                                                 int height, std::string* why, bool webgl = true) {
   if (RunCommand("command -v chromium").exit_code != 0) {
     *why = "chromium is not installed (scripts/install_deps.sh installs it)";
     return std::nullopt;
@@ -49,8 +51,10 @@ inline std::optional<BrowserPage> LoadInChromium(const std::string& html_file, i
   const std::string screenshot = profile.File("screenshot.png");
   const std::string command =
       "timeout 180 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-      "--disable-background-networking --disable-component-update --disable-sync "
-      "--use-angle=swiftshader --enable-unsafe-swiftshader --hide-scrollbars "
+      "--disable-background-networking --disable-component-update --disable-sync " +
+      std::string(webgl ? "--use-angle=swiftshader --enable-unsafe-swiftshader "
+                        : "--disable-webgl --disable-3d-apis ") +
+      "--hide-scrollbars "
       "--user-data-dir=" +
       profile.File("profile") + " --window-size=" + std::to_string(width) + "," +
       std::to_string(height) + " --screenshot=" + screenshot + " --dump-dom 'file://" + html_file +

@@ -140,6 +140,7 @@ std::string RenderHtmlPage(const HtmlPage& page, const HtmlPageOptions& options)
   AppendScript("charts.js", WebAsset("charts.js"), &scripts);
   if (HasSectionOfType(page, "scene")) {
     AppendThreeJs(options, &data, &scripts);
+    AppendScript("scene_canvas.js", WebAsset("scene_canvas.js"), &scripts);
     AppendScript("scene.js", WebAsset("scene.js"), &scripts);
   }
   scripts += "<script>ComicPage.render();</script>\n";

@@ -34,7 +34,8 @@ SequenceReconstruction Reconstruct(const frontend::DetectorOptions& detector_opt
                                    const frontend::Detector& detector,
                                    const SequenceReconstructionOptions& sfm_options,
                                    const ReconstructionRunOptions& options, const RunInputs& inputs,
-                                   const RunCallbacks& callbacks, TrackCacheUse* cache) {
+                                   const RunCallbacks& callbacks, TrackCacheUse* cache,
+                                   std::vector<int>* pose_inliers) {
   const std::string& name = detector_options.name;
   const std::function<void()> tracking_started = [&] {
     if (callbacks.stage_started) callbacks.stage_started(RunStage::kTracking, name);
@@ -46,12 +47,15 @@ SequenceReconstruction Reconstruct(const frontend::DetectorOptions& detector_opt
   if (cache->from_cache && callbacks.stage_started) {
     callbacks.stage_started(RunStage::kTracksFromCache, name);
   }
-  MapperProgressCallback registered;
-  if (callbacks.frame_registered) {
-    registered = [&](const MapperProgress& progress) {
-      callbacks.frame_registered(name, progress);
-    };
-  }
+  // The inliers are kept for the page's per-frame diagnostics: the models do not hold them.
+  pose_inliers->assign(inputs.sequence->NumFrames(), -1);
+  const MapperProgressCallback registered = [&](const MapperProgress& progress) {
+    const bool by_pnp = !progress.initial_pair && !progress.merged;
+    if (by_pnp && progress.frame >= 0 && progress.frame < static_cast<int>(pose_inliers->size())) {
+      (*pose_inliers)[progress.frame] = progress.num_pose_inliers;
+    }
+    if (callbacks.frame_registered) callbacks.frame_registered(name, progress);
+  };
   return ReconstructFromTracks(*inputs.sequence, detector, inputs.camera.camera, sfm_options,
                                std::move(tracking), registered);
 }
@@ -101,7 +105,7 @@ DetectorRun RunDetectorWith(const std::string& detector, const ReconstructionRun
   result.matcher = image_set ? "descriptors" : "patches";
   result.verify_min_gap = tracker.verify_min_gap;
   result.run = Reconstruct(detector_options, *made, sfm_options, options, inputs, callbacks,
-                           &result.track_cache);
+                           &result.track_cache, &result.pose_inliers);
   Evaluate(inputs, &result);
   result.diagnosis =
       DiagnoseReconstruction(result.run.mapping, sfm_options.mapper, inputs.sequence->FrameNames());

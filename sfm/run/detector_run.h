@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sfm/evaluation/sfm_report.h"
 #include "sfm/reconstruction_diagnosis.h"
@@ -62,6 +63,10 @@ struct DetectorRun {
   // a video).
   int verify_min_gap = 0;
   SequenceReconstruction run;
+  // Per frame: the PnP inliers of its last registration by PnP, as the mapper reported it; -1
+  // for a frame never so registered (the initial pair, frames merged from another model, frames
+  // posed without PnP). Empty when not recorded (a run built by hand).
+  std::vector<int> pose_inliers;
   TrackCacheUse track_cache;  // --cache: the file, and whether the tracks came from it
   SfmRunReport report;
   std::optional<TrajectoryEvaluation> evaluation;  // with ground truth

@@ -11,7 +11,9 @@
 #include "io/report/page_scene.h"
 #include "io/report/page_sections.h"
 #include "sfm/camera_model.h"
+#include "sfm/run/run_page_diagnostics.h"
 #include "sfm/run/run_page_frames.h"
+#include "sfm/run/run_page_matches.h"
 #include "sfm/run/run_page_scene.h"
 #include "sfm/run/run_page_timeline.h"
 #include "sfm/run/run_report.h"
@@ -167,6 +169,19 @@ void AppendGeometry(const DetectorRun& run, const ReconstructionRunOptions& opti
   }
 }
 
+// Per frame (observations, inliers, reprojection error, pose), the residuals of every model, and
+// which frames share tracks.
+void AppendDiagnostics(const DetectorRun& run, const ReconstructionRunOptions& options,
+                       const RunInputs& inputs, std::vector<io::PageSection>* sections) {
+  for (const io::PageSection& section :
+       FrameDiagnosticsSections(run, inputs.sequence->FrameNames())) {
+    sections->push_back(section);
+  }
+  if (const auto matrix = MatchMatrixSection(run, options.report_page)) {
+    sections->push_back(*matrix);
+  }
+}
+
 void AppendFrames(const DetectorRun& run, const ReconstructionRunOptions& options,
                   const RunInputs& inputs, std::vector<io::PageSection>* sections) {
   const RunFramePictures pictures = RunFramePicturesOf(run, inputs, options.report_page);
@@ -237,6 +252,7 @@ io::HtmlPage RunPage(const DetectorRun& run, const ReconstructionRunOptions& opt
   AppendDiagnosis(run, &sections);
   sections.push_back(TimeSection(run.report));
   AppendGeometry(run, options, inputs, &sections);
+  AppendDiagnostics(run, options, inputs, &sections);
   AppendFrames(run, options, inputs, &sections);
   if (run.report_json.contains("options")) {
     sections.push_back(io::KeyValuesSection("Options", run.report_json["options"]));

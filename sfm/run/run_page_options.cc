@@ -16,6 +16,8 @@ void RunPageOptions::Check() const {
               "report page: track_frame_width must be in 64..4096, got " << track_frame_width);
   COMIC_CHECK(jpeg_quality >= 1 && jpeg_quality <= 100, kInvalidArgument,
               "report page: jpeg_quality must be in 1..100, got " << jpeg_quality);
+  COMIC_CHECK(max_matrix_cells >= 1 && max_matrix_cells <= 1000, kInvalidArgument,
+              "report page: max_matrix_cells must be in 1..1000, got " << max_matrix_cells);
   html.Check();
 }
 

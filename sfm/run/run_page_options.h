@@ -16,7 +16,9 @@ struct RunPageOptions {
   int num_track_frames = 4;     // frames drawn with their features and tracks
   int track_frame_width = 900;  // pixels: larger frames are shrunk to it
   int jpeg_quality = 80;        // of the pictures in the page (1..100)
-  io::HtmlPageOptions html;     // where three.js is read from
+  // Cells a side of the matrix of tracks shared between frames: more frames are grouped.
+  int max_matrix_cells = 200;
+  io::HtmlPageOptions html;  // where three.js is read from
   // Throws comic::Error(kInvalidArgument) naming the bad field.
   void Check() const;
 };

@@ -427,5 +427,130 @@
     if (section.note) body.appendChild(page.note(section.note));
   };
 
+  // A histogram (io/report/page_distributions.h): one bar per bin, and the values beyond the
+  // last edge as one more bar in grey.
+  page.renderers.histogram = function (section, body) {
+    var width = 900, height = 300;
+    var box = {left: 70, right: width - 14, top: 18, bottom: height - 46};
+    var bins = section.counts.length;
+    var slots = bins + (section.overflow > 0 ? 1 : 0);
+    var max = Math.max.apply(null, section.counts.concat([section.overflow, 1]));
+    var scale = linearScale(0, max, box.bottom, box.top, 5);
+    var slot = (box.right - box.left) / Math.max(1, slots);
+    var chart = chartBox(width, height);
+    yAxis(chart, scale, box, section.y_label);
+    var bar = function (k, count, color, words) {
+      var y = scale.y(count);
+      chart.appendChild(svg('rect', {x: box.left + k * slot + 1, y: y,
+                                     width: Math.max(1, slot - 2), height: Math.max(0, box.bottom - y),
+                                     fill: color}, [svg('title', {}, [words + ': ' + count])]));
+    };
+    var last = section.edges[bins];
+    var step = section.edges[1] - section.edges[0];
+    section.counts.forEach(function (count, k) {
+      bar(k, count, section.color, tickLabel(section.edges[k], step / 10) + '–' +
+          tickLabel(section.edges[k + 1], step / 10));
+    });
+    if (section.overflow > 0) bar(bins, section.overflow, '#9aa3ab', 'beyond ' + last);
+    var every = Math.max(1, Math.ceil(bins / 10));
+    for (var k = 0; k <= bins; k += every) {
+      var x = box.left + k * slot;
+      chart.appendChild(svg('line', {class: 'axis', x1: x, x2: x, y1: box.bottom, y2: box.bottom + 4}));
+      chart.appendChild(text(x, box.bottom + 16, tickLabel(section.edges[k], step),
+                             {'text-anchor': 'middle'}));
+    }
+    if (section.overflow > 0) {
+      chart.appendChild(text(box.left + (bins + 0.5) * slot, box.bottom + 30, '> ' + tickLabel(last, step),
+                             {'text-anchor': 'middle'}));
+    }
+    chart.appendChild(svg('line', {class: 'axis', x1: box.left, x2: box.right, y1: box.bottom,
+                                   y2: box.bottom}));
+    chart.appendChild(text((box.left + box.right) / 2, height - 8, section.x_label,
+                           {'text-anchor': 'middle', 'font-size': 12}));
+    body.appendChild(chart);
+    if (section.note) body.appendChild(page.note(section.note));
+  };
+
+  // White (nothing shared) to dark blue (the most), on a square-root scale so that weak links
+  // still show beside strong ones.
+  function heatColor(value, max) {
+    if (!(value > 0)) return [255, 255, 255];
+    var t = Math.sqrt(Math.min(1, value / max));
+    var low = [222, 235, 247], high = [8, 48, 107];
+    return low.map(function (c, i) { return Math.round(c + (high[i] - c) * t); });
+  }
+
+  // A square matrix between frames (io/report/page_distributions.h HeatMap) on a canvas, one
+  // cell per frame or group of frames; pointing at a cell reads its frames and value.
+  page.renderers.heatmap = function (section, body) {
+    var n = section.cell_first_frames.length;
+    var pixel = Math.max(1, Math.floor(600 / Math.max(1, n)));
+    var margin = 44, side = n * pixel;
+    var canvas = el('canvas', {width: side + margin, height: side + margin});
+    var g = canvas.getContext('2d');
+    g.fillStyle = '#ffffff';
+    g.fillRect(0, 0, side + margin, side + margin);
+    var max = 0;
+    section.values.forEach(function (v) { max = Math.max(max, v); });
+    var image = g.createImageData(side, side);
+    for (var r = 0; r < n; ++r) {
+      for (var c = 0; c < n; ++c) {
+        var color = heatColor(section.values[r * n + c], max);
+        for (var dy = 0; dy < pixel; ++dy) {
+          for (var dx = 0; dx < pixel; ++dx) {
+            var at = 4 * ((r * pixel + dy) * side + c * pixel + dx);
+            image.data[at] = color[0];
+            image.data[at + 1] = color[1];
+            image.data[at + 2] = color[2];
+            image.data[at + 3] = 255;
+          }
+        }
+      }
+    }
+    g.putImageData(image, margin, margin);
+    g.strokeStyle = '#1d2329';
+    g.strokeRect(margin - 0.5, margin - 0.5, side + 1, side + 1);
+    g.fillStyle = '#5f6b76';
+    g.font = '10px sans-serif';
+    var labelled = ticks(0, Math.max(1, section.num_frames - 1), 6);
+    var cellOf = function (frame) {
+      var k = 0;
+      while (k + 1 < n && section.cell_first_frames[k + 1] <= frame) ++k;
+      return k;
+    };
+    labelled.values.forEach(function (frame) {
+      if (frame >= section.num_frames) return;
+      var at = margin + (cellOf(frame) + 0.5) * pixel;
+      g.textAlign = 'center';
+      g.fillText(String(frame), at, margin - 6);
+      g.textAlign = 'right';
+      g.fillText(String(frame), margin - 4, at + 3);
+    });
+    var framesOf = function (k) {
+      var first = section.cell_first_frames[k];
+      var last = k + 1 < n ? section.cell_first_frames[k + 1] - 1 : section.num_frames - 1;
+      return first === last ? 'frame ' + first : 'frames ' + first + '–' + last;
+    };
+    var readout = el('div', {class: 'readout'}, ['point at a cell to read it']);
+    canvas.addEventListener('mousemove', function (event) {
+      var rect = canvas.getBoundingClientRect();
+      var x = (event.clientX - rect.left) * canvas.width / rect.width - margin;
+      var y = (event.clientY - rect.top) * canvas.height / rect.height - margin;
+      var row = Math.floor(y / pixel), column = Math.floor(x / pixel);
+      if (row < 0 || column < 0 || row >= n || column >= n) return;
+      readout.textContent = framesOf(row) + ' × ' + framesOf(column) + ': ' +
+          section.values[row * n + column] + ' ' + section.value_label;
+    });
+    body.appendChild(page.legend([
+      {color: 'rgb(' + heatColor(max, max).join(',') + ')', label: max + ' ' + section.value_label},
+      {color: 'rgb(' + heatColor(1, Math.max(1, max * 16)).join(',') + ')', label: 'few'},
+      {color: '#ffffff', label: 'none'}], function (entry, swatch) {
+        swatch.style.border = '1px solid #d8dde2';
+      }));
+    body.appendChild(el('div', {class: 'heatmap'}, [canvas]));
+    body.appendChild(readout);
+    if (section.note) body.appendChild(page.note(section.note));
+  };
+
   page.PALETTE = PALETTE;
 })();

@@ -95,7 +95,9 @@
       }));
     });
     var table = el('table', {class: 'data'}, [el('thead', {}, [head]), el('tbody', {}, rows)]);
-    body.appendChild(el('div', {class: 'table-scroll'}, [table]));
+    // A long table (one row per frame) scrolls in a box of its own.
+    body.appendChild(el('div', {class: section.scroll ? 'table-scroll tall' : 'table-scroll'},
+                        [table]));
     body.appendChild(note(section.note) || document.createTextNode(''));
   };
 

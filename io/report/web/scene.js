@@ -2,7 +2,8 @@
 // frusta joined by their path, and other paths (the ground truth), drawn with three.js from
 // Debian's libjs-three (inlined into the page before this script) with OrbitControls: drag to
 // orbit, right-drag or shift-drag to pan, wheel to zoom. The first frame is drawn at once; later
-// frames only when the view moves. After the first frame the number of drawn (non-background)
+// frames only when the view moves. Without WebGL or three.js, scene_canvas.js draws the section
+// on a 2-D canvas instead. After the first frame the number of drawn (non-background)
 // pixels is read back and left in <html data-scene-pixels>, and where the canvas is in
 // data-scene-rect (x,y,width,height in CSS pixels), for the headless-browser tests.
 (function () {
@@ -12,17 +13,8 @@
   var el = page.el;
   var BACKGROUND = 0x15191d;
 
-  function bytesOf(base64) {
-    var binary = atob(base64);
-    var bytes = new Uint8Array(binary.length);
-    for (var i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
-    return bytes;
-  }
-
-  function floatsOf(base64) {
-    var bytes = bytesOf(base64);
-    return new Float32Array(bytes.buffer, 0, bytes.length / 4);
-  }
+  var bytesOf = page.sceneBytes;  // scene_canvas.js, inlined before this script
+  var floatsOf = page.sceneFloats;
 
   // The value below which `fraction` of `values` lie.
   function quantile(values, fraction) {
@@ -206,11 +198,15 @@
     var pointWords = shown === total ? total + ' points' :
         'showing ' + shown + ' of ' + total + ' points (every ' + section.points.stride +
         'th: the model is subsampled for the view)';
+    // Without three.js or WebGL the same section is drawn on a 2-D canvas (scene_canvas.js).
+    var withoutWebGL = function (reason) {
+      body.appendChild(page.legend(legendEntries(section)));
+      page.drawSceneOnCanvas(section, body, reason);
+      body.appendChild(page.note(pointWords + '. Units: ' + (section.unit || 'model units') +
+                                 '. ' + (section.note || '')));
+    };
     if (typeof THREE === 'undefined' || !THREE.OrbitControls) {
-      body.appendChild(el('p', {class: 'notice tone-warning'}, [
-        'The 3-D view is not available: ' + (data && data.three_js_missing ? data.three_js_missing :
-                                               'three.js did not load') + '.']));
-      document.documentElement.setAttribute('data-scene', 'unavailable');
+      withoutWebGL(data && data.three_js_missing ? data.three_js_missing : 'three.js did not load');
       return;
     }
     var width = Math.max(320, Math.min(1160, body.clientWidth || 960)), height = 560;
@@ -218,9 +214,7 @@
     try {
       renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
     } catch (error) {
-      body.appendChild(el('p', {class: 'notice tone-warning'}, [
-        'The 3-D view needs WebGL, which this browser does not offer (' + error.message + ').']));
-      document.documentElement.setAttribute('data-scene', 'no-webgl');
+      withoutWebGL('this browser offers no WebGL: ' + error.message);
       return;
     }
     renderer.setPixelRatio(window.devicePixelRatio || 1);

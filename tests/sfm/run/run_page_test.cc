@@ -13,6 +13,7 @@
 #include "io/core/file_utils.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/run/reconstruction_run.h"
+#include "sfm/run/run_page_diagnostics.h"
 #include "sfm/run/run_page_frames.h"
 #include "sfm/run/run_page_timeline.h"
 #include "sfm/run/run_report.h"
@@ -66,15 +67,48 @@ ReconstructionRunOptions Example(int last_frame = -1) {
   return options;
 }
 
+// The diagnostics of a real run: a row per frame with the observations the model holds and the
+// inliers the mapper reported, every observation in the histogram, the tracks shared between
+// frames.
+void ExpectPerFrameDiagnostics(const DetectorRun& run, const io::HtmlPage& page) {
+  const Reconstruction& model = run.run.mapping.reconstruction;
+  const nlohmann::json table = Sections(page, "table").at(0);
+  ASSERT_EQ(table["rows"].size(), 12u);
+  const std::vector<FrameDiagnostics> frames = RunFrameDiagnostics(run, 12);
+  size_t observations = 0;
+  int registered_by_pnp = 0;
+  for (int f = 0; f < 12; ++f) {
+    observations += frames[f].observations;
+    registered_by_pnp += frames[f].pnp_inliers > 0;
+    EXPECT_EQ(table["rows"][f][3], "registered");
+    EXPECT_EQ(table["rows"][f][4], std::to_string(frames[f].observations));
+    EXPECT_EQ(frames[f].observations,
+              static_cast<int>(model.image(static_cast<image_t>(f + 1)).NumPoints3D()));
+  }
+  EXPECT_EQ(observations, model.NumObservations());
+  // Every frame but the initial pair's two was registered by PnP.
+  EXPECT_EQ(registered_by_pnp, 10);
+  EXPECT_EQ(frames[run.run.mapping.initial_frame1].pnp_inliers, -1);
+  const nlohmann::json histogram = Sections(page, "histogram").at(0);
+  int64_t binned = histogram["overflow"].get<int64_t>();
+  for (const nlohmann::json& count : histogram["counts"]) binned += count.get<int64_t>();
+  EXPECT_EQ(binned, static_cast<int64_t>(model.NumObservations()));
+  const nlohmann::json matrix = Sections(page, "heatmap").at(0);
+  EXPECT_EQ(matrix["num_frames"], 12);
+  EXPECT_EQ(matrix["cell_first_frames"].size(), 12u);
+  EXPECT_GT(matrix["values"][1].get<int64_t>(), 0);  // frames 0 and 1 share tracks
+  EXPECT_EQ(matrix["values"][0], 0);                 // a frame shares nothing with itself
+}
+
 TEST(RunPage, ShowsAModelWithItsGroundTruth) {
   const ReconstructionRunOptions options = Example();
   const ReconstructionRunResult result = RunReconstruction(options);
   ASSERT_TRUE(result.success()) << result.failure;
   const DetectorRun& run = result.runs.front();
   const io::HtmlPage page = RunPage(run, options, result.inputs);
-  const std::vector<std::string> expected_types = {"facts",  "facts",     "scene",   "timeline",
-                                                   "lines",  "lines",     "topview", "images",
-                                                   "images", "keyvalues", "json"};
+  const std::vector<std::string> expected_types = {
+      "facts", "facts", "scene",     "timeline", "lines",  "lines",  "topview",   "lines",
+      "lines", "table", "histogram", "heatmap",  "images", "images", "keyvalues", "json"};
   std::vector<std::string> types;
   for (const nlohmann::json& section : page.sections) types.push_back(section["type"]);
   EXPECT_EQ(types, expected_types);
@@ -113,6 +147,7 @@ TEST(RunPage, ShowsAModelWithItsGroundTruth) {
   EXPECT_EQ(images.at(1)["images"].size(), 12u);
   EXPECT_TRUE(images.at(1)["thumbnails"].get<bool>());
   EXPECT_EQ(Sections(page, "json").at(0)["document"], run.report_json);
+  ExpectPerFrameDiagnostics(run, page);
 }
 
 // --keyframes: report.json lists every keyframe with its reason, and the timeline marks the
@@ -302,6 +337,11 @@ TEST(RunPage, ShowsEveryModelWithTrueCounts) {
   EXPECT_EQ(timeline["notes"][0]["first"], 5);
   EXPECT_EQ(timeline["notes"][0]["last"], 5);
   EXPECT_EQ(timeline["notes"][1]["first"], 9);
+  // The per-frame table names each frame's model.
+  const nlohmann::json table = Sections(page, "table").at(0);
+  EXPECT_EQ(table["rows"][4][2], "sparse/0");
+  EXPECT_EQ(table["rows"][6][2], "sparse/1");
+  EXPECT_EQ(table["rows"][5][3], "none");
 }
 
 // The intrinsics' fate in the summary line's words: a refused self-calibration is not "the motion
