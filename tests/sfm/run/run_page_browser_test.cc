@@ -28,7 +28,7 @@ std::string WriteExamplePage(const ScopedTempDir& dir, int last_frame) {
   return io::JoinPaths(options.output, "report.html");
 }
 
-// The bundled example's page, written once for the tests that load it.
+// The bundled example's page, written once per test process for the tests that load it.
 const std::string& ExamplePage() {
   static const ScopedTempDir dir;
   static const std::string path = WriteExamplePage(dir, -1);
