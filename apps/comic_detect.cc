@@ -1,18 +1,16 @@
 // comic_detect: runs a CoMIC detector (the direct search "comic", or Algorithm 1 "comic-paper")
 // on one image, draws the features and their maximally
 // stable iso-curve segments (both polarities in different colours) and writes them as JSON.
-#include <chrono>
 #include <iostream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
+#include <type_traits>
+#include <variant>
 
 #include "apps/common/arg_parser.h"
 #include "apps/common/input_budget_flags.h"
 #include "apps/common/shared_flags.h"
 #include "apps/common/thread_count.h"
-#include "frontend/comic/comic_detector.h"
-#include "frontend/comic/comic_direct_detector.h"
 #include "io/core/error.h"
 #include "io/core/file_utils.h"
 #include "io/core/interrupt_cleanup.h"
@@ -21,6 +19,8 @@
 #include "io/core/staged_files.h"
 #include "io/image/image_io.h"
 #include "io/report/json_text.h"
+#include "sfm/run/detect_run.h"
+#include "sfm/run/detector_option_table.h"
 
 namespace {
 
@@ -97,29 +97,34 @@ nlohmann::json FeatureToJson(const Feature& f) {
           {"side_mask", mask}};
 }
 
-// The command line, bound to the parser by AddFlags; Check() validates it and completes both
-// searches' options.
+// The command line, bound to the parser by AddFlags; Check() validates it. The detector's options
+// are the library's (sfm/run/detect_run.h), one flag per entry of its table.
 struct Flags {
-  // All cores: the output does not depend on the thread count.
-  Flags() { options.num_threads = 0; }
-  void Check();
+  void Check() const;
 
   std::string input;
   std::string overlay_path;
   std::string json_path;
   int resize_height = 0;
-  int max_features = 0;
-  bool full_resolution_init = false;
-  bool no_neighbour_seeds = false;
-  bool every_path = false;
-  std::string detector_name = "comic";
   int max_pixels = static_cast<int>(comic::io::kDefaultMaxPixels);
-  // Options shared by both searches are parsed into `options` (Algorithm 1's) and copied to
-  // `direct`; the others belong to one search only.
-  comic::frontend::ComicDetectorOptions options;
-  comic::frontend::ComicDirectDetectorOptions direct;
-  bool paper = false;  // --detector comic-paper
+  comic::sfm::DetectRunOptions run;
 };
+
+// One flag per entry of the detector option table, bound to its field in `run`.
+void AddTableFlags(comic::apps::ArgParser& parser, comic::sfm::DetectRunOptions* run) {
+  for (const comic::sfm::DetectorOption& entry : comic::sfm::DetectorOptionTable()) {
+    std::visit(
+        [&](auto field) {
+          auto* value = &field(*run);
+          if constexpr (std::is_same_v<decltype(value), bool*>) {
+            parser.AddFlag(entry.flag, entry.help, value);
+          } else {
+            parser.AddOption(entry.flag, entry.metavar, entry.help, value);
+          }
+        },
+        entry.field);
+  }
+}
 
 void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
   parser.AddPositional("IMAGE", "input image (any format OpenCV reads)", &flags.input);
@@ -130,61 +135,10 @@ void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
   comic::apps::AddResizeHeightFlag(parser, &flags.resize_height);
   // The shared --detector flag; comic_detect runs the two CoMIC searches only: comic (the direct
   // search of the paper's definition) or comic-paper (Algorithm 1).
-  comic::apps::AddDetectorFlag(parser, &flags.detector_name);
-  parser.AddOption("scale", "S", "detection scale s in px (paper: 8.4; initialisation at 2s)",
-                   &flags.options.scale);
-  parser.AddOption("block-size", "B",
-                   "comic-paper: block size B in px (paper: 100): B x B initialisation blocks, B/2 "
-                   "convergence blocks",
-                   &flags.options.block_size);
-  parser.AddOption("delta", "D", "intensity offset delta of the Up/Down iso-curves, grey levels",
-                   &flags.options.delta);
-  parser.AddOption("half-length", "K", "points on either side of the corner in a segment, k",
-                   &flags.options.half_length);
-  parser.AddOption("max-iterations", "N",
-                   "comic-paper: feature-convergence iterations before a corner is dropped",
-                   &flags.options.max_iterations);
-  parser.AddOption("convergence-tolerance", "PX",
-                   "comic-paper: a corner has settled when it moves at most this",
-                   &flags.options.convergence_tolerance);
-  parser.AddOption("stop-tolerance", "PX",
-                   "comic-paper: convergence iterations stop once a corner moves at most this",
-                   &flags.options.stop_tolerance);
-  parser.AddOption("merge-radius", "PX", "features closer than this are merged (higher rho kept)",
-                   &flags.options.merge_radius);
-  parser.AddOption("min-stability", "RHO", "stability threshold on rho = len / dA, 1/px (0 = all)",
-                   &flags.options.min_stability);
-  parser.AddOption("min-cornerness", "KAPPA", "cornerness threshold on kappa, in [0, 0.25]",
-                   &flags.options.min_cornerness);
-  parser.AddFlag(
-      "no-neighbour-seeds",
-      "comic-paper: do not converge again from the other corners found on each MSICS (corners\n"
-      "                              closer than the initialisation scale 2s may be missed)",
-      &flags.no_neighbour_seeds);
-  parser.AddFlag(
-      "every-path",
-      "comic-paper: converge every seed to the end (default: a seed that reaches another\n"
-      "                              seed's state waits for that seed's outcome)",
-      &flags.every_path);
-  parser.AddFlag(
-      "full-resolution-init",
-      "comic-paper: run the initialisation stage at full resolution (default: on the image\n"
-      "                              halved, same physical scale, 4x fewer pixels)",
-      &flags.full_resolution_init);
-  parser.AddOption("presmoothing-sigma", "PX",
-                   "comic: Gaussian pre-smoothing of the image, px (0 = none)",
-                   &flags.direct.presmoothing_sigma);
-  parser.AddOption("level-radius", "N",
-                   "comic: levels traced on either side of each stable maximum of the tree",
-                   &flags.direct.level_radius);
-  parser.AddOption("link-radius", "PX",
-                   "comic: corners of consecutive levels closer than this form one run",
-                   &flags.direct.link_radius);
-  parser.AddOption("consensus-fraction", "F",
-                   "comic: run members with rho >= F x the peak's vote for the position",
-                   &flags.direct.consensus_fraction);
-  comic::apps::AddThreadsFlag(parser, &flags.options.num_threads);
-  comic::apps::AddMaxFeaturesFlag(parser, &flags.max_features);
+  comic::apps::AddDetectorFlag(parser, &flags.run.detector);
+  AddTableFlags(parser, &flags.run);
+  comic::apps::AddThreadsFlag(parser, &flags.run.threads);
+  comic::apps::AddMaxFeaturesFlag(parser, &flags.run.max_features);
   comic::apps::AddMaxPixelsFlag(parser, &flags.max_pixels);
   parser.AddEpilog(
       "Example:\n"
@@ -195,41 +149,29 @@ void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
       "worked at --resize-height 700.\n"
       "Overlay colours: red = corner pointing into the brighter side of its iso-curve, cyan = "
       "into\n"
-      "the darker side; the line through each circle is its maximally stable iso-curve segment.\n");
+      "the darker side; the line through each circle is its maximally stable iso-curve segment.\n"
+      "Python: comic.detect(image, detector, **options) takes these options as keywords (the\n"
+      "flag's name with '_' for '-') and gives the same features.\n");
 }
 
-void Flags::Check() {
+void Flags::Check() const {
   comic::io::CheckResizeHeight(resize_height);
   comic::io::CheckMaxPixels(max_pixels);
-  COMIC_CHECK(max_features >= 0, kInvalidArgument, "--max-features must be >= 0");
-  options.coarse_initialisation = !full_resolution_init;
-  options.seed_neighbouring_corners = !no_neighbour_seeds;
-  options.skip_duplicate_paths = !every_path;
-  COMIC_CHECK(detector_name == "comic" || detector_name == "comic-paper", kInvalidArgument,
+  COMIC_CHECK(comic::sfm::IsComicSearch(run.detector), kInvalidArgument,
               "--detector: comic_detect runs comic or comic-paper (CoMIC's two searches), got '"
-                  << detector_name << "'");
-  direct.scale = options.scale;
-  direct.delta = options.delta;
-  direct.half_length = options.half_length;
-  direct.merge_radius = options.merge_radius;
-  direct.min_stability = options.min_stability;
-  direct.min_cornerness = options.min_cornerness;
-  direct.num_threads = options.num_threads;
-  paper = detector_name == "comic-paper";
-  // Both searches' options are checked whichever runs: a bad value is an error, not ignored.
-  options.Check();
-  if (!paper) direct.Check();
-  comic::apps::CheckThreadCount("--threads", options.num_threads);
-  // Inputs are sacred: `--json img.png` must not replace the image (issue 29).
+                  << run.detector << "'");
+  run.Check();
+  // Inputs are sacred: `--json img.png` must not replace the image.
   comic::io::CheckOutputsAvoidInputs({{"--overlay", overlay_path}, {"--json", json_path}},
                                      {{"IMAGE", input}});
 }
 
-// The options of the search that ran, as the JSON output records them.
-nlohmann::json OptionsToJson(const Flags& flags) {
-  const comic::frontend::ComicDetectorOptions& options = flags.options;
-  const comic::frontend::ComicDirectDetectorOptions& direct = flags.direct;
-  return flags.paper
+// The options of the search that ran, as the JSON output records them (the search's own names).
+nlohmann::json OptionsToJson(const comic::sfm::DetectRunOptions& run) {
+  const comic::frontend::DetectorOptions searches = run.ToDetectorOptions();
+  const comic::frontend::ComicDetectorOptions& options = searches.comic_paper;
+  const comic::frontend::ComicDirectDetectorOptions& direct = searches.comic;
+  return run.detector == "comic-paper"
              ? nlohmann::json{{"scale", options.scale},
                               {"block_size", options.block_size},
                               {"delta", options.delta},
@@ -255,33 +197,15 @@ nlohmann::json OptionsToJson(const Flags& flags) {
                               {"min_stability", direct.min_stability}};
 }
 
-std::unique_ptr<comic::frontend::Detector> MakeDetector(const Flags& flags) {
-  if (flags.paper) return std::make_unique<comic::frontend::ComicDetector>(flags.options);
-  return std::make_unique<comic::frontend::ComicDirectDetector>(flags.direct);
-}
-
-// Detects, times and keeps the --max-features strongest.
-FeatureSet DetectStrongest(const comic::frontend::Detector& detector, const cv::Mat& gray,
-                           int max_features, double& ms) {
-  const auto start = std::chrono::steady_clock::now();
-  FeatureSet features = detector.Detect(gray);
-  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (max_features > 0 && static_cast<int>(features.size()) > max_features) {
-    features.resize(max_features);
-  }
-  return features;
-}
-
 void WriteJson(const Flags& flags, const comic::io::LoadedImage& image,
-               const comic::frontend::Detector& detector, const FeatureSet& features,
-               comic::io::StagedFiles& outputs) {
+               const comic::sfm::DetectRunResult& result, comic::io::StagedFiles& outputs) {
   nlohmann::json features_json = nlohmann::json::array();
-  for (const Feature& f : features) features_json.push_back(FeatureToJson(f));
+  for (const Feature& f : result.features) features_json.push_back(FeatureToJson(f));
   const nlohmann::json root = {{"image", flags.input},
                                {"width", image.gray.cols},
                                {"height", image.gray.rows},
-                               {"detector", detector.Name()},
-                               {"options", OptionsToJson(flags)},
+                               {"detector", result.detector_name},
+                               {"options", OptionsToJson(flags.run)},
                                {"features", features_json}};
   outputs.WriteFile(flags.json_path, comic::io::JsonText(root, 1));
 }
@@ -307,9 +231,8 @@ int Run(int argc, char** argv) {
 
   const comic::io::LoadedImage image =
       comic::io::LoadImage(flags.input, flags.resize_height, flags.max_pixels);
-  const std::unique_ptr<comic::frontend::Detector> detector = MakeDetector(flags);
-  double ms = 0.0;
-  const FeatureSet features = DetectStrongest(*detector, image.gray, flags.max_features, ms);
+  const comic::sfm::DetectRunResult result = comic::sfm::RunDetect(flags.run, image.gray);
+  const FeatureSet& features = result.features;
 
   int bright = 0;
   for (const Feature& f : features) bright += f.polarity == Polarity::kBright;
@@ -317,11 +240,11 @@ int Run(int argc, char** argv) {
             << ")\n"
             << "features: " << features.size() << " (" << bright << " bright, "
             << features.size() - bright << " dark)\n"
-            << "time:     " << ms << " ms\n";
+            << "time:     " << result.milliseconds << " ms\n";
   if (!flags.overlay_path.empty()) {
     outputs.WriteImage(flags.overlay_path, DrawOverlay(image.color, features));
   }
-  if (!flags.json_path.empty()) WriteJson(flags, image, *detector, features, outputs);
+  if (!flags.json_path.empty()) WriteJson(flags, image, result, outputs);
   outputs.Commit();
   if (!flags.overlay_path.empty()) std::cout << "overlay:  " << flags.overlay_path << "\n";
   if (!flags.json_path.empty()) std::cout << "json:     " << flags.json_path << "\n";

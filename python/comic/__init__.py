@@ -135,10 +135,15 @@ def imread(path, resize_height=0, color=False, max_pixels=MAX_PIXELS):
 def detect(image, detector="comic", max_pixels=MAX_PIXELS, **options):
     """Detects features in `image` (uint8, grey or BGR; at most max_pixels pixels).
 
-    Returns (features, side_masks): a structured array of FEATURE_DTYPE, strongest first, and a
-    uint8 array of shape (N, 23, 23) labelling each feature's patch pixels by side of its iso-curve
-    (1: ic+, 2: ic-, 0: neither; all 0 for detectors without side information). `options` are the
-    named detector's options (e.g. scale=8.4, threads=2 for CoMIC; integration_sigma for Harris).
+    comic_detect's run (sfm/run/detect_run.h): the same options give the same features as
+    `comic_detect IMAGE --json` on the same pixels. Returns (features, side_masks): a structured
+    array of FEATURE_DTYPE, strongest first, and a uint8 array of shape (N, 23, 23) labelling each
+    feature's patch pixels by side of its iso-curve (1: ic+, 2: ic-, 0: neither; all 0 for
+    detectors without side information). `options` are the named detector's options: for CoMIC's
+    two searches comic_detect's flags with underscores (listed below); for the baselines their
+    fields (integration_sigma for Harris, ...); for every detector scale_levels, threads (0, the
+    default: one per core; the features do not depend on it) and max_features (keep the strongest
+    N; 0: all).
     """
     _name(detector, "detect: detector")
     return _features(
@@ -498,9 +503,24 @@ def _run_option_doc():
     return "\n".join(lines) + "\n"
 
 
+def _detector_option_doc():
+    """CoMIC's options of detect(), from the library's table: one paragraph each."""
+    lines = ["", "    CoMIC's options (the library's table; the default in brackets):"]
+    for entry in _core.detector_option_table():
+        text = "%s [%r]: %s." % (entry["keyword"], entry["default"], entry["help"])
+        if len(entry["detectors"]) == 2:
+            text = text.replace(": ", ": both searches: ", 1)
+        lines += _textwrap.wrap(
+            text, width=100, initial_indent="      ", subsequent_indent="          "
+        )
+    return "\n".join(lines) + "\n"
+
+
 # Without docstrings (python -OO) there is nothing to add to.
 if reconstruct.__doc__:
     reconstruct.__doc__ = reconstruct.__doc__.rstrip() + "\n" + _run_option_doc()
+if detect.__doc__:
+    detect.__doc__ = detect.__doc__.rstrip() + "\n" + _detector_option_doc()
 
 
 def export_colmap(frames, colmap_db, *, detector_options=None, **options):

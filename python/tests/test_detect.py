@@ -91,6 +91,54 @@ def test_equal_to_comic_detect_on_a_bundled_frame(tmp_path):
         assert rows == want["side_mask"]
 
 
+# Both doors on the same pixels with the same options, each spelt as its door spells it: the
+# flags and keywords come from one table (sfm/run/detector_option_table.h), so they must agree to
+# the bit. Small and capped so that each case costs well under a second.
+DOORS = [
+    ("comic", [], {}),
+    (
+        "comic",
+        ["--scale", "6", "--presmoothing-sigma", "1", "--bridge-levels", "20", "--max-features",
+         "150"],
+        dict(scale=6.0, presmoothing_sigma=1.0, bridge_levels=20, max_features=150),
+    ),
+    (
+        "comic-paper",
+        ["--full-resolution-init", "--every-path", "--min-cornerness", "0.05", "--max-features",
+         "120"],
+        dict(full_resolution_init=True, every_path=True, min_cornerness=0.05, max_features=120),
+    ),
+]
+
+
+@pytest.mark.parametrize("detector, flags, keywords", DOORS, ids=["comic", "comic-options",
+                                                                  "paper-options"])
+def test_both_doors_give_the_same_features(tmp_path, detector, flags, keywords):
+    path = os.path.join(EXAMPLE, "image_l", "000000.png")
+    out = tmp_path / "features.json"
+    code, output = run_app(
+        app("comic_detect"), path, "--resize-height", "188", "--detector", detector, "--json",
+        out, *flags
+    )
+    assert code == 0, output
+    expected = json.loads(out.read_text())["features"]
+    features, _ = comic.detect(comic.imread(path, resize_height=188), detector, **keywords)
+    assert len(features) == len(expected) > 20
+    if "max_features" in keywords:
+        assert len(features) == keywords["max_features"]
+    for name in ("x", "y", "scale"):
+        assert np.array_equal(features[name], np.array([f[name] for f in expected], np.float32))
+
+
+def test_the_old_keywords_still_work():
+    image = textured_scene(seed=3)
+    new, _ = comic.detect(image, "comic-paper", full_resolution_init=True, no_neighbour_seeds=True)
+    old, _ = comic.detect(
+        image, "comic-paper", coarse_initialisation=False, seed_neighbouring_corners=False
+    )
+    assert np.array_equal(new, old)
+
+
 @pytest.mark.parametrize(
     "call, error",
     [
