@@ -13,7 +13,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 targets=(fuzz_image_detectors fuzz_ground_truth fuzz_regions fuzz_colmap_database
-         fuzz_colmap_text_model fuzz_calibration_values fuzz_scene)
+         fuzz_colmap_text_model fuzz_calibration_values fuzz_scene fuzz_exif_focal)
 if [ "${1:-}" = "--list" ]; then
   printf '%s\n' "${targets[@]}"
   exit 0

@@ -60,29 +60,53 @@ Camera LoadCameraCalibration(const std::string& path, const cv::Size& source_siz
   return camera;
 }
 
+namespace {
+
+// No calibration: COLMAP's default for an unknown camera (SIMPLE_RADIAL, k = 0, the principal
+// point at the centre) with the focal length the photos' EXIF states, else f = 1.2 max(w, h).
+ResolvedCamera SelfCalibratingCamera(const CameraChoice& choice, const cv::Size& source_size,
+                                     const cv::Size& frame_size, CameraModelId model,
+                                     const ExifFocalPrior& exif) {
+  ResolvedCamera resolved;
+  resolved.camera = Camera::FromImageSize(frame_size.width, frame_size.height, model);
+  if (exif.focal_px) {
+    const double scale = static_cast<double>(frame_size.height) / source_size.height;
+    resolved.camera.fx = resolved.camera.fy = *exif.focal_px * scale;
+    resolved.origin = "exif";
+    resolved.source = exif.description;
+  } else {
+    resolved.origin = "default";
+    resolved.source = "default: f = 1.2 max(w, h), principal point at the centre";
+    if (!exif.description.empty()) resolved.source += " (" + exif.description + ")";
+  }
+  resolved.self_calibrating = true;
+  resolved.refine_intrinsics = !choice.fixed_intrinsics;
+  resolved.source +=
+      choice.fixed_intrinsics ? ", held fixed" : ", refined once the model constrains it";
+  return resolved;
+}
+
+}  // namespace
+
 ResolvedCamera ResolveCamera(const CameraChoice& choice, const cv::Size& source_size,
                              const cv::Size& frame_size,
                              const std::optional<FrameGroundTruth>& ground_truth,
-                             const std::string& gt_path) {
+                             const std::string& gt_path, const ExifFocalPrior& exif) {
   std::optional<CameraModelId> model;
   if (!choice.camera_model.empty()) model = ParseCameraModel(choice.camera_model);
   ResolvedCamera resolved;
   if (!choice.intrinsics.empty()) {
     resolved.camera = LoadCameraCalibration(choice.intrinsics, source_size, frame_size, model);
     resolved.source = "file " + choice.intrinsics;
+    resolved.origin = "file";
   } else if (ground_truth && ground_truth->camera && !choice.ignore_gt_intrinsics) {
     resolved.camera = *ground_truth->camera;
     if (model) resolved.camera = ConvertCameraModel(resolved.camera, *model);
     resolved.source = "ground truth " + gt_path;
+    resolved.origin = "ground_truth";
   } else {
-    // COLMAP's default for unknown cameras: SIMPLE_RADIAL, f = 1.2 max(w, h), k = 0.
-    resolved.camera = Camera::FromImageSize(frame_size.width, frame_size.height,
-                                            model.value_or(CameraModelId::kSimpleRadial));
-    resolved.self_calibrating = true;
-    resolved.refine_intrinsics = !choice.fixed_intrinsics;
-    resolved.source =
-        std::string("default: f = 1.2 max(w, h), principal point at the centre") +
-        (choice.fixed_intrinsics ? ", held fixed" : ", refined once the model constrains it");
+    resolved = SelfCalibratingCamera(choice, source_size, frame_size,
+                                     model.value_or(CameraModelId::kSimpleRadial), exif);
   }
   resolved.camera.width = frame_size.width;
   resolved.camera.height = frame_size.height;

@@ -6,10 +6,11 @@
 //      c -> (c + 0.5) s - 0.5, Camera::Scaled; distortion acts on normalised coordinates and
 //      stays);
 //   2. else the ground truth's intrinsics (--gt), unless --ignore-gt-intrinsics;
-//   3. else COLMAP's default for an unknown camera, SIMPLE_RADIAL with f = 1.2 max(w, h), the
-//      principal point at the centre and k = 0, which the run self-calibrates: the focal length
-//      and distortion are refined (COLMAP's ba_refine_focal_length and ba_refine_extra_params)
-//      unless --fixed-intrinsics.
+//   3. else COLMAP's default for an unknown camera, SIMPLE_RADIAL with the principal point at the
+//      centre and k = 0, which the run self-calibrates: the focal length and distortion are
+//      refined (COLMAP's ba_refine_focal_length and ba_refine_extra_params) unless
+//      --fixed-intrinsics. Its focal length is the one the photos' EXIF states when the frames
+//      read agree (exif_focal_prior.h), else f = 1.2 max(w, h).
 // --camera-model NAME picks the model (sfm/camera_model.h) of the default camera, or converts a
 // file's or the ground truth's camera to it where that loses nothing.
 //
@@ -23,6 +24,7 @@
 
 #include "sfm/camera.h"
 #include "sfm/evaluation/ground_truth.h"
+#include "sfm/run/exif_focal_prior.h"
 
 namespace comic::sfm {
 
@@ -39,7 +41,10 @@ struct CameraChoice {
 
 struct ResolvedCamera {
   Camera camera;       // at the size of the frames as used
-  std::string source;  // "file calib.txt", "ground truth poses.txt" or "default: ..."
+  std::string source;  // "file calib.txt", "ground truth poses.txt", "EXIF ..." or "default: ..."
+  // Where the camera (or the prior of a self-calibrating one) came from: "file", "ground_truth",
+  // "exif" or "default".
+  std::string origin;
   // No calibration was given: the default camera, whose intrinsics are unknown (a COLMAP export
   // lets COLMAP refine them).
   bool self_calibrating = false;
@@ -48,12 +53,13 @@ struct ResolvedCamera {
 };
 
 // The camera of a run on frames stored at `source_size` and used at `frame_size`, by the rule
-// above; `gt_path` (--gt) names the ground truth in the camera's source. Throws comic::Error as
+// above; `gt_path` (--gt) names the ground truth in the camera's source, `exif` is the frames'
+// EXIF focal (FindExifFocalPrior; its focal is at `source_size`). Throws comic::Error as
 // LoadCameraCalibration and ConvertCameraModel do.
 ResolvedCamera ResolveCamera(const CameraChoice& choice, const cv::Size& source_size,
                              const cv::Size& frame_size,
                              const std::optional<FrameGroundTruth>& ground_truth,
-                             const std::string& gt_path = "");
+                             const std::string& gt_path = "", const ExifFocalPrior& exif = {});
 
 // --intrinsics FILE as a camera of the frames as used. Throws comic::Error for a missing or
 // malformed file (kNotFound, kInvalidData), a file made for another image size (kInvalidData) or

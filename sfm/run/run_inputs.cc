@@ -106,8 +106,12 @@ RunInputs ResolveRunInputs(const ReconstructionRunOptions& options) {
   RunInputs inputs;
   OpenFrames(options, &inputs);
   ReadGroundTruth(options, &inputs);
-  inputs.camera = ResolveCamera(options.camera, inputs.sequence->SourceFrameSize(),
-                                inputs.sequence->FrameSize(), inputs.ground_truth, options.gt);
+  // The photos' EXIF focal matters only without a calibration file.
+  const ExifFocalPrior exif =
+      options.camera.intrinsics.empty() ? FindExifFocalPrior(*inputs.sequence) : ExifFocalPrior();
+  inputs.camera =
+      ResolveCamera(options.camera, inputs.sequence->SourceFrameSize(),
+                    inputs.sequence->FrameSize(), inputs.ground_truth, options.gt, exif);
   LabelRegions(options, &inputs);
   ChoosePlotPlane(options, &inputs);
   inputs.pairing = ChooseRunPairing(options.matching, options.tracker, *inputs.sequence);

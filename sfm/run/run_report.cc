@@ -77,6 +77,7 @@ nlohmann::json RotationOnlyPathToJson(const RotationOnlyPath& path, size_t num_f
 nlohmann::json CameraReportJson(const SequenceReconstruction& run, const RunInputs& inputs) {
   const IncrementalReconstruction& mapping = run.mapping;
   nlohmann::json json = {{"source", inputs.camera.source},
+                         {"prior_from", inputs.camera.origin},
                          {"prior", CameraToJson(inputs.camera.camera)},
                          {"refined", mapping.intrinsics_refined}};
   const Reconstruction& reconstruction = mapping.reconstruction;

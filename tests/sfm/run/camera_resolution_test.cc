@@ -122,6 +122,47 @@ TEST(ResolveCamera, FileThenGroundTruthThenTheSelfCalibratedDefault) {
   EXPECT_NE(fixed.source.find("held fixed"), std::string::npos);
 }
 
+// The photos' EXIF focal: the prior of the self-calibrated camera, scaled to resized frames;
+// a file or the ground truth still come first, and without an agreed EXIF focal the guess stays.
+TEST(ResolveCamera, ExifFocalIsThePriorAfterFileAndGroundTruth) {
+  comic::sfm::ExifFocalPrior exif;
+  exif.focal_px = 700.0;
+  exif.description = "EXIF FocalLengthIn35mmFilm 20 mm in a.jpg, 8 of 8 frames read agree";
+  CameraChoice choice;
+  const ResolvedCamera camera =
+      ResolveCamera(choice, {1226, 370}, {1226, 370}, std::nullopt, "", exif);
+  EXPECT_EQ(camera.camera.model, comic::sfm::CameraModelId::kSimpleRadial);
+  EXPECT_EQ(camera.camera.fx, 700.0);
+  EXPECT_EQ(camera.camera.fy, 700.0);
+  EXPECT_DOUBLE_EQ(camera.camera.cx, 612.5);
+  EXPECT_EQ(camera.origin, "exif");
+  EXPECT_EQ(camera.source.rfind(exif.description, 0), 0u) << camera.source;
+  EXPECT_TRUE(camera.self_calibrating);
+  EXPECT_TRUE(camera.refine_intrinsics);
+  const ResolvedCamera half =
+      ResolveCamera(choice, {1226, 370}, {613, 185}, std::nullopt, "", exif);
+  EXPECT_DOUBLE_EQ(half.camera.fx, 700.0 * 185 / 370);
+
+  comic::sfm::FrameGroundTruth truth;
+  truth.camera = comic::sfm::Camera::FromParams(comic::sfm::CameraModelId::kPinhole, 1226, 370,
+                                                {710, 710, 600, 180});
+  EXPECT_EQ(ResolveCamera(choice, {1226, 370}, {1226, 370}, truth, "gt", exif).origin,
+            "ground_truth");
+  comic::test::ScopedTempDir dir;
+  comic::io::WriteFileAtomically(dir.File("k.txt"), "690 690 612 184\n");
+  choice.intrinsics = dir.File("k.txt");
+  EXPECT_EQ(ResolveCamera(choice, {1226, 370}, {1226, 370}, truth, "gt", exif).camera.fx, 690.0);
+
+  choice.intrinsics.clear();
+  comic::sfm::ExifFocalPrior disagree;
+  disagree.description = "EXIF focal lengths disagree: 700.0 px (a.jpg) and 900.0 px (b.jpg)";
+  const ResolvedCamera guess =
+      ResolveCamera(choice, {1226, 370}, {1226, 370}, std::nullopt, "", disagree);
+  EXPECT_EQ(guess.origin, "default");
+  EXPECT_DOUBLE_EQ(guess.camera.fx, 1.2 * 1226);
+  EXPECT_NE(guess.source.find(disagree.description), std::string::npos) << guess.source;
+}
+
 TEST(ResolveCamera, BadModelNamesTheFlag) {
   CameraChoice choice;
   choice.camera_model = "FISHEYE";
