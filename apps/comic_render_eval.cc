@@ -65,7 +65,8 @@ void AddFlags(comic::apps::ArgParser& parser, Flags& flags) {
                    &flags.options.band_px);
   parser.AddOption("min-track-length", "N", "shorter tracks are not judged follow/slide",
                    &flags.options.tracks.min_track_length);
-  parser.AddFlag("no-remap", "skip the mappings without boundary or sliding tracks",
+  parser.AddFlag("no-remap",
+                 "skip the mappings without boundary, sliding or labelled-sliding tracks",
                  &flags.no_remap);
   comic::apps::AddThreadsFlag(parser, &flags.options.num_threads);
   comic::apps::AddOutputFolderFlag(parser, &flags.out_dir);
@@ -84,7 +85,8 @@ void Flags::Check(const comic::apps::ArgParser& parser) {
     options.detectors = comic::frontend::DetectorNames();
     options.detectors.push_back("comic+hessian");
   }
-  options.without_boundary_tracks = options.without_sliding_tracks = !no_remap;
+  options.without_boundary_tracks = options.without_sliding_tracks =
+      options.without_labelled_sliding_tracks = !no_remap;
   comic::apps::CheckThreadCount("--threads", options.num_threads);
   options.sequence.Check();
   tracker_settings = comic::apps::ToTrackerSettings(tracker, parser);
@@ -121,6 +123,11 @@ io::ReportTable WriteOutputs(const std::string& folder, const sfm::RenderedBench
   nlohmann::json json = result.ToJson();
   json["matching"] = comic::frontend::PairingName(pairing.chosen);
   io::WriteFileAtomically(io::JoinPaths(folder, "boundary_benchmark.json"), json.dump(2) + "\n");
+  for (size_t d = 0; d < result.detectors.size(); ++d) {
+    io::WriteFileAtomically(
+        io::JoinPaths(folder, "tracks_" + result.detectors[d].detector + ".csv"),
+        result.TrackScoreTable(d).ToCsv());
+  }
   return table;
 }
 
@@ -132,8 +139,10 @@ int Run(int argc, char** argv) {
       "each detector, the share of features on occlusion boundaries, how long their tracks live,\n"
       "how many follow one 3-D surface point (the true point re-projected through the true\n"
       "cameras) or slide along a silhouette, their share of the model's points and reprojection\n"
-      "error, and the ATE with all tracks, without the boundary tracks and without the sliding\n"
-      "ones. Tracking and mapping are comic_sfm's, with the true camera.");
+      "error, and the ATE with all tracks, without the boundary tracks, without the sliding\n"
+      "ones and without those a labeller that sees no truth calls sliding. Tracking and mapping\n"
+      "are comic_sfm's, with the true camera. Writes boundary_benchmark.{md,csv,json} and\n"
+      "tracks_<detector>.csv (every track: its truth, its side changes, drift and label).");
   AddFlags(parser, flags);
   if (parser.Parse(argc, argv) == comic::apps::ArgParser::Result::kHelpShown) return 0;
   flags.Check(parser);

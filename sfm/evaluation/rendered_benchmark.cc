@@ -8,6 +8,7 @@
 #include "io/datasets/rendered_truth.h"
 #include "sfm/evaluation/ground_truth.h"
 #include "sfm/incremental_pipeline.h"
+#include "sfm/track_drift.h"
 #include "sfm/trajectory_evaluation.h"
 
 namespace comic::sfm {
@@ -113,18 +114,47 @@ ModelSummary Summarize(const IncrementalReconstruction& mapping, size_t num_trac
 }
 
 // The mapper again, on the tracks `keep` accepts.
-ModelSummary MapAgain(const SequenceReconstruction& run, const std::vector<TrackTruth>& truth_of,
-                      const std::function<bool(const TrackTruth&)>& keep,
+ModelSummary MapAgain(const SequenceReconstruction& run, const std::function<bool(size_t)>& keep,
                       const RenderedBenchmarkOptions& options, const io::ImageSequence& sequence,
                       const SequenceTruth& truth) {
   frontend::FeatureTracks kept = run.tracks;
   kept.tracks.clear();
   for (size_t t = 0; t < run.tracks.tracks.size(); ++t) {
-    if (keep(truth_of[t])) kept.tracks.push_back(run.tracks.tracks[t]);
+    if (keep(t)) kept.tracks.push_back(run.tracks.tracks[t]);
   }
   const IncrementalReconstruction mapping =
       ReconstructIncrementally(kept, truth.camera, options.reconstruction.mapper);
   return Summarize(mapping, kept.tracks.size(), sequence, truth);
+}
+
+// Each track's truth beside its side changes and its drift in the model.
+std::vector<TrackScore> ScoreTracks(const SequenceReconstruction& run,
+                                    const BoundaryTrackEvaluation& truth,
+                                    const io::ImageSequence& sequence,
+                                    const TrackLabelOptions& label_options) {
+  const std::vector<frontend::SideChange> sides = frontend::MeasureTrackSideChanges(
+      run.tracks, [&](int frame) { return sequence.ReadFrame(frame).gray; }, {});
+  const std::vector<std::optional<double>> drift =
+      MeasureTrackDrift(run.tracks, run.mapping.reconstruction);
+  const std::vector<LabelledTrack> labels = LabelTracks(sides, drift, label_options);
+  std::vector<TrackScore> scores(run.tracks.tracks.size());
+  for (size_t t = 0; t < scores.size(); ++t) {
+    scores[t] = {run.tracks.tracks[t].Length(), truth.tracks[t], sides[t], drift[t], labels[t]};
+  }
+  return scores;
+}
+
+LabelAgreement CompareLabels(const std::vector<TrackScore>& scores) {
+  LabelAgreement agreement;
+  for (const TrackScore& score : scores) {
+    if (!score.truth.classified) continue;
+    const bool labelled = score.labelled.label == TrackLabel::kSliding;
+    const bool sliding = !score.truth.follows;
+    agreement.num_labelled_sliding += labelled;
+    agreement.num_true_sliding += sliding;
+    agreement.num_both += labelled && sliding;
+  }
+  return agreement;
 }
 
 DetectorBenchmark RunDetector(const std::string& name, const RenderedBenchmarkOptions& options,
@@ -167,16 +197,23 @@ DetectorBenchmark RunDetector(const std::string& name, const RenderedBenchmarkOp
     result.boundary_error_share = result.boundary_points.mean_reprojection_error_px *
                                   result.boundary_points.num_observations / total_error;
   }
+  result.track_scores = ScoreTracks(run, tracks, sequence, options.labels);
+  result.labelled_sliding = CompareLabels(result.track_scores);
   if (progress) progress("[" + name + "] tracked and mapped; mapping again without some tracks");
   if (options.without_boundary_tracks) {
     result.without_boundary = MapAgain(
-        run, tracks.tracks, [](const TrackTruth& t) { return !t.boundary; }, options, sequence,
-        truth);
+        run, [&](size_t t) { return !tracks.tracks[t].boundary; }, options, sequence, truth);
   }
   if (options.without_sliding_tracks) {
     result.without_sliding = MapAgain(
-        run, tracks.tracks, [](const TrackTruth& t) { return !t.classified || t.follows; }, options,
-        sequence, truth);
+        run, [&](size_t t) { return !tracks.tracks[t].classified || tracks.tracks[t].follows; },
+        options, sequence, truth);
+  }
+  if (options.without_labelled_sliding_tracks) {
+    result.without_labelled_sliding = MapAgain(
+        run,
+        [&](size_t t) { return result.track_scores[t].labelled.label != TrackLabel::kSliding; },
+        options, sequence, truth);
   }
   return result;
 }
@@ -224,17 +261,33 @@ void RenderedBenchmarkOptions::Check() const {
   sequence.Check();
   reconstruction.Check();
   tracks.Check();
+  labels.Check();
   COMIC_CHECK(num_threads >= 0, kInvalidArgument, "threads must be >= 0, got " << num_threads);
   COMIC_CHECK(band_px >= 0 && band_px <= 50, kInvalidArgument,
               "boundary band must be in 0..50 px, got " << band_px);
 }
 
 io::ReportTable RenderedBenchmark::Table() const {
-  io::ReportTable table({"detector", "features", "on boundary %", "band area %", "boundary tracks",
-                         "boundary track length", "other track length", "boundary following %",
-                         "other following %", "boundary drift px", "registered", "points",
-                         "boundary points %", "boundary error %", "ATE m", "ATE w/o boundary m",
-                         "ATE w/o sliding m"});
+  io::ReportTable table({"detector",
+                         "features",
+                         "on boundary %",
+                         "band area %",
+                         "boundary tracks",
+                         "boundary track length",
+                         "other track length",
+                         "boundary following %",
+                         "other following %",
+                         "boundary drift px",
+                         "registered",
+                         "points",
+                         "boundary points %",
+                         "boundary error %",
+                         "ATE m",
+                         "ATE w/o boundary m",
+                         "ATE w/o sliding m",
+                         "labelled sliding precision",
+                         "labelled sliding recall",
+                         "ATE w/o labelled sliding m"});
   for (const char* column : {"on boundary %", "band area %", "boundary following %",
                              "other following %", "boundary points %", "boundary error %"}) {
     table.SetPrecision(column, 1);
@@ -242,19 +295,34 @@ io::ReportTable RenderedBenchmark::Table() const {
   for (const char* column : {"boundary track length", "other track length", "boundary drift px"}) {
     table.SetPrecision(column, 2);
   }
-  for (const char* column : {"ATE m", "ATE w/o boundary m", "ATE w/o sliding m"}) {
+  for (const char* column : {"labelled sliding precision", "labelled sliding recall"}) {
+    table.SetPrecision(column, 2);
+  }
+  for (const char* column :
+       {"ATE m", "ATE w/o boundary m", "ATE w/o sliding m", "ATE w/o labelled sliding m"}) {
     table.SetPrecision(column, 4);
   }
   for (const DetectorBenchmark& d : detectors) {
-    table.AddRow(
-        {d.detector, static_cast<int64_t>(d.num_features),
-         Percent(d.num_boundary_features, d.num_features), 100.0 * d.boundary_area_fraction,
-         static_cast<int64_t>(d.boundary_tracks.num_tracks), d.boundary_tracks.mean_length,
-         d.other_tracks.mean_length, 100.0 * d.boundary_tracks.FollowingFraction(),
-         100.0 * d.other_tracks.FollowingFraction(), d.boundary_tracks.median_drift_px,
-         static_cast<int64_t>(d.model.num_registered), static_cast<int64_t>(d.points.num_points),
-         Percent(d.boundary_points.num_points, d.points.num_points), 100.0 * d.boundary_error_share,
-         Ate(d.model), Ate(d.without_boundary), Ate(d.without_sliding)});
+    table.AddRow({d.detector,
+                  static_cast<int64_t>(d.num_features),
+                  Percent(d.num_boundary_features, d.num_features),
+                  100.0 * d.boundary_area_fraction,
+                  static_cast<int64_t>(d.boundary_tracks.num_tracks),
+                  d.boundary_tracks.mean_length,
+                  d.other_tracks.mean_length,
+                  100.0 * d.boundary_tracks.FollowingFraction(),
+                  100.0 * d.other_tracks.FollowingFraction(),
+                  d.boundary_tracks.median_drift_px,
+                  static_cast<int64_t>(d.model.num_registered),
+                  static_cast<int64_t>(d.points.num_points),
+                  Percent(d.boundary_points.num_points, d.points.num_points),
+                  100.0 * d.boundary_error_share,
+                  Ate(d.model),
+                  Ate(d.without_boundary),
+                  Ate(d.without_sliding),
+                  d.labelled_sliding.Precision(),
+                  d.labelled_sliding.Recall(),
+                  Ate(d.without_labelled_sliding)});
   }
   return table;
 }
@@ -275,6 +343,14 @@ nlohmann::json RenderedBenchmark::ToJson() const {
                           {"tracking_time_s", d.tracking_time_s}};
     if (d.without_boundary) run["without_boundary_tracks"] = ModelToJson(*d.without_boundary);
     if (d.without_sliding) run["without_sliding_tracks"] = ModelToJson(*d.without_sliding);
+    run["labelled_sliding"] = {{"labelled", d.labelled_sliding.num_labelled_sliding},
+                               {"true", d.labelled_sliding.num_true_sliding},
+                               {"both", d.labelled_sliding.num_both},
+                               {"precision", d.labelled_sliding.Precision()},
+                               {"recall", d.labelled_sliding.Recall()}};
+    if (d.without_labelled_sliding) {
+      run["without_labelled_sliding_tracks"] = ModelToJson(*d.without_labelled_sliding);
+    }
     runs.push_back(run);
   }
   return {{"folder", folder},
@@ -282,6 +358,31 @@ nlohmann::json RenderedBenchmark::ToJson() const {
           {"band_px", band_px},
           {"table", Table().ToJson()},
           {"runs", runs}};
+}
+
+io::ReportTable RenderedBenchmark::TrackScoreTable(size_t d) const {
+  io::ReportTable table({"track", "length", "boundary", "classified", "follows", "drift px",
+                         "sides", "object side", "plus mean", "minus mean", "plus last",
+                         "minus last", "model drift px", "label"});
+  for (const char* column :
+       {"drift px", "plus mean", "minus mean", "plus last", "minus last", "model drift px"}) {
+    table.SetPrecision(column, 3);
+  }
+  const std::vector<TrackScore>& scores = detectors.at(d).track_scores;
+  for (size_t t = 0; t < scores.size(); ++t) {
+    const TrackScore& s = scores[t];
+    table.AddRow({static_cast<int64_t>(t), static_cast<int64_t>(s.length),
+                  static_cast<int64_t>(s.truth.boundary), static_cast<int64_t>(s.truth.classified),
+                  static_cast<int64_t>(s.truth.follows), s.truth.drift_px,
+                  static_cast<int64_t>(s.sides.measured),
+                  static_cast<int64_t>(static_cast<int>(s.sides.object_side)),
+                  static_cast<double>(s.sides.plus_mean), static_cast<double>(s.sides.minus_mean),
+                  static_cast<double>(s.sides.plus_last), static_cast<double>(s.sides.minus_last),
+                  s.model_drift_px ? io::ReportTable::Cell(*s.model_drift_px)
+                                   : io::ReportTable::Cell(std::monostate()),
+                  TrackLabelName(s.labelled.label)});
+  }
+  return table;
 }
 
 RenderedBenchmark RunRenderedBenchmark(const std::string& folder,

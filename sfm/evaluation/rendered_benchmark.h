@@ -18,11 +18,13 @@
 #include <string>
 #include <vector>
 
+#include "frontend/matching/track_side_change.h"
 #include "io/image/image_sequence.h"
 #include "io/report/report_table.h"
 #include "sfm/evaluation/boundary_tracks.h"
 #include "sfm/evaluation/reconstruction_stats.h"
 #include "sfm/sequence_reconstruction.h"
+#include "sfm/track_labels.h"
 
 namespace comic::sfm {
 
@@ -44,6 +46,10 @@ struct RenderedBenchmarkOptions {
   // Map again without the boundary tracks, and without the tracks that slide.
   bool without_boundary_tracks = true;
   bool without_sliding_tracks = true;
+  // Label the tracks without truth (sfm/track_labels.h) and map again without those labelled
+  // sliding: what a run without truth can do.
+  bool without_labelled_sliding_tracks = true;
+  TrackLabelOptions labels;
 
   void Check() const;
 };
@@ -59,6 +65,30 @@ struct ModelSummary {
   double mapping_time_s = 0.0;
 };
 
+// One track as the truth judges it and as the evidence without truth sees it: how each side of
+// its point changes along it (frontend/matching/track_side_change.h) and how far it strays from
+// one point under the model's cameras (sfm/track_drift.h).
+struct TrackScore {
+  size_t length = 0;
+  TrackTruth truth;
+  frontend::SideChange sides;
+  std::optional<double> model_drift_px;
+  LabelledTrack labelled;
+};
+
+// The labeller's sliding verdicts against the truth's, over the tracks the truth classifies.
+struct LabelAgreement {
+  size_t num_labelled_sliding = 0;  // labelled sliding
+  size_t num_true_sliding = 0;      // sliding in truth
+  size_t num_both = 0;              // both
+  double Precision() const {
+    return num_labelled_sliding == 0 ? 0.0 : static_cast<double>(num_both) / num_labelled_sliding;
+  }
+  double Recall() const {
+    return num_true_sliding == 0 ? 0.0 : static_cast<double>(num_both) / num_true_sliding;
+  }
+};
+
 struct DetectorBenchmark {
   std::string detector;
   size_t num_features = 0;
@@ -72,7 +102,10 @@ struct DetectorBenchmark {
   double boundary_error_share = 0.0;  // of the model's summed reprojection error
   std::optional<ModelSummary> without_boundary;
   std::optional<ModelSummary> without_sliding;
+  LabelAgreement labelled_sliding;
+  std::optional<ModelSummary> without_labelled_sliding;
   double tracking_time_s = 0.0;
+  std::vector<TrackScore> track_scores;  // one per track given to the mapper
 };
 
 struct RenderedBenchmark {
@@ -84,6 +117,8 @@ struct RenderedBenchmark {
   // One row per detector (the docs' table); ToJson holds every number.
   io::ReportTable Table() const;
   nlohmann::json ToJson() const;
+  // One row per track of detectors[d]: its truth and its evidence (track_scores).
+  io::ReportTable TrackScoreTable(size_t d) const;
 };
 
 using BenchmarkProgress = std::function<void(const std::string& message)>;

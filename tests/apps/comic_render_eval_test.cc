@@ -33,7 +33,8 @@ TEST(ComicRenderEval, JudgesTheTracksOfARenderedStreet) {
                                " --detectors harris --no-remap -q -o " + dir.File("eval"));
   ASSERT_EQ(eval.exit_code, 0) << eval.output;
   EXPECT_NE(eval.output.find("| harris"), std::string::npos) << eval.output;
-  for (const char* file : {"boundary_benchmark.md", "boundary_benchmark.csv"}) {
+  for (const char* file :
+       {"boundary_benchmark.md", "boundary_benchmark.csv", "tracks_harris.csv"}) {
     EXPECT_TRUE(comic::io::PathExists(dir.File("eval/") + file)) << file;
   }
   const nlohmann::json json =
@@ -43,6 +44,8 @@ TEST(ComicRenderEval, JudgesTheTracksOfARenderedStreet) {
   EXPECT_GT(run["boundary_features"].get<int>(), 0);
   EXPECT_GT(run["other_tracks"]["following_fraction"].get<double>(), 0.5);
   EXPECT_FALSE(run.contains("without_boundary_tracks"));  // --no-remap
+  EXPECT_FALSE(run.contains("without_labelled_sliding_tracks"));
+  EXPECT_GT(run["labelled_sliding"]["labelled"].get<int>(), 0);
 }
 
 TEST(ComicRenderEval, BadInputGivesOneLineAndWritesNothing) {

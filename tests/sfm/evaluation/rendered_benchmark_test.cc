@@ -58,9 +58,21 @@ TEST(RenderedBenchmark, OneDetectorOnTheTestStreet) {
   EXPECT_LT(d.without_boundary->num_tracks, d.model.num_tracks);
   ASSERT_TRUE(d.without_sliding.has_value());
   EXPECT_EQ(d.without_sliding->status, "success");
-  // The table and JSON hold the row.
+  // The labeller, without truth, calls some tracks sliding, and most of those slide in truth.
+  const LabelAgreement& labels = d.labelled_sliding;
+  std::cout << "labelled sliding " << labels.num_labelled_sliding << ", sliding in truth "
+            << labels.num_true_sliding << ", both " << labels.num_both << std::endl;
+  EXPECT_GT(labels.num_labelled_sliding, 50u);
+  EXPECT_GT(labels.Precision(), 0.7);
+  EXPECT_GT(labels.Recall(), 0.5);
+  ASSERT_EQ(d.track_scores.size(), d.model.num_tracks);
+  ASSERT_TRUE(d.without_labelled_sliding.has_value());
+  EXPECT_EQ(d.without_labelled_sliding->status, "success");
+  EXPECT_LT(d.without_labelled_sliding->num_tracks, d.model.num_tracks);
+  // The table and JSON hold the row; the per-track table a row per track.
   EXPECT_EQ(result.Table().NumRows(), 1u);
   EXPECT_EQ(result.ToJson()["runs"][0]["detector"], "harris");
+  EXPECT_EQ(result.TrackScoreTable(0).NumRows(), d.track_scores.size());
 }
 
 // The test street with `extra` elements, `frames` frames.
