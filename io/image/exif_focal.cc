@@ -118,7 +118,11 @@ void ReadExifEntry(const TiffBytes& tiff, uint16_t tag, uint64_t entry, ExifFoca
       exif->focal_plane_x_resolution = Positive(value);
       break;
     case kFocalPlaneResolutionUnit:
-      if (value) exif->focal_plane_resolution_unit = static_cast<int>(*value);
+      // A SHORT by the standard; another type may hold a value no int holds: an unknown unit.
+      if (value) {
+        exif->focal_plane_resolution_unit =
+            *value >= 0 && *value <= 65535 ? static_cast<int>(*value) : 0;
+      }
       break;
     case kPixelXDimension:
       if (Positive(value)) exif->pixel_x_dimension = static_cast<int64_t>(*value);

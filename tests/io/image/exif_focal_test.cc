@@ -103,6 +103,21 @@ TEST(ExifFocal, NoFocalWithoutEnoughTags) {
   EXPECT_FALSE(ParseJpegExifFocal(SmallJpeg()).has_value());  // a JPEG without EXIF
 }
 
+TEST(ExifFocal, AUnitTooLargeForAnIntIsNoUnit) {
+  // The resolution unit stored as a LONG of 0xFFFFFFFF instead of a SHORT (a file the fuzzer
+  // made): read as no unit, without converting it to an int it does not fit.
+  std::string tiff = ExifTiff(SensorTags(), false);
+  const std::string unit_entry("\x10\xA2\x03\x00\x01\x00\x00\x00", 8);
+  const size_t at = tiff.find(unit_entry);
+  ASSERT_NE(at, std::string::npos);
+  tiff.replace(at + 2, 2, std::string("\x04\x00", 2));
+  tiff.replace(at + 8, 4, std::string("\xFF\xFF\xFF\xFF", 4));
+  const auto exif = ParseJpegExifFocal(WithExifSegment(SmallJpeg(), tiff));
+  ASSERT_TRUE(exif.has_value());
+  EXPECT_TRUE(exif->HasFocal());
+  EXPECT_FALSE(ExifFocalInPixels(*exif, 5184, 3456).has_value());
+}
+
 TEST(ExifFocal, TruncatedSegmentsAreNoExif) {
   const std::string tiff = ExifTiff(SensorTags(), false);
   const std::string whole = WithExifSegment(SmallJpeg(), tiff);
