@@ -94,12 +94,7 @@ py::list DetectorOptionEntries() {
   py::list entries;
   sfm::DetectRunOptions defaults;
   for (const sfm::DetectorOption& entry : sfm::DetectorOptionTable()) {
-    py::dict d;
-    d["flag"] = entry.flag;
-    d["keyword"] = entry.keyword;
-    d["metavar"] = entry.metavar;
-    d["help"] = entry.help;
-    d["default"] = std::visit([&](auto field) { return py::cast(field(defaults)); }, entry.field);
+    py::dict d = OptionEntryDict(entry, defaults);
     py::list detectors;
     for (const char* name : {"comic", "comic-paper"}) {
       if (entry.AppliesTo(name)) detectors.append(name);

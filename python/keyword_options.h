@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <variant>
 
 namespace comic::python {
 
@@ -116,6 +117,20 @@ T Argument(const py::object& value, const std::string& name, const std::string& 
   options[py::str(name)] = value;
   ApplyOptions(options, {{name, Field(&result)}}, context);
   return result;
+}
+
+// One entry of an option table (sfm::RunOptionTable, sfm::DetectorOptionTable) as a dict: its
+// flag, keyword, value name, help and the default `defaults` holds (the fields are reached
+// through accessors that take it by reference), for docstrings and tests.
+template <typename Entry, typename Options>
+py::dict OptionEntryDict(const Entry& entry, Options& defaults) {
+  py::dict d;
+  d["flag"] = entry.flag;
+  d["keyword"] = entry.keyword;
+  d["metavar"] = entry.metavar;
+  d["help"] = entry.help;
+  d["default"] = std::visit([&](auto field) { return py::cast(field(defaults)); }, entry.field);
+  return d;
 }
 
 }  // namespace comic::python

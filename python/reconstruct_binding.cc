@@ -183,13 +183,7 @@ py::list RunOptionEntries() {
   py::list entries;
   sfm::ReconstructionRunOptions defaults;
   for (const sfm::RunOption& entry : sfm::RunOptionTable()) {
-    py::dict d;
-    d["flag"] = entry.flag;
-    d["keyword"] = entry.keyword;
-    d["metavar"] = entry.metavar;
-    d["help"] = entry.help;
-    d["default"] = std::visit([&](auto field) { return py::cast(field(defaults)); }, entry.field);
-    entries.append(d);
+    entries.append(OptionEntryDict(entry, defaults));
   }
   return entries;
 }

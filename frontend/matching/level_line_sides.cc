@@ -30,13 +30,13 @@ PatchSide ObjectSideFromGeometry(const std::vector<PatchSide>& mask) {
   return PatchSide::kNone;
 }
 
+}  // namespace
+
 bool HasBothSides(const std::vector<PatchSide>& mask) {
   const bool plus = std::find(mask.begin(), mask.end(), PatchSide::kPlus) != mask.end();
   const bool minus = std::find(mask.begin(), mask.end(), PatchSide::kMinus) != mask.end();
   return plus && minus;
 }
-
-}  // namespace
 
 PatchSide ObjectSideFromPolarity(Polarity polarity) {
   switch (polarity) {

@@ -21,6 +21,9 @@ struct LevelLineSides {
   PatchSide object_side = PatchSide::kNone;  // kPlus, kMinus or unknown
 };
 
+// True if `mask` labels at least one pixel on each side.
+bool HasBothSides(const std::vector<PatchSide>& mask);
+
 // The side of a CoMIC feature's corner interior from its polarity (kBright -> kPlus), kNone
 // without polarity.
 PatchSide ObjectSideFromPolarity(Polarity polarity);

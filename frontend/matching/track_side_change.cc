@@ -56,15 +56,6 @@ float SideChangeOf(const std::vector<PatchSide>& mask, PatchSide side, const Pat
   return static_cast<float>(difference / (var_a + var_b + noise_variance));
 }
 
-bool HasBothSides(const std::vector<PatchSide>& mask) {
-  bool plus = false, minus = false;
-  for (PatchSide s : mask) {
-    plus |= s == PatchSide::kPlus;
-    minus |= s == PatchSide::kMinus;
-  }
-  return plus && minus;
-}
-
 // Per frame, the tracks (long enough) with an observation there, and which observation.
 std::vector<std::vector<std::pair<int, int>>> ObservationsByFrame(
     const FeatureTracks& tracks, const TrackSideChangeOptions& options) {
@@ -110,7 +101,8 @@ std::vector<SideChange> MeasureTrackSideChanges(const FeatureTracks& tracks,
       if (o == 0) {
         if (!PatchFits(feature, image.size())) continue;
         const LevelLineSides sides = ComputeLevelLineSides(image, feature);
-        if (sides.mask.empty() || !HasBothSides(sides.mask)) continue;
+        // A CoMIC feature's own mask comes back as it is, possibly with one side only.
+        if (!HasBothSides(sides.mask)) continue;
         reference = std::make_unique<ReferenceSides>();
         reference->mask = sides.mask;
         reference->patch = SamplePatch(image_float, feature);
