@@ -26,6 +26,8 @@
 #include "sfm/run/run_messages.h"
 #include "sfm/run/run_option_table.h"
 #include "sfm/run/run_outputs.h"
+#include "sfm/run/tracker_option_table.h"
+#include "sfm/run/tracker_settings.h"
 
 namespace comic::python {
 namespace {
@@ -188,6 +190,31 @@ py::list RunOptionEntries() {
   return entries;
 }
 
+// The library's tracker table (sfm/run/tracker_option_table.h) with the run's defaults, for the
+// docstrings of reconstruct() and export_colmap() and the tests of every entry.
+py::list TrackerOptionEntries() {
+  py::list entries;
+  frontend::TrackerOptions defaults = sfm::DefaultRunTrackerOptions();
+  for (const sfm::TrackerOption& entry : sfm::TrackerOptionTable()) {
+    py::dict d;
+    d["flag"] = entry.flag;
+    d["keyword"] = entry.keyword;
+    d["metavar"] = entry.metavar;
+    d["help"] = entry.help;
+    d["default"] = std::visit(
+        [&](auto field) -> py::object {
+          if constexpr (std::is_same_v<decltype(field), sfm::TrackerOption::Named>) {
+            return py::cast(field.get(defaults));
+          } else {
+            return py::cast(field(defaults));
+          }
+        },
+        entry.field);
+    entries.append(d);
+  }
+  return entries;
+}
+
 std::vector<std::string> ReconstructOptionNames() {
   sfm::ReconstructionRunOptions options;
   bool quiet = true;
@@ -204,6 +231,7 @@ void BindReconstruct(py::module_& m) {
   m.def("read_reconstruction", &ReadReconstruction, py::arg("path"));
   m.def("reconstruct_option_names", &ReconstructOptionNames);
   m.def("run_option_table", &RunOptionEntries);
+  m.def("tracker_option_table", &TrackerOptionEntries);
   py::class_<PyReconstruction>(m, "Reconstruction")
       .def_readonly("status", &PyReconstruction::status)
       .def_readonly("report_json", &PyReconstruction::report_json)

@@ -1,5 +1,6 @@
 #include "python/run_keywords.h"
 
+#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -7,59 +8,45 @@
 #include "sfm/option_vocabulary.h"
 #include "sfm/run/run_option_table.h"
 #include "sfm/run/run_outputs.h"
+#include "sfm/run/tracker_option_table.h"
 
 namespace comic::python {
 namespace {
 
-// comic.track's tracker options named as the apps' tracker flags (apps/common/tracker_flags.h).
-void AddSfmTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
-  table->insert({{"max_features", Field(&t->max_features)},
-                 {"search_radius", Field(&t->matcher.radius)},
-                 {"unpredicted_radius", Field(&t->unpredicted_radius)},
-                 {"prediction", Parsed(&t->prediction, frontend::ParseMotionPrediction)},
-                 {"coarse_radius", Field(&t->coarse_radius)},
-                 {"match_window", Field(&t->match_window)},
-                 {"track_conflicts", Parsed(&t->conflict_rule, frontend::ParseTrackConflictRule)},
-                 {"verify_min_gap", Field(&t->verify_min_gap)},
-                 {"match_turned", Field(&t->match_turned_180)},
-                 {"max_cost", Field(&t->matcher.max_cost)}});
+// A setter of the tracker table's `entry` writing `options`' field: typed as the field, a
+// named field (prediction="velocity") parsed by its name.
+Setter TrackerEntrySetter(const sfm::TrackerOption& entry, frontend::TrackerOptions* options) {
+  return std::visit(
+      [options](auto field) -> Setter {
+        if constexpr (std::is_same_v<decltype(field), sfm::TrackerOption::Named>) {
+          return [options, field](py::handle value) {
+            if (!py::isinstance<py::str>(value)) throw py::type_error("expects a str");
+            field.set(*options, py::cast<std::string>(value));
+          };
+        } else {
+          return Field(&field(*options));
+        }
+      },
+      entry.field);
 }
 
-// The tracker flags of comic_sfm and comic_export_colmap (apps/common/tracker_flags.h), given.
+// comic.track's tracker options: a keyword per entry of the tracker table, as the apps' flags.
+void AddSfmTrackerOptions(frontend::TrackerOptions* t, OptionTable* table) {
+  for (const sfm::TrackerOption& entry : sfm::TrackerOptionTable()) {
+    (*table)[entry.keyword] = TrackerEntrySetter(entry, t);
+  }
+}
+
+// The tracker flags of comic_sfm and comic_export_colmap, given: a keyword per entry of the
+// tracker table, whose value wins over the pairing's as the flag's does.
 void AddRunTrackerSettings(sfm::TrackerSettings* t, OptionTable* table) {
-  table->insert({{"max_features", Given(&t->max_features)},
-                 {"search_radius", Given(&t->search_radius)},
-                 {"unpredicted_radius", Given(&t->unpredicted_radius)},
-                 {"prediction", Given(&t->prediction)},
-                 {"coarse_radius", Given(&t->coarse_radius)},
-                 {"match_window", Given(&t->match_window)},
-                 {"track_conflicts", Given(&t->track_conflicts)},
-                 {"verify_min_gap", Given(&t->verify_min_gap)},
-                 {"match_turned", Given(&t->match_turned)},
-                 {"max_cost", Given(&t->max_cost)},
-                 {"align_patches", Given(&t->align_patches)},
-                 {"min_window_eigenvalue", Given(&t->min_window_eigenvalue)}});
-  using Continuation = frontend::TrackContinuationOptions;
-  std::optional<Continuation>* c = &t->continuation;
-  table->insert(
-      {{"max_continued_frames",
-        InOptional(c, [](Continuation& o) -> int& { return o.max_continued_frames; })},
-       {"max_alignment_residual",
-        InOptional(c, [](Continuation& o) -> double& { return o.max_residual; })},
-       {"aligned_radius",
-        InOptional(c, [](Continuation& o) -> double& { return o.aligned_radius; })},
-       {"min_alignment_correlation",
-        InOptional(c, [](Continuation& o) -> double& { return o.min_correlation; })},
-       {"alignment_min_eigenvalue",
-        InOptional(c, [](Continuation& o) -> double& { return o.alignment.min_eigenvalue; })},
-       {"bridge_frames", InOptional(c, [](Continuation& o) -> int& { return o.bridge_frames; })},
-       {"alignment_max_fb",
-        InOptional(c,
-                   [](Continuation& o) -> double& { return o.alignment.max_forward_backward_px; })},
-       {"alignment_iterations",
-        InOptional(c, [](Continuation& o) -> int& { return o.alignment.max_iterations; })},
-       {"alignment_levels",
-        InOptional(c, [](Continuation& o) -> int& { return o.alignment.levels; })}});
+  for (const sfm::TrackerOption& entry : sfm::TrackerOptionTable()) {
+    Setter set = TrackerEntrySetter(entry, &t->values);
+    (*table)[entry.keyword] = [t, set, flag = entry.flag](py::handle value) {
+      set(value);
+      t->MarkGiven(flag);
+    };
+  }
 }
 
 // --first, --last, --stride, --resize-height, --max-pixels.

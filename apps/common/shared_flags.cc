@@ -1,6 +1,7 @@
 #include "apps/common/shared_flags.h"
 
 #include "frontend/detector_factory.h"
+#include "sfm/run/tracker_option_table.h"
 
 namespace comic::apps {
 
@@ -56,19 +57,27 @@ void AddDetectorListFlag(ArgParser& parser, std::string* list) {
                    list);
 }
 
+namespace {
+
+// The tracker table's flag, bound to another app's field (the meaning is written once).
+template <typename T>
+void AddTrackerTableFlag(ArgParser& parser, const std::string& flag, T* value) {
+  const sfm::TrackerOption entry = sfm::FindTrackerOption(flag);
+  parser.AddOption(entry.flag, entry.metavar, entry.help, value);
+}
+
+}  // namespace
+
 void AddMaxFeaturesFlag(ArgParser& parser, int* count) {
-  parser.AddOption("max-features", "N", "keep the N strongest features per frame (0 = all)", count);
+  AddTrackerTableFlag(parser, "max-features", count);
 }
 
 void AddSearchRadiusFlag(ArgParser& parser, double* radius) {
-  parser.AddOption("search-radius", "PX",
-                   "matcher search radius r around a feature's (predicted) position (paper: 20)",
-                   radius);
+  AddTrackerTableFlag(parser, "search-radius", radius);
 }
 
 void AddMaxCostFlag(ArgParser& parser, double* cost) {
-  parser.AddOption("max-cost", "T",
-                   "SSD threshold T: a match's largest mean squared grey difference", cost);
+  AddTrackerTableFlag(parser, "max-cost", cost);
 }
 
 void AddMinSideOverlapFlag(ArgParser& parser, int* pixels) {

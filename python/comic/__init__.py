@@ -41,6 +41,7 @@ __all__ = [
     "RECONSTRUCT_OPTIONS",
     "Reconstruction",
     "Reconstructions",
+    "TRACKER_OPTIONS",
     "Tracks",
     "detect",
     "export_colmap",
@@ -73,6 +74,9 @@ PATCH_SIZE = _core.patch_size
 RECONSTRUCT_OPTIONS = tuple(sorted(_core.reconstruct_option_names()))
 #: The keyword options of export_colmap(): comic_export_colmap's long flags with underscores.
 EXPORT_COLMAP_OPTIONS = tuple(sorted(_core.export_colmap_option_names()))
+#: The tracker's keyword options, shared by reconstruct(), export_colmap() and track(): the
+#: tracker flags of comic_sfm and comic_export_colmap with underscores, in --help's order.
+TRACKER_OPTIONS = tuple(entry["keyword"] for entry in _core.tracker_option_table())
 #: The default pixel budget per image (the apps' --max-pixels; io/core/pixel_budget.h).
 MAX_PIXELS = _core.default_max_pixels
 
@@ -214,10 +218,11 @@ def track(frames, detector="comic", detector_options=None, callback=None, **opti
     """Detects and tracks features through `frames`: a folder of images or a video (path), or a
     sequence of uint8 images of one size.
 
-    `options` are the tracker's, named as the apps' flags: search_radius, max_cost, cost,
-    max_features, min_response, prediction ("none", "velocity", "coarse-to-fine"),
-    unpredicted_radius, match_window, ...; for a path also resize_height, first, last, stride;
-    max_pixels for both. `callback(done, total)` is called after each frame. Returns a Tracks.
+    `options` are the tracker's, named as the apps' flags: every entry of the tracker table
+    (reconstruct's docstring lists them, comic.TRACKER_OPTIONS names them; here the paper's
+    protocol gives the defaults: no prediction, 20 px, all features), and cost, min_side_overlap,
+    min_response, velocity_neighbours, velocity_neighbour_radius, coarse_factor, coarse_features;
+    for a path also resize_height, first, last, stride; max_pixels for both. `callback(done, total)` is called after each frame. Returns a Tracks.
     """
     _name(detector, "track: detector")
     if isinstance(frames, _os.PathLike):
@@ -503,6 +508,17 @@ def _run_option_doc():
     return "\n".join(lines) + "\n"
 
 
+def _tracker_option_doc():
+    """The tracker's options, from the library's table: one paragraph each."""
+    lines = ["", "    The tracker's options (the library's table; the run's default in brackets):"]
+    for entry in _core.tracker_option_table():
+        text = "%s [%r]: %s." % (entry["keyword"], entry["default"], entry["help"])
+        lines += _textwrap.wrap(
+            text, width=100, initial_indent="      ", subsequent_indent="          "
+        )
+    return "\n".join(lines) + "\n"
+
+
 def _detector_option_doc():
     """CoMIC's options of detect(), from the library's table: one paragraph each."""
     lines = ["", "    CoMIC's options (the library's table; the default in brackets):"]
@@ -518,7 +534,9 @@ def _detector_option_doc():
 
 # Without docstrings (python -OO) there is nothing to add to.
 if reconstruct.__doc__:
-    reconstruct.__doc__ = reconstruct.__doc__.rstrip() + "\n" + _run_option_doc()
+    reconstruct.__doc__ = (
+        reconstruct.__doc__.rstrip() + "\n" + _run_option_doc() + _tracker_option_doc()
+    )
 if detect.__doc__:
     detect.__doc__ = detect.__doc__.rstrip() + "\n" + _detector_option_doc()
 
@@ -550,3 +568,7 @@ def export_colmap(frames, colmap_db, *, detector_options=None, **options):
         _option_values(options),
         detector_options or {},
     )
+
+
+if export_colmap.__doc__:
+    export_colmap.__doc__ = export_colmap.__doc__.rstrip() + "\n" + _tracker_option_doc()

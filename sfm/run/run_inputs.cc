@@ -127,13 +127,13 @@ std::vector<MatcherAttempt> ResolveMatchers(const ReconstructionRunOptions& opti
                                             const RunInputs& inputs) {
   const MatcherAttempt as_given{inputs.tracker, inputs.image_set};
   if (frontend::ParseFeatureMatcher(options.matcher) != frontend::FeatureMatcher::kAuto ||
-      options.tracker.match_window) {
+      options.tracker.Given("match-window")) {
     return {as_given};
   }
   if (frontend::IsVideo(inputs.pairing)) {
     if (!inputs.image_set) return {as_given};
     MatcherAttempt verified_patches{inputs.tracker, std::nullopt};
-    if (!options.tracker.verify_min_gap) verified_patches.tracker.verify_min_gap = 1;
+    if (!options.tracker.Given("verify-min-gap")) verified_patches.tracker.verify_min_gap = 1;
     return {verified_patches, as_given};
   }
   if (inputs.image_set) return {as_given};

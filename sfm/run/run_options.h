@@ -8,6 +8,7 @@
 #include <string>
 
 #include "frontend/detector_factory.h"
+#include "frontend/evaluation/track_evaluation.h"
 #include "io/core/pixel_budget.h"
 #include "io/image/image_sequence.h"
 #include "sfm/colmap/colmap_export.h"
@@ -111,8 +112,9 @@ struct ReconstructionRunOptions {
   // (COLMAP's ImageReader.mask_path convention). The statistics take non-zero as the object
   // either way.
   bool mask_drops_nonzero = true;
-  std::string regions;          // --regions FILE
-  double boundary_band = 11.0;  // --boundary-band PX
+  std::string regions;  // --regions FILE
+  // --boundary-band PX: the band of the track evaluation (region_labels.h), one default for both.
+  double boundary_band = frontend::TrackEvaluationOptions().boundary_band;
   std::string plot_plane = "auto";
 
   // ---- outputs

@@ -1,5 +1,6 @@
 #include "sfm/run/run_report.h"
 
+#include <type_traits>
 #include <variant>
 
 #include "frontend/matching/pairing.h"
@@ -7,25 +8,12 @@
 #include "sfm/focal_observability.h"
 #include "sfm/run/run_option_table.h"
 #include "sfm/run/run_outputs.h"
+#include "sfm/run/tracker_option_table.h"
 #include "sfm/working_resolution.h"
 
 namespace comic::sfm {
 
 namespace {
-
-// The guided search and continuation settings (--align-patches and the flags with it).
-nlohmann::json ContinuationToJson(const frontend::TrackContinuationOptions& c) {
-  return {{"alignment_levels", c.alignment.levels},
-          {"alignment_iterations", c.alignment.max_iterations},
-          {"alignment_min_eigenvalue", c.alignment.min_eigenvalue},
-          {"alignment_max_fb_px", c.alignment.max_forward_backward_px},
-          {"max_alignment_residual", c.max_residual},
-          {"min_alignment_correlation", c.min_correlation},
-          {"aligned_radius_px", c.aligned_radius},
-          {"max_continued_frames", c.max_continued_frames},
-          {"min_separation_px", c.min_separation},
-          {"bridge_frames", c.bridge_frames}};
-}
 
 nlohmann::json CameraToJson(const Camera& camera) {
   return {{"model", CameraModelName(camera.model)},
@@ -131,22 +119,9 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
         {"pixel_convention", "OpenCV (top-left pixel centre at 0,0)"}}},
       {"gt", options.gt.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.gt)},
       {"gt_format", io::GroundTruthFormatName(inputs.gt_format)},
-      {"max_features", tracker.max_features},
       {"scale_levels", options.detector_options.scale_space.num_levels},
-      {"search_radius_px", tracker.matcher.radius},
-      {"unpredicted_radius_px", tracker.unpredicted_radius},
       {"matching", PairingToJson(inputs.pairing)},
       {"matcher", inputs.image_set ? "descriptors" : "patches"},
-      {"prediction", frontend::MotionPredictionName(tracker.prediction)},
-      {"coarse_radius_px", tracker.coarse_radius},
-      {"match_window", tracker.match_window},
-      {"track_conflicts", options.tracker.TrackConflictsName()},
-      {"verify_min_gap", tracker.verify_min_gap},
-      {"match_turned", tracker.match_turned_180},
-      {"max_cost", tracker.matcher.max_cost},
-      {"min_window_eigenvalue", tracker.min_window_eigenvalue},
-      {"align_patches", tracker.align_patches},
-      {"continuation", ContinuationToJson(tracker.continuation)},
       {"camera_model", options.camera.camera_model},
       {"retriangulate", !options.no_retriangulate},
       {"planar_pose_choice", !options.no_planar_pose_choice},
@@ -163,6 +138,19 @@ nlohmann::json RunOptionsToJson(const ReconstructionRunOptions& options, const R
       {"masks", options.masks},
       {"mask_drops_nonzero", options.mask_drops_nonzero},
       {"boundary_band_px", options.boundary_band}};
+  // The tracker's options as the run resolved them for its pairing, under their keywords.
+  for (const TrackerOption& entry : TrackerOptionTable()) {
+    frontend::TrackerOptions resolved = tracker;
+    std::visit(
+        [&](auto field) {
+          if constexpr (std::is_same_v<decltype(field), TrackerOption::Named>) {
+            json[entry.keyword] = field.get(resolved);
+          } else {
+            json[entry.keyword] = field(resolved);
+          }
+        },
+        entry.field);
+  }
   // The table's options reported as given, under their keywords.
   ReconstructionRunOptions given = options;
   for (const RunOption& entry : RunOptionTable()) {

@@ -2,55 +2,35 @@
 
 #include "frontend/matching/track_builder.h"
 #include "io/core/error.h"
+#include "sfm/run/tracker_option_table.h"
 #include "sfm/sequence_reconstruction.h"
 
 namespace comic::sfm {
-
-namespace {
-
-// Parses `value` with `parse`, its error message prefixed with the option's name.
-template <typename Parse>
-auto ParseNamed(const std::string& option, const std::string& value, Parse parse) {
-  try {
-    return parse(value);
-  } catch (const Error& e) {
-    throw Error(e.kind(), option + ": " + e.what());
-  }
-}
-
-}  // namespace
 
 frontend::TrackerOptions DefaultRunTrackerOptions() {
   return SequenceReconstructionOptions().tracker;
 }
 
+void TrackerSettings::MarkGiven(const std::string& flag) {
+  given.insert(FindTrackerOption(flag).flag);  // throws for a flag the table lacks
+}
+
+void TrackerSettings::GiveName(const std::string& flag, const std::string& name) {
+  const TrackerOption entry = FindTrackerOption(flag);
+  const auto* named = std::get_if<TrackerOption::Named>(&entry.field);
+  COMIC_CHECK(named != nullptr, kInvalidArgument, "--" << flag << " is not given by a name");
+  named->set(values, name);
+  given.insert(flag);
+}
+
 frontend::TrackerOptions TrackerSettings::ToTrackerOptions() const {
-  frontend::TrackerOptions options = DefaultRunTrackerOptions();
-  if (max_features) options.max_features = *max_features;
-  if (search_radius) options.matcher.radius = *search_radius;
-  if (unpredicted_radius) options.unpredicted_radius = *unpredicted_radius;
-  if (prediction) {
-    options.prediction = ParseNamed("--prediction", *prediction, frontend::ParseMotionPrediction);
-  }
-  if (coarse_radius) options.coarse_radius = *coarse_radius;
-  if (match_window) options.match_window = *match_window;
-  if (track_conflicts) {
-    options.conflict_rule =
-        ParseNamed("--track-conflicts", *track_conflicts, frontend::ParseTrackConflictRule);
-  }
-  if (verify_min_gap) options.verify_min_gap = *verify_min_gap;
-  if (match_turned) options.match_turned_180 = *match_turned;
-  if (max_cost) options.matcher.max_cost = *max_cost;
-  if (align_patches) options.align_patches = *align_patches;
-  if (min_window_eigenvalue) options.min_window_eigenvalue = *min_window_eigenvalue;
-  if (continuation) options.continuation = *continuation;
-  options.Check();
-  return options;
+  for (const std::string& flag : given) FindTrackerOption(flag);  // each one the table's
+  values.Check();
+  return values;
 }
 
 std::string TrackerSettings::TrackConflictsName() const {
-  return track_conflicts.value_or(
-      frontend::TrackConflictRuleName(DefaultRunTrackerOptions().conflict_rule));
+  return frontend::TrackConflictRuleName(values.conflict_rule);
 }
 
 frontend::PairingChoice ChooseRunPairing(const std::string& matching,
@@ -60,7 +40,7 @@ frontend::PairingChoice ChooseRunPairing(const std::string& matching,
   if (requested.mode != frontend::PairingMode::kAuto) {
     return frontend::ChoosePairing({}, requested);
   }
-  if (settings.match_window) {
+  if (settings.Given("match-window")) {
     frontend::PairingChoice choice;
     choice.requested = requested;
     choice.chosen = {frontend::PairingMode::kSequential, 0};
@@ -77,16 +57,9 @@ frontend::TrackerOptions TrackerOptionsForRun(const TrackerSettings& settings,
   frontend::TrackerOptions options =
       frontend::TrackerOptionsForPairing(choice.chosen, num_frames, given);
   // The fields a pairing sets, kept where they were given.
-  if (settings.match_window) options.match_window = given.match_window;
-  if (settings.verify_min_gap) options.verify_min_gap = given.verify_min_gap;
-  if (settings.match_turned) options.match_turned_180 = given.match_turned_180;
-  if (settings.prediction) options.prediction = given.prediction;
-  if (settings.coarse_radius) options.coarse_radius = given.coarse_radius;
-  if (settings.search_radius) options.matcher.radius = given.matcher.radius;
-  if (settings.max_cost) options.matcher.max_cost = given.matcher.max_cost;
-  if (settings.align_patches) options.align_patches = given.align_patches;
-  if (settings.min_window_eigenvalue) options.min_window_eigenvalue = given.min_window_eigenvalue;
-  if (settings.continuation) options.continuation = given.continuation;
+  for (const TrackerOption& entry : TrackerOptionTable()) {
+    if (settings.Given(entry.flag)) CopyTrackerOption(entry, given, options);
+  }
   options.Check();
   return options;
 }

@@ -1,16 +1,19 @@
 // The tracker options of a run (paper §4: frame-to-frame SSD patch matching within a radius, with
-// the motion prediction real driving video needs), by comic_sfm's and comic_export_colmap's flag
-// names, and the frame pairs matched (--matching, docs/sfm.md). A field left unset takes the
-// default of video SfM (SequenceReconstructionOptions' tracker: 2000 features, constant-velocity
-// prediction, 60 px where nothing predicts) as set up for the chosen pairing; a field given is
-// kept as given, so an explicit --match-window or --search-radius wins over the pairing's.
+// the motion prediction real driving video needs), by the tracker table's flags
+// (sfm/run/tracker_option_table.h), and the frame pairs matched (--matching, docs/sfm.md). A
+// field not given takes the default of video SfM (SequenceReconstructionOptions' tracker: 2000
+// features, constant-velocity prediction, 60 px where nothing predicts) as set up for the chosen
+// pairing; a field given is kept as given, so an explicit --match-window or --search-radius wins
+// over the pairing's.
 //
-//   TrackerSettings settings;  settings.search_radius = 30.0;
+//   TrackerSettings settings;
+//   settings.Give("search-radius", [](TrackerOptions& o) { o.matcher.radius = 30.0; });
 //   PairingChoice pairing = ChooseRunPairing("auto", settings, sequence);
 //   TrackerOptions tracker = TrackerOptionsForRun(settings, pairing, sequence.NumFrames());
 #pragma once
 
 #include <optional>
+#include <set>
 #include <string>
 
 #include "frontend/matching/image_set_matching.h"
@@ -23,32 +26,34 @@ class ImageSequence;
 
 namespace comic::sfm {
 
-struct TrackerSettings {
-  std::optional<int> max_features;              // --max-features N (0 = all)
-  std::optional<double> search_radius;          // --search-radius PX
-  std::optional<double> unpredicted_radius;     // --unpredicted-radius PX (0 = --search-radius)
-  std::optional<std::string> prediction;        // --prediction none|velocity|coarse-to-fine
-  std::optional<double> coarse_radius;          // --coarse-radius PX
-  std::optional<int> match_window;              // --match-window K
-  std::optional<std::string> track_conflicts;   // --track-conflicts drop|greedy
-  std::optional<int> verify_min_gap;            // --verify-min-gap G
-  std::optional<bool> match_turned;             // --match-turned
-  std::optional<double> max_cost;               // --max-cost T
-  std::optional<bool> align_patches;            // --align-patches 1|0
-  std::optional<double> min_window_eigenvalue;  // --min-window-eigenvalue E
-  // --max-continued-frames, --bridge-frames and the alignment flags (track_continuation.h).
-  std::optional<frontend::TrackContinuationOptions> continuation;
-
-  // The defaults with every given field applied, names parsed, Check()ed. Throws
-  // comic::Error(kInvalidArgument) naming the bad option.
-  frontend::TrackerOptions ToTrackerOptions() const;
-  // The --track-conflicts name in force (the default's when unset).
-  std::string TrackConflictsName() const;
-};
-
 // The tracker options a run starts from (SequenceReconstructionOptions' tracker), so that both
 // apps and Python take the same defaults.
 frontend::TrackerOptions DefaultRunTrackerOptions();
+
+struct TrackerSettings {
+  // Every tracker option's value, the run's defaults where none was given.
+  frontend::TrackerOptions values = DefaultRunTrackerOptions();
+  // The flags given (sfm/run/tracker_option_table.h): their values win over the pairing's.
+  std::set<std::string> given;
+
+  // Gives `flag` (an entry of the tracker table; throws comic::Error(kInvalidArgument) for
+  // another) with `set` applied to the values.
+  template <typename Set>
+  void Give(const std::string& flag, Set set) {
+    MarkGiven(flag);
+    set(values);
+  }
+  // Gives a named option (--prediction, --track-conflicts) by its name; throws
+  // comic::Error(kInvalidArgument) naming the flag for an unknown name.
+  void GiveName(const std::string& flag, const std::string& name);
+  void MarkGiven(const std::string& flag);
+  bool Given(const std::string& flag) const { return given.count(flag) > 0; }
+
+  // The values, Check()ed. Throws comic::Error(kInvalidArgument) naming the bad option.
+  frontend::TrackerOptions ToTrackerOptions() const;
+  // The --track-conflicts name in force.
+  std::string TrackConflictsName() const;
+};
 
 // The pairing of a run: `matching` parsed (throws comic::Error(kInvalidArgument) naming
 // --matching) and, for auto, chosen from the frames of `sequence` — unless --match-window was

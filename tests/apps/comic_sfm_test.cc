@@ -317,7 +317,7 @@ TEST(ComicSfm, MatchingAutoTellsTheClipFromItsFramesOutOfOrder) {
   EXPECT_FALSE(set_report["options"]["matching"]["looks_like_video"].get<bool>());
   EXPECT_EQ(set_report["options"]["match_window"], 7);  // every pair of 8 frames
   EXPECT_EQ(set_report["options"]["match_turned"], true);
-  EXPECT_EQ(set_report["options"]["search_radius_px"], 30.0);  // given: kept
+  EXPECT_EQ(set_report["options"]["search_radius"], 30.0);  // given: kept
 }
 
 // The Middlebury temple sparse ring (docs/sfm.md): 16 views 23 degrees apart, ring neighbours up

@@ -62,7 +62,7 @@ TEST(RunReconstruction, InMemoryWritesNothingAndReportsWhatItDid) {
   EXPECT_FALSE(run.report_json.contains("outputs"));  // nothing was written
   // Every tracker option is in the report, the alignment flags too.
   EXPECT_EQ(run.report_json["options"]["align_patches"], result.inputs.tracker.align_patches);
-  EXPECT_EQ(run.report_json["options"]["continuation"]["bridge_frames"],
+  EXPECT_EQ(run.report_json["options"]["bridge_frames"],
             result.inputs.tracker.continuation.bridge_frames);
   EXPECT_TRUE(run.evaluation.has_value());
 }

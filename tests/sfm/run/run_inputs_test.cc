@@ -27,7 +27,7 @@ TEST(RunInputs, AutoOnAVideoTriesVerifiedPatchesThenDescriptors) {
 
 TEST(RunInputs, AGivenVerifyMinGapIsKept) {
   ReconstructionRunOptions options = ExampleOptions();
-  options.tracker.verify_min_gap = 3;
+  options.tracker.Give("verify-min-gap", [](frontend::TrackerOptions& o) { o.verify_min_gap = 3; });
   const RunInputs inputs = ResolveRunInputs(options);
   ASSERT_EQ(inputs.matchers.size(), 2u);
   EXPECT_EQ(inputs.matchers[0].tracker.verify_min_gap, 3);
@@ -54,7 +54,7 @@ TEST(RunInputs, AMatcherOrAMatchWindowGivenIsTheOnlyOneTried) {
     EXPECT_EQ(inputs.matchers[0].tracker.verify_min_gap, inputs.tracker.verify_min_gap);
   }
   ReconstructionRunOptions options = ExampleOptions();
-  options.tracker.match_window = 3;
+  options.tracker.Give("match-window", [](frontend::TrackerOptions& o) { o.match_window = 3; });
   const RunInputs inputs = ResolveRunInputs(options);
   ASSERT_EQ(inputs.matchers.size(), 1u);
   EXPECT_FALSE(inputs.matchers[0].image_set.has_value());

@@ -61,7 +61,7 @@ TEST(ReconstructionRunOptions, MessagesNameTheFlags) {
       {[](auto* o) { o->init_max_gap = -1; }, "--init-max-gap"},
       {[](auto* o) { o->max_working_size = 10; }, "--max-working-size"},
       {[](auto* o) { o->min_registered = 1.5; }, "--min-registered"},
-      {[](auto* o) { o->tracker.prediction = "psychic"; }, "--prediction"},
+      {[](auto* o) { o->tracker.given.insert("psychic-radius"); }, "--psychic-radius"},
       {[](auto* o) { o->camera.camera_model = "FISHEYE"; }, "--camera-model"},
       {[](auto* o) { o->model_format = "json"; }, "--model-format"},
       {[](auto* o) { o->ply_format = "big"; }, "--ply-format"},

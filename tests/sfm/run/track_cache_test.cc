@@ -230,7 +230,7 @@ TEST(TrackCache, OtherTrackerOrDetectorOptionsMakeAnotherFileMapperOptionsDoNot)
   EXPECT_EQ(CacheFiles(options).size(), 1u);
 
   ReconstructionRunOptions tracker = options;
-  tracker.tracker.max_features = 1500;
+  tracker.tracker.Give("max-features", [](frontend::TrackerOptions& o) { o.max_features = 1500; });
   EXPECT_FALSE(RunReconstruction(tracker).runs.front().track_cache.from_cache);
   EXPECT_EQ(CacheFiles(options).size(), 2u);
 

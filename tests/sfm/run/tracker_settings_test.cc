@@ -31,12 +31,13 @@ TEST(TrackerSettings, UnsetFieldsAreTheDefaults) {
 TEST(TrackerSettings, PatchAlignmentAndContinuationAreKeptAsGiven) {
   EXPECT_FALSE(TrackerSettings().ToTrackerOptions().align_patches);
   TrackerSettings settings;
-  settings.align_patches = true;
-  settings.min_window_eigenvalue = 20.0;
-  frontend::TrackContinuationOptions continuation;
-  continuation.max_continued_frames = 30;
-  continuation.bridge_frames = 3;
-  settings.continuation = continuation;
+  settings.Give("align-patches", [](frontend::TrackerOptions& o) { o.align_patches = true; });
+  settings.Give("min-window-eigenvalue",
+                [](frontend::TrackerOptions& o) { o.min_window_eigenvalue = 20.0; });
+  settings.Give("max-continued-frames",
+                [](frontend::TrackerOptions& o) { o.continuation.max_continued_frames = 30; });
+  settings.Give("bridge-frames",
+                [](frontend::TrackerOptions& o) { o.continuation.bridge_frames = 3; });
   for (frontend::PairingMode mode :
        {frontend::PairingMode::kSequential, frontend::PairingMode::kExhaustive}) {
     const frontend::TrackerOptions options = TrackerOptionsForRun(settings, Chosen(mode), 10);
@@ -46,14 +47,14 @@ TEST(TrackerSettings, PatchAlignmentAndContinuationAreKeptAsGiven) {
     EXPECT_EQ(options.continuation.bridge_frames, 3);
   }
   // Continuation without alignment is refused, naming the field.
-  settings.align_patches = false;
+  settings.Give("align-patches", [](frontend::TrackerOptions& o) { o.align_patches = false; });
   EXPECT_THROW(settings.ToTrackerOptions(), Error);
 }
 
 TEST(TrackerSettings, ThePairingSetsUpWhatWasNotGiven) {
   TrackerSettings settings;
-  settings.search_radius = 25.0;
-  settings.max_features = 500;
+  settings.Give("search-radius", [](frontend::TrackerOptions& o) { o.matcher.radius = 25.0; });
+  settings.Give("max-features", [](frontend::TrackerOptions& o) { o.max_features = 500; });
   const frontend::TrackerOptions options =
       TrackerOptionsForRun(settings, Chosen(frontend::PairingMode::kExhaustive), 10);
   // Exhaustive matching: every later frame, verified, turned, coarse-to-fine ...
@@ -65,8 +66,8 @@ TEST(TrackerSettings, ThePairingSetsUpWhatWasNotGiven) {
   EXPECT_EQ(options.matcher.radius, 25.0);
   EXPECT_EQ(options.max_features, 500);
 
-  settings.match_turned = false;
-  settings.verify_min_gap = 0;
+  settings.Give("match-turned", [](frontend::TrackerOptions& o) { o.match_turned_180 = false; });
+  settings.Give("verify-min-gap", [](frontend::TrackerOptions& o) { o.verify_min_gap = 0; });
   const frontend::TrackerOptions kept =
       TrackerOptionsForRun(settings, Chosen(frontend::PairingMode::kExhaustive), 10);
   EXPECT_FALSE(kept.match_turned_180);
@@ -77,7 +78,7 @@ TEST(TrackerSettings, MatchWindowGivenLeavesAutoAlone) {
   const io::ImageSequence sequence =
       io::ImageSequence::Open(comic::test::ExampleDir() + "/image_l", {});
   TrackerSettings settings;
-  settings.match_window = 3;
+  settings.Give("match-window", [](frontend::TrackerOptions& o) { o.match_window = 3; });
   const frontend::PairingChoice choice = ChooseRunPairing("auto", settings, sequence);
   EXPECT_EQ(choice.chosen.mode, frontend::PairingMode::kSequential);
   EXPECT_FALSE(choice.measured);
@@ -90,17 +91,22 @@ TEST(TrackerSettings, MatchWindowGivenLeavesAutoAlone) {
 
 TEST(TrackerSettings, BadNamesNameTheFlag) {
   TrackerSettings settings;
-  settings.prediction = "psychic";
   try {
-    settings.ToTrackerOptions();
+    settings.GiveName("prediction", "psychic");
     ADD_FAILURE() << "psychic accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::kInvalidArgument);
     EXPECT_EQ(std::string(e.what()).rfind("--prediction: ", 0), 0u) << e.what();
   }
-  settings.prediction.reset();
-  settings.track_conflicts = "merge";
+  EXPECT_FALSE(settings.Given("prediction"));  // a refused name is not given
+  EXPECT_THROW(settings.GiveName("track-conflicts", "merge"), Error);
+  EXPECT_THROW(settings.GiveName("search-radius", "wide"), Error);  // not a named option
+  EXPECT_THROW(settings.MarkGiven("psychic-radius"), Error);        // not the table's
+  settings.given.insert("psychic-radius");
   EXPECT_THROW(settings.ToTrackerOptions(), Error);
+  settings.given.clear();
+  settings.GiveName("prediction", "coarse-to-fine");
+  EXPECT_EQ(settings.ToTrackerOptions().prediction, frontend::MotionPrediction::kCoarseToFine);
   const io::ImageSequence sequence =
       io::ImageSequence::Open(comic::test::ExampleDir() + "/image_l", {});
   EXPECT_THROW(ChooseRunPairing("window:0", TrackerSettings(), sequence), Error);
