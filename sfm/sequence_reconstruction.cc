@@ -22,6 +22,7 @@ void SequenceReconstructionOptions::Check() const {
   tracker.Check();
   if (image_set) image_set->Check();
   mapper.Check();
+  moving_object.Check();
 }
 
 namespace {
@@ -119,6 +120,8 @@ SequenceReconstruction ReconstructFromTracks(const io::ImageSequence& sequence,
                           : FrameMatcher();
   run.mapping =
       ReconstructIncrementally(run.tracks, camera, options.mapper, mapper_progress, seam_matcher);
+  run.moving_object =
+      CheckForMovingObject(run.tracks, camera, options.mapper, options.moving_object, &run.mapping);
   run.mapping_time_s = Seconds(mapping_start);
 
   const auto coloring_start = std::chrono::steady_clock::now();

@@ -23,6 +23,7 @@
 #include "io/image/image_sequence.h"
 #include "sfm/camera.h"
 #include "sfm/incremental_pipeline.h"
+#include "sfm/moving_object.h"
 
 namespace comic::sfm {
 
@@ -45,6 +46,9 @@ struct SequenceReconstructionOptions {
   // seams (IncrementalPipelineOptions::seam_num_frames): the tracker's matcher on the two frames
   // with coarse-to-fine prediction and geometric verification (MakeSeamMatcher).
   bool match_seams = true;
+  // A second rigid motion (an object moving through the view) found without masks: the model is
+  // then suspect (sfm/moving_object.h).
+  MovingObjectOptions moving_object;
 
   SequenceReconstructionOptions();
   // Throws comic::Error(kInvalidArgument) naming the bad field.
@@ -62,6 +66,8 @@ struct SequenceReconstruction {
   // Detected features removed by options.feature_masks (before the per-frame max_features cap).
   int64_t masked_features = 0;
   IncrementalReconstruction mapping;  // in the pixels of the frames (the working size)
+  // What the search for a second rigid motion found (options.moving_object).
+  MovingObjectCheck moving_object;
   // The size of the frames as stored; the frames were worked on at `frame_size` (resized, e.g. to
   // the working resolution: sfm/working_resolution.h). Models are written in the input's pixels.
   cv::Size input_size;

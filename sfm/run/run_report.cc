@@ -178,6 +178,15 @@ nlohmann::json DetectorReportJson(const DetectorRun& run, const ReconstructionRu
   // --masks: the detected features they removed (null without masks).
   json["masked_features"] =
       inputs.feature_masks ? nlohmann::json(run.run.masked_features) : nlohmann::json(nullptr);
+  const MovingObjectCheck& moving = run.run.moving_object;
+  json["moving_object"] = {
+      {"mapped_again", moving.mapped_again},
+      {"measured_tracks", moving.measured_tracks},
+      {"unexplained_tracks", moving.unexplained_tracks},
+      {"second_model_frames", moving.second_model_frames},
+      {"first_tracks_explained_by_second", moving.first_tracks_explained_by_second},
+      {"second_motion", moving.second_motion},
+      {"reason", moving.reason}};
   // --cache: where the tracks were kept, and whether this run read them instead of detecting.
   const TrackCacheUse& cache = run.track_cache;
   json["tracks_from_cache"] = cache.from_cache;
