@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "io/core/file_utils.h"
 #include "io/datasets/ground_truth_cameras.h"
@@ -61,19 +62,34 @@ std::vector<io::PageFact> CameraFacts(const DetectorRun& run, const RunInputs& i
   return facts;
 }
 
+// After the largest model's count: what the other models hold, and how many of their frames the
+// largest lacks (models may share frames: a frame is counted once).
+std::string OtherModelsWords(const std::vector<const Reconstruction*>& models) {
+  if (models.size() < 2) return "";
+  std::string sizes;
+  std::set<image_t> only_in_others;
+  for (size_t m = 1; m < models.size(); ++m) {
+    const size_t count = models[m]->NumRegisteredImages();
+    sizes += (m == 1 ? "" : (m + 1 == models.size() ? " and " : ", ")) + std::to_string(count);
+    for (const auto& [image_id, image] : models[m]->images()) {
+      const bool in_largest =
+          models[0]->ExistsImage(image_id) && models[0]->image(image_id).registered;
+      if (image.registered && !in_largest) only_in_others.insert(image_id);
+    }
+  }
+  const bool one = models.size() == 2;
+  return " in the largest model; the " + std::string(one ? "other model holds " : "") +
+         (one ? "" : std::to_string(models.size() - 1) + " other models hold ") + sizes +
+         " frames, " + std::to_string(only_in_others.size()) + " of them not in the largest";
+}
+
 io::PageSection SummarySection(const DetectorRun& run, const ReconstructionRunOptions& options,
                                const RunInputs& inputs) {
   const SfmRunReport& report = run.report;
   const size_t frames = report.num_frames;
   const size_t registered = report.stats.num_registered;
   const std::vector<const Reconstruction*> models = RunModels(run);
-  size_t in_others = 0;
-  for (size_t m = 1; m < models.size(); ++m) in_others += models[m]->NumRegisteredImages();
-  const std::string others = models.size() > 1
-                                 ? " in the largest model, " + std::to_string(in_others) +
-                                       " more in the " + std::to_string(models.size() - 1) +
-                                       " other model" + (models.size() > 2 ? "s" : "")
-                                 : "";
+  const std::string others = OtherModelsWords(models);
   std::vector<io::PageFact> facts = {
       {"status", report.status, StatusTone(report.status)},
       {"detector", run.detector},
@@ -93,6 +109,11 @@ io::PageSection SummarySection(const DetectorRun& run, const ReconstructionRunOp
                          " px"},
       {"tracks", std::to_string(report.num_tracks) + " from the tracker, mean length " +
                      io::NumberText("%.2f", report.mean_tracker_track_length)}};
+  if (run.run.mapping.status == ReconstructionStatus::kSuspect) {
+    // Why the run's own check doubts the model (sfm/model_self_check.h, sfm/moving_object.h).
+    facts.insert(facts.begin() + 1,
+                 {"why suspect", run.run.mapping.self_check.reason, io::PageTone::kBad});
+  }
   for (const io::PageFact& fact : CameraFacts(run, inputs)) facts.push_back(fact);
   if (run.evaluation) {
     const std::string unit = PlaceModels(run, inputs).unit;

@@ -310,6 +310,24 @@ TwoModelRun MakeTwoModelRun(const ScopedTempDir& dir, int num_frames,
   return result;
 }
 
+// Models that share frames (car1's two models of 234 frames): each model's count, and the frames
+// only the other models hold counted once; a suspect run says why at the top.
+TEST(RunPage, OverlappingModelsAreCountedOnceAndASuspectRunSaysWhy) {
+  ScopedTempDir dir;
+  TwoModelRun two = MakeTwoModelRun(dir, 10, {0, 1, 2, 3, 4}, {3, 4, 6, 7, 8});
+  two.run.run.mapping.status = ReconstructionStatus::kSuspect;
+  two.run.run.mapping.self_check.suspect = true;
+  two.run.run.mapping.self_check.reason = "two rigid motions";
+  ReconstructionRunOptions options;
+  options.frames = dir.File("frames");
+  two.run.report_json = DetectorReportJson(two.run, options, two.inputs, true);
+  const nlohmann::json summary = Sections(RunPage(two.run, options, two.inputs), "facts").at(0);
+  EXPECT_EQ(Fact(summary, "registered"),
+            "5 of 10 frames (50 %) in the largest model; the other model holds 5 frames, 3 of them "
+            "not in the largest");
+  EXPECT_EQ(Fact(summary, "why suspect"), "two rigid motions");
+}
+
 // Every model on the timeline in its colour, the true count of models and of the frames they
 // hold; the frames in no model alone called unregistered.
 TEST(RunPage, ShowsEveryModelWithTrueCounts) {
@@ -326,7 +344,8 @@ TEST(RunPage, ShowsEveryModelWithTrueCounts) {
   const nlohmann::json summary = Sections(page, "facts").at(0);
   EXPECT_EQ(Fact(summary, "models"), "2");
   EXPECT_EQ(Fact(summary, "registered"),
-            "5 of 10 frames (50 %) in the largest model, 3 more in the 1 other model");
+            "5 of 10 frames (50 %) in the largest model; the other model holds 3 frames, 3 of them "
+            "not in the largest");
   const nlohmann::json timeline = Sections(page, "timeline").at(0);
   EXPECT_EQ(timeline["frame_groups"], nlohmann::json({0, 0, 0, 0, 0, -1, 1, 1, 1, -1}));
   EXPECT_EQ(timeline["groups"].size(), 2u);
