@@ -497,39 +497,30 @@ def reconstruct(frames, *, detector_options=None, callback=None, **options):
     return runs[0]
 
 
-def _run_option_doc():
-    """The plain options of reconstruct(), from the library's table: one paragraph each."""
-    lines = ["", "    The plain options (the library's table; the default in brackets):"]
-    for entry in _core.run_option_table():
+def _option_doc(heading, entries):
+    """Docstring paragraphs of a library option table: one per entry, the default in brackets
+    (an entry of both CoMIC searches says so)."""
+    lines = ["", "    %s (the library's table; the default in brackets):" % heading]
+    for entry in entries:
         text = "%s [%r]: %s." % (entry["keyword"], entry["default"], entry["help"])
-        lines += _textwrap.wrap(
-            text, width=100, initial_indent="      ", subsequent_indent="          "
-        )
-    return "\n".join(lines) + "\n"
-
-
-def _tracker_option_doc():
-    """The tracker's options, from the library's table: one paragraph each."""
-    lines = ["", "    The tracker's options (the library's table; the run's default in brackets):"]
-    for entry in _core.tracker_option_table():
-        text = "%s [%r]: %s." % (entry["keyword"], entry["default"], entry["help"])
-        lines += _textwrap.wrap(
-            text, width=100, initial_indent="      ", subsequent_indent="          "
-        )
-    return "\n".join(lines) + "\n"
-
-
-def _detector_option_doc():
-    """CoMIC's options of detect(), from the library's table: one paragraph each."""
-    lines = ["", "    CoMIC's options (the library's table; the default in brackets):"]
-    for entry in _core.detector_option_table():
-        text = "%s [%r]: %s." % (entry["keyword"], entry["default"], entry["help"])
-        if len(entry["detectors"]) == 2:
+        if len(entry.get("detectors", ())) == 2:
             text = text.replace(": ", ": both searches: ", 1)
         lines += _textwrap.wrap(
             text, width=100, initial_indent="      ", subsequent_indent="          "
         )
     return "\n".join(lines) + "\n"
+
+
+def _run_option_doc():
+    return _option_doc("The plain options", _core.run_option_table())
+
+
+def _tracker_option_doc():
+    return _option_doc("The tracker's options, the run's defaults", _core.tracker_option_table())
+
+
+def _detector_option_doc():
+    return _option_doc("CoMIC's options", _core.detector_option_table())
 
 
 # Without docstrings (python -OO) there is nothing to add to.
