@@ -61,6 +61,8 @@ void MovingObjectOptions::Check() const {
               "moving object: max_explained_drift_px must be > 0");
   COMIC_CHECK(min_unexplained_tracks >= 1, kInvalidArgument,
               "moving object: min_unexplained_tracks must be >= 1");
+  COMIC_CHECK(max_tracks_mapped_again >= 1, kInvalidArgument,
+              "moving object: max_tracks_mapped_again must be >= 1");
   COMIC_CHECK(min_unexplained_fraction > 0 && min_unexplained_fraction <= 1, kInvalidArgument,
               "moving object: min_unexplained_fraction must be in (0, 1]");
   COMIC_CHECK(min_second_model_frames > 0 && min_second_model_frames <= 1, kInvalidArgument,
@@ -91,10 +93,16 @@ MovingObjectCheck CheckForMovingObject(const frontend::FeatureTracks& tracks, co
     return check;
   }
 
-  // Stage 2: the unexplained tracks mapped on their own.
+  // Stage 2: the unexplained tracks mapped on their own (every k-th of them beyond the cap).
   check.mapped_again = true;
+  std::vector<bool> mapped = first.unexplained;
+  const int step = (first.num_unexplained + options.max_tracks_mapped_again - 1) /
+                   options.max_tracks_mapped_again;
+  for (size_t t = 0, seen = 0; t < mapped.size(); ++t) {
+    if (mapped[t]) mapped[t] = seen++ % step == 0;
+  }
   const IncrementalReconstruction second =
-      ReconstructIncrementally(TracksSubset(tracks, first.unexplained), camera, mapper_options);
+      ReconstructIncrementally(TracksSubset(tracks, mapped), camera, mapper_options);
   check.second_model_frames =
       HasModel(second.status) ? static_cast<int>(second.registered_frames.size()) : 0;
   const int first_frames = static_cast<int>(mapping->registered_frames.size());

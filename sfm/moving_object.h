@@ -33,6 +33,9 @@ struct MovingObjectOptions {
   // moving object with many features leaves the world a minority of the tracks).
   int min_unexplained_tracks = 150;
   double min_unexplained_fraction = 0.1;
+  // At most this many of them are mapped (every k-th, in track order): enough for a second
+  // motion's model, and the second mapping stays a fraction of the first on long clips.
+  int max_tracks_mapped_again = 1500;
   // Their model is a second motion when it registers at least this share of the first model's
   // frames and explains less than max_shared_explanation of the tracks the first explains (else
   // both are models of one world, the second from the first's leftovers).

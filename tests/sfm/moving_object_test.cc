@@ -107,6 +107,22 @@ TEST(MovingObject, ABoxMovingThroughTheStreetIsASecondMotion) {
   EXPECT_NE(mapping.self_check.reason.find("two rigid motions"), std::string::npos);
 }
 
+// Every other unexplained track (a cap below their count) still makes the box's second model.
+TEST(MovingObject, ACapOnTheTracksMappedAgainStillFindsTheSecondMotion) {
+  const SyntheticScene street = Street(700);
+  const frontend::FeatureTracks tracks = Together(street, MovingBox(1500));
+  IncrementalReconstruction mapping =
+      ReconstructIncrementally(tracks, street.camera, IncrementalPipelineOptions());
+  MovingObjectOptions options;
+  options.max_tracks_mapped_again = 200;
+  const MovingObjectCheck check =
+      CheckForMovingObject(tracks, street.camera, IncrementalPipelineOptions(), options, &mapping);
+  EXPECT_GT(check.unexplained_tracks, 200);
+  EXPECT_TRUE(check.second_motion) << check.reason;
+  options.max_tracks_mapped_again = 0;
+  EXPECT_THROW(options.Check(), Error);
+}
+
 TEST(MovingObject, TheStreetAloneIsOneMotion) {
   const SyntheticScene street = Street(2200);
   IncrementalReconstruction mapping =
